@@ -1,0 +1,79 @@
+#include "cases/atomic_file.hpp"
+
+#include <atomic>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+
+#include <unistd.h>
+
+namespace hydrojump::cases {
+namespace {
+
+// A temporary path beside `target`, unique within this process and across processes.
+std::filesystem::path temporary_beside(const std::filesystem::path& target) {
+  static std::atomic<unsigned long> counter{0};
+  const auto n = counter.fetch_add(1);
+  return target.parent_path() /
+         ("." + target.filename().string() + ".tmp." + std::to_string(::getpid()) + "." +
+          std::to_string(n));
+}
+
+void ensure_parent(const std::filesystem::path& target) {
+  const auto parent = target.parent_path();
+  if (parent.empty()) return;
+  std::error_code ec;
+  std::filesystem::create_directories(parent, ec);
+  if (ec) {
+    throw std::runtime_error("cannot create directory '" + parent.string() + "': " + ec.message());
+  }
+}
+
+void rename_over(const std::filesystem::path& from, const std::filesystem::path& to) {
+  std::error_code ec;
+  std::filesystem::rename(from, to, ec);
+  if (ec) {
+    std::filesystem::remove(from, ec);
+    throw std::runtime_error("cannot move the finished file into place at '" + to.string() +
+                             "': " + ec.message());
+  }
+}
+
+}  // namespace
+
+void write_file_atomically(const std::filesystem::path& target, std::string_view content) {
+  write_file_atomically(target, [&](std::ostream& out) {
+    out.write(content.data(), static_cast<std::streamsize>(content.size()));
+  });
+}
+
+void write_file_atomically(const std::filesystem::path& target,
+                           const std::function<void(std::ostream&)>& produce) {
+  write_via_temporary(target, [&](const std::filesystem::path& tmp) {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) throw std::runtime_error("cannot open '" + tmp.string() + "' for writing");
+    produce(out);
+    out.flush();
+    if (!out) throw std::runtime_error("write failed for '" + target.string() + "' (disk full?)");
+  });
+}
+
+void write_via_temporary(const std::filesystem::path& target,
+                         const std::function<void(const std::filesystem::path&)>& write_to) {
+  ensure_parent(target);
+  const auto tmp = temporary_beside(target);
+  try {
+    write_to(tmp);
+  } catch (...) {
+    std::error_code ec;
+    std::filesystem::remove(tmp, ec);
+    throw;
+  }
+  if (!std::filesystem::exists(tmp)) {
+    throw std::runtime_error("nothing was written for '" + target.string() + "'");
+  }
+  rename_over(tmp, target);
+}
+
+}  // namespace hydrojump::cases

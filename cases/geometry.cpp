@@ -1,0 +1,181 @@
+#include "cases/geometry.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "cases/hydraulics.hpp"
+
+namespace hydrojump::cases {
+
+double InitialWater::surface_at(double x) const {
+  if (surface_x_m.empty()) return -1e300;
+  if (x <= surface_x_m.front()) return surface_z_m.front();
+  if (x >= surface_x_m.back()) return surface_z_m.back();
+  const auto it = std::upper_bound(surface_x_m.begin(), surface_x_m.end(), x);
+  const auto i = static_cast<std::size_t>(it - surface_x_m.begin());
+  const double t = (x - surface_x_m[i - 1]) / (surface_x_m[i] - surface_x_m[i - 1]);
+  return surface_z_m[i - 1] + t * (surface_z_m[i] - surface_z_m[i - 1]);
+}
+
+std::vector<Section> default_stilling_basin_sections(const StillingBasinCase& basin) {
+  const double y1 = basin.inflow_depth_m;
+  const double y2 = basin.tailwater_depth_m;
+  const double x_toe = basin.upstream_length_m;
+  const double x_outlet = basin.upstream_length_m + basin.basin_length_m + basin.downstream_length_m;
+  std::vector<Section> sections;
+  sections.push_back({"upstream", x_toe - std::min(10.0 * y1, 0.5 * basin.upstream_length_m), "upstream"});
+  sections.push_back({"toe", x_toe, "toe"});
+  for (int k : {2, 4, 6}) {
+    const double x = x_toe + k * y2;
+    if (x < x_outlet - 3.0 * y2) {
+      sections.push_back({"x_" + std::to_string(k) + "y2", x, "interior"});
+    }
+  }
+  const double x_down = std::min(x_toe + 8.0 * y2, x_outlet - 3.0 * y2);
+  sections.push_back({"downstream", x_down, "downstream"});
+  return sections;
+}
+
+namespace {
+
+// Walls with the fluid on the left of the direction of travel.
+WallPolyline segment_wall(std::string name, Vec2 from, Vec2 to) {
+  return WallPolyline{std::move(name), {from, to}};
+}
+
+CaseGeometry stilling_basin_geometry(const StillingBasinCase& b, double g) {
+  CaseGeometry geo;
+  const double y1 = b.inflow_depth_m, y2 = b.tailwater_depth_m;
+  const double x_toe = b.upstream_length_m;
+  const double x_end = b.upstream_length_m + b.basin_length_m + b.downstream_length_m;
+  geo.bed = b.bed.profile == "sinusoidal"
+                ? BedProfile::sinusoidal(b.bed.wavelength_m, b.bed.height_m, b.bed.reach_start_m,
+                                         b.bed.reach_end_m)
+                : BedProfile::flat(0.0);
+  geo.x_min_m = 0.0;
+  geo.x_max_m = x_end;
+  geo.z_min_m = geo.bed.lowest_elevation();
+  geo.z_max_m = std::max(y1, y2) + b.air_height_m;
+  // The bed follows the profile; the resolution of the polyline is 1e-5 m (walls are re-sampled by
+  // arc length by the particle generator; meshes use bed.polyline with their own tolerance).
+  WallPolyline bed{"bed", geo.bed.polyline(0.0, x_end, 1e-5)};
+  geo.walls.push_back(std::move(bed));
+  // The sluice gate above the inflow: a vertical wall at x = 0 from the top down to y1.
+  geo.walls.push_back(segment_wall("inlet_gate", Vec2(0.0, geo.z_max_m), Vec2(0.0, y1)));
+  geo.inflows.push_back({0.0, y1, b.inflow_velocity_m_s});
+  geo.outflows.push_back({x_end, y2});
+
+  // Initial water: the supercritical layer y1 up to the expected toe, a ramp to y2 over the expected
+  // jump length, then the tailwater level (so the initial volume is close to the final one).
+  const double jump_length = b.measured.jump_length_m.value_or(6.0 * y2);
+  auto& w = geo.initial_water;
+  w.x_begin_m = 0.0;
+  w.x_end_m = x_end;
+  w.surface_x_m = {0.0, x_toe, std::min(x_toe + jump_length, x_end), x_end};
+  w.surface_z_m = {y1, y1, y2, y2};
+  if (w.surface_x_m[2] >= w.surface_x_m[3]) {
+    w.surface_x_m.pop_back();
+    w.surface_z_m.pop_back();
+  }
+  w.discharge_m2_s = unit_discharge(y1, b.inflow_velocity_m_s);
+
+  geo.body_force_m_s2 = Vec2(0.0, -g);
+  geo.max_water_height_m = std::max(y1, y2) - geo.bed.lowest_elevation();
+  geo.max_flow_speed_m_s = b.inflow_velocity_m_s;
+  geo.expected_toe_x_m = x_toe;
+  return geo;
+}
+
+CaseGeometry dam_break_geometry(const DamBreakCase& d, double g) {
+  CaseGeometry geo;
+  geo.bed = BedProfile::flat(0.0);
+  geo.x_min_m = 0.0;
+  geo.x_max_m = d.tank_length_m;
+  geo.z_min_m = 0.0;
+  geo.z_max_m = d.tank_height_m;
+  const Vec2 a(0.0, 0.0), b(d.tank_length_m, 0.0), c(d.tank_length_m, d.tank_height_m),
+      e(0.0, d.tank_height_m);
+  geo.walls.push_back(segment_wall("bed", a, b));
+  geo.walls.push_back(segment_wall("right_wall", b, c));
+  geo.walls.push_back(segment_wall("left_wall", e, a));
+  auto& w = geo.initial_water;
+  w.x_begin_m = 0.0;
+  w.x_end_m = d.column_width_m;
+  w.surface_x_m = {0.0, d.column_width_m};
+  w.surface_z_m = {d.column_height_m, d.column_height_m};
+  geo.body_force_m_s2 = Vec2(0.0, -g);
+  geo.max_water_height_m = d.column_height_m;
+  geo.max_flow_speed_m_s = std::sqrt(2.0 * g * d.column_height_m);
+  geo.dam_gate_x_m = d.column_width_m;
+  return geo;
+}
+
+CaseGeometry still_water_geometry(const StillWaterCase& s, double g) {
+  CaseGeometry geo;
+  geo.bed = BedProfile::flat(0.0);
+  geo.x_min_m = 0.0;
+  geo.x_max_m = s.tank_length_m;
+  geo.z_min_m = 0.0;
+  geo.z_max_m = s.tank_height_m;
+  const Vec2 a(0.0, 0.0), b(s.tank_length_m, 0.0), c(s.tank_length_m, s.tank_height_m),
+      e(0.0, s.tank_height_m);
+  geo.walls.push_back(segment_wall("bed", a, b));
+  geo.walls.push_back(segment_wall("right_wall", b, c));
+  geo.walls.push_back(segment_wall("left_wall", e, a));
+  auto& w = geo.initial_water;
+  w.x_begin_m = 0.0;
+  w.x_end_m = s.tank_length_m;
+  w.surface_x_m = {0.0, s.tank_length_m};
+  w.surface_z_m = {s.water_depth_m, s.water_depth_m};
+  geo.body_force_m_s2 = Vec2(0.0, -g);
+  geo.max_water_height_m = s.water_depth_m;
+  geo.max_flow_speed_m_s = std::sqrt(g * s.water_depth_m);
+  return geo;
+}
+
+// Poiseuille: gravity is not applied (a horizontal channel's hydrostatic pressure does not drive the
+// flow); the body force f drives it along x. Centre-line speed u_max = f W^2 / (8 nu).
+CaseGeometry poiseuille_geometry(const PoiseuilleCase& p, double nu) {
+  CaseGeometry geo;
+  geo.bed = BedProfile::flat(0.0);
+  geo.periodic_x = true;
+  geo.x_min_m = 0.0;
+  geo.x_max_m = p.channel_length_m;
+  geo.z_min_m = 0.0;
+  geo.z_max_m = p.channel_width_m;
+  geo.walls.push_back(segment_wall("bed", Vec2(0.0, 0.0), Vec2(p.channel_length_m, 0.0)));
+  geo.walls.push_back(segment_wall("top_wall", Vec2(p.channel_length_m, p.channel_width_m),
+                                   Vec2(0.0, p.channel_width_m)));
+  auto& w = geo.initial_water;
+  w.x_begin_m = 0.0;
+  w.x_end_m = p.channel_length_m;
+  w.surface_x_m = {0.0, p.channel_length_m};
+  w.surface_z_m = {p.channel_width_m, p.channel_width_m};
+  geo.body_force_m_s2 = Vec2(p.body_force_m_s2, 0.0);
+  geo.max_water_height_m = p.channel_width_m;
+  geo.max_flow_speed_m_s = p.body_force_m_s2 * p.channel_width_m * p.channel_width_m / (8.0 * nu);
+  return geo;
+}
+
+}  // namespace
+
+CaseGeometry make_geometry(const Case& c, const FluidProperties& fluid) {
+  CaseGeometry geo;
+  if (const auto* b = c.stilling_basin()) {
+    geo = stilling_basin_geometry(*b, fluid.gravity_m_s2);
+  } else if (const auto* d = c.dam_break()) {
+    geo = dam_break_geometry(*d, fluid.gravity_m_s2);
+  } else if (const auto* s = c.still_water()) {
+    geo = still_water_geometry(*s, fluid.gravity_m_s2);
+  } else if (const auto* p = c.poiseuille()) {
+    geo = poiseuille_geometry(*p, fluid.kinematic_viscosity_m2_s);
+  } else {
+    throw std::logic_error("make_geometry: case '" + c.id + "' has no kind data");
+  }
+  geo.kind = c.kind;
+  geo.sections = c.sections;
+  return geo;
+}
+
+}  // namespace hydrojump::cases

@@ -1,0 +1,35 @@
+// Open-channel hydraulics of a jump in a rectangular channel, per unit width.
+// Used for derived spec quantities, default sections, and by the comparator for eta.
+#pragma once
+
+namespace hydrojump::cases {
+
+// q = y U  [m^2/s]
+double unit_discharge(double depth_m, double velocity_m_s);
+
+// Fr = U / sqrt(g y)
+double froude_number(double depth_m, double velocity_m_s, double gravity_m_s2);
+
+// Belanger: y2* / y1 = (sqrt(1 + 8 Fr1^2) - 1) / 2   (horizontal smooth bed)
+double belanger_sequent_depth(double y1_m, double froude1);
+
+// Specific energy above the local bed: E = y + q^2 / (2 g y^2)
+double specific_energy(double depth_m, double discharge_m2_s, double gravity_m_s2);
+
+// Energy dissipation rate eta = (E1 - E2) / E1  (a fraction, not percent)
+double energy_dissipation_rate(double e1_m, double e2_m);
+
+// Everything derived from the inflow (y1, U1) and the tailwater depth y2 of a stilling basin.
+struct JumpHydraulics {
+  double discharge_m2_s = 0.0;         // q
+  double froude1 = 0.0;                // Fr1
+  double belanger_y2_m = 0.0;          // y2*, smooth-bed sequent depth
+  double e1_m = 0.0;                   // E1 at y1
+  double e2_m = 0.0;                   // E2 at the tailwater depth
+  double eta = 0.0;                    // (E1 - E2)/E1 with the tailwater depth
+  double eta_smooth = 0.0;             // (E1 - E2*)/E1 with y2*
+};
+
+JumpHydraulics jump_hydraulics(double y1_m, double u1_m_s, double tailwater_m, double gravity_m_s2);
+
+}  // namespace hydrojump::cases

@@ -1,0 +1,184 @@
+// The study spec: one TOML file describes every case of a study and the method settings of both
+// solvers. This header is the data model; `load_study` in spec_reader.hpp fills it and validates it.
+//
+// Everything downstream (SPH particle generator, OpenFOAM writer, comparator) reads a `Study` and a
+// `CaseGeometry` (geometry.hpp); none of them re-reads the TOML or re-derives geometry.
+//
+// Units are SI throughout; spec keys carry their unit as a suffix (`depth_m`, `velocity_m_s`).
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace hydrojump::cases {
+
+// [fluid]
+struct FluidProperties {
+  double density_kg_m3 = 1000.0;
+  double kinematic_viscosity_m2_s = 1.0e-6;
+  double gravity_m_s2 = 9.81;
+};
+
+// [sph] — method settings of the SPH solver (defaults as in DualSPHysics where it has one).
+// Option values are strings, never integers.
+struct SphSettings {
+  std::string kernel = "wendland_c2";              // "wendland_c2" | "cubic_spline"
+  std::string viscosity = "artificial";            // "artificial" | "laminar_sps"
+  double artificial_viscosity_alpha = 0.01;        // Monaghan alpha
+  double sps_smagorinsky_constant = 0.12;          // Cs
+  double sps_blin_constant = 0.0066;               // CI
+  std::string boundary = "dbc";                    // "dbc" | "mdbc"
+  std::string density_diffusion = "fourtakas";     // "none" | "molteni" | "fourtakas"
+  double density_diffusion_coefficient = 0.1;      // delta
+  double sound_speed_coefficient = 10.0;           // c0 = coef * sqrt(g * H_max) ...
+  double sound_speed_m_s = 0.0;                    // ... unless > 0: then c0 is given directly
+  double cfl_number = 0.2;
+  double coef_h = 1.0;                             // h = coef_h * sqrt(2) * dx
+  std::string time_integrator = "symplectic";      // "symplectic" | "verlet"
+  int verlet_euler_interval = 40;                  // Verlet: an Euler step every N steps
+  int boundary_layers = 0;                         // 0: enough layers for the kernel support
+  double max_density_variation = 0.05;             // |rho/rho0 - 1| above this stops the run
+  double checkpoint_interval_wall_s = 300.0;       // wall-clock seconds between checkpoints
+};
+
+// [vof] — method settings of the OpenFOAM interFoam reference.
+struct VofSettings {
+  std::string turbulence_model = "kOmegaSST";      // "laminar" | "kOmegaSST"
+  double max_courant = 0.8;
+  double max_alpha_courant = 0.8;
+  double max_time_step_s = 1.0e-3;
+  std::string mesh_strategy = "cartesian_cut";     // "cartesian_cut" | "body_fitted"
+  double surface_refinement_band_m = 0.0;          // 0: derived from y1 and y2 (stilling basins)
+};
+
+// [resolution.<name>] — one named resolution level.
+struct Resolution {
+  std::string name;                     // "quick" | "default" | "fine" (or any other name in the file)
+  double particle_spacing_m = 0.0;      // SPH dx
+  double vof_cell_size_bed_m = 0.0;     // VOF cell size near the bed and the free surface
+  double vof_cell_size_bulk_m = 0.0;    // VOF cell size elsewhere
+};
+
+// [case.run]
+struct RunSettings {
+  double end_time_s = 0.0;
+  double output_interval_s = 0.05;
+  double average_start_s = 0.0;   // averaging window [average_start_s, average_end_s]
+  double average_end_s = 0.0;     // defaults to end_time_s
+};
+
+// A named x position where both results are compared (a vertical line from the bed to the top).
+// role: "upstream" (section 1-1 reference, supercritical), "toe", "interior", "downstream"
+// (section 3-3, tailwater), or "gauge" for verification cases.
+struct Section {
+  std::string name;
+  double x_m = 0.0;
+  std::string role = "interior";
+};
+
+// [case.bed]
+struct BedSpec {
+  std::string profile = "smooth";       // "smooth" | "sinusoidal"
+  double wavelength_m = 0.0;            // S
+  double height_m = 0.0;                // T, trough to crest
+  double reach_start_m = 0.0;           // x where the corrugations start (a crest)
+  double reach_end_m = 0.0;             // x where they end (a crest): whole wavelengths
+};
+
+// [case.measured] — laboratory and published values (all optional).
+struct MeasuredValues {
+  std::optional<double> sequent_depth_m;          // y2, experiment
+  std::optional<double> jump_length_m;            // Lj, experiment
+  std::optional<double> roller_length_m;          // Lr, experiment
+  std::optional<double> eta_percent;              // energy dissipation rate, experiment
+  std::optional<double> eta_smooth_percent;       // smooth-bed value listed by the study
+  std::optional<double> published_sph_eta_percent;  // Bo et al. (2019) SPH
+  std::string source;                             // citation
+};
+
+// kind = "stilling_basin": supercritical inflow into a basin, tailwater held at the outlet.
+// x = 0 is the inflow boundary; the floor upstream of the basin is at z = 0; the sinusoidal reach
+// lies below it (crests at z = 0, troughs at z = -T).
+struct StillingBasinCase {
+  BedSpec bed;
+  double inflow_depth_m = 0.0;          // y1
+  double inflow_velocity_m_s = 0.0;     // U1
+  std::optional<double> stated_discharge_m2_s;  // checked against y1*U1 (2 %)
+  std::optional<double> stated_froude;           // checked against U1/sqrt(g y1) (2 %)
+  std::string tailwater_rule = "given"; // "given" | "belanger" (y2* from y1 and Fr1)
+  double tailwater_depth_m = 0.0;       // resolved tailwater depth (after the rule)
+  double upstream_length_m = 0.0;       // inflow to basin start (expected toe)
+  double basin_length_m = 0.0;
+  double downstream_length_m = 0.0;     // basin end to outlet
+  double air_height_m = 0.0;            // above the highest water level
+  MeasuredValues measured;
+};
+
+// kind = "dam_break": a water column released into a dry tank (Koshizuka & Oka 1996 set-up).
+// The column's bottom-left corner is at (0, 0).
+struct DamBreakCase {
+  double column_width_m = 0.0;
+  double column_height_m = 0.0;
+  double tank_length_m = 0.0;
+  double tank_height_m = 0.0;
+  std::string gate = "instant";         // "instant" | "lifted"
+  double gate_lift_speed_m_s = 0.0;     // for "lifted"
+  std::vector<double> gauges_x_m;       // water-level gauges
+  std::filesystem::path measured_front_file;  // CSV t_s,x_front_over_L (absolute after loading)
+};
+
+// kind = "still_water": a closed tank at rest (hydrostatic verification).
+struct StillWaterCase {
+  double tank_length_m = 0.0;
+  double tank_height_m = 0.0;
+  double water_depth_m = 0.0;
+};
+
+// kind = "poiseuille": plane channel flow between two plates, periodic in x, driven by a body force.
+// Plates at z = 0 and z = channel_width_m. Analytic steady profile u(z) = f/(2 nu) z (W - z).
+struct PoiseuilleCase {
+  double channel_width_m = 0.0;
+  double channel_length_m = 0.0;        // periodic length
+  double body_force_m_s2 = 0.0;         // along +x
+};
+
+using CaseKindData = std::variant<StillingBasinCase, DamBreakCase, StillWaterCase, PoiseuilleCase>;
+
+// One [[case]] entry with the method settings resolved (study defaults, then the case's overrides).
+struct Case {
+  std::string id;
+  std::string kind;                     // "stilling_basin" | "dam_break" | "still_water" | "poiseuille"
+  std::string description;
+  SphSettings sph;
+  VofSettings vof;
+  RunSettings run;
+  std::map<std::string, Resolution> resolutions;  // by name, case overrides applied
+  std::vector<Section> sections;        // explicit, or derived defaults (see geometry.hpp)
+  bool sections_given = false;          // true when the spec listed them
+  CaseKindData data;
+
+  const StillingBasinCase* stilling_basin() const { return std::get_if<StillingBasinCase>(&data); }
+  const DamBreakCase* dam_break() const { return std::get_if<DamBreakCase>(&data); }
+  const StillWaterCase* still_water() const { return std::get_if<StillWaterCase>(&data); }
+  const PoiseuilleCase* poiseuille() const { return std::get_if<PoiseuilleCase>(&data); }
+  // The resolution called `name`; throws SpecError listing the defined names if there is none.
+  const Resolution& resolution(const std::string& name) const;
+};
+
+// The whole file.
+struct Study {
+  std::filesystem::path source_file;    // where it was loaded from ("<embedded>" for the built-in)
+  std::string name;
+  std::string description;
+  std::vector<std::string> citations;
+  FluidProperties fluid;
+  std::vector<Case> cases;
+
+  const Case* find_case(const std::string& id) const;
+};
+
+}  // namespace hydrojump::cases

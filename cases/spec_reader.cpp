@@ -1,0 +1,853 @@
+#include "cases/spec_reader.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include <toml++/toml.h>
+
+#include "cases/atomic_file.hpp"
+#include "cases/geometry.hpp"
+#include "cases/hydraulics.hpp"
+
+namespace hydrojump::cases {
+namespace {
+
+// Shortest decimal text that reads back to the same double.
+std::string number_text(double v) {
+  char buffer[64];
+  for (int precision = 6; precision <= 17; ++precision) {
+    std::snprintf(buffer, sizeof buffer, "%.*g", precision, v);
+    if (std::strtod(buffer, nullptr) == v) break;
+  }
+  return buffer;
+}
+
+// The same as a TOML float (which needs a '.' or an exponent).
+std::string toml_number(double v) {
+  std::string s = number_text(v);
+  if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
+  return s;
+}
+
+// An allowed interval for a number, with its unit, for messages.
+struct Range {
+  double low = -HUGE_VAL;
+  double high = HUGE_VAL;
+  bool low_open = false;   // true: value must be > low
+  bool high_open = false;  // true: value must be < high
+  std::string unit;
+
+  bool contains(double v) const {
+    if (!std::isfinite(v)) return false;
+    if (low_open ? !(v > low) : !(v >= low)) return false;
+    if (high_open ? !(v < high) : !(v <= high)) return false;
+    return true;
+  }
+  std::string describe() const {
+    std::string s = "must be ";
+    bool any = false;
+    if (low != -HUGE_VAL) {
+      s += (low_open ? "> " : ">= ") + number_text(low);
+      any = true;
+    }
+    if (high != HUGE_VAL) {
+      s += (any ? " and " : "") + std::string(high_open ? "< " : "<= ") + number_text(high);
+      any = true;
+    }
+    if (!any) s += "a finite number";
+    if (!unit.empty()) s += " (" + unit + ")";
+    return s;
+  }
+};
+
+Range positive(std::string unit, double high = HUGE_VAL) { return Range{0.0, high, true, false, std::move(unit)}; }
+Range non_negative(std::string unit, double high = HUGE_VAL) { return Range{0.0, high, false, false, std::move(unit)}; }
+Range between(double low, double high, std::string unit = "") { return Range{low, high, false, false, std::move(unit)}; }
+
+std::string node_text(const toml::node& node) {
+  std::ostringstream out;
+  if (node.is_string()) {
+    out << '"' << *node.value<std::string>() << '"';
+  } else if (node.is_floating_point()) {
+    out << number_text(*node.value<double>());
+  } else if (node.is_integer()) {
+    out << *node.value<std::int64_t>();
+  } else if (node.is_boolean()) {
+    out << (*node.value<bool>() ? "true" : "false");
+  } else if (node.is_table()) {
+    out << "(a table)";
+  } else if (node.is_array()) {
+    out << "(an array)";
+  } else {
+    out << "(a date/time)";
+  }
+  return out.str();
+}
+
+std::string type_name(const toml::node& node) {
+  switch (node.type()) {
+    case toml::node_type::string: return "a string";
+    case toml::node_type::integer: return "an integer";
+    case toml::node_type::floating_point: return "a number";
+    case toml::node_type::boolean: return "a boolean";
+    case toml::node_type::table: return "a table";
+    case toml::node_type::array: return "an array";
+    default: return "a date/time";
+  }
+}
+
+// Reads one TOML table, remembering which keys were used, so that unknown keys are rejected and every
+// message names the file, the line, the full dotted key and the allowed values.
+class TableReader {
+ public:
+  TableReader(const toml::table& table, std::string file, std::string context, std::string prefix)
+      : table_(table), file_(std::move(file)), context_(std::move(context)), prefix_(std::move(prefix)) {}
+
+  [[noreturn]] void fail_at(const toml::node* node, std::string_view key, const std::string& what) const {
+    const auto& region = node ? node->source() : table_.source();
+    std::string msg = file_;
+    if (region.begin.line > 0) msg += ":" + std::to_string(region.begin.line);
+    msg += ": " + context_ + full_key(key) + " " + what;
+    throw SpecError(msg);
+  }
+
+  std::string full_key(std::string_view key) const {
+    return key.empty() ? (prefix_.empty() ? std::string("(top level)") : prefix_.substr(0, prefix_.size() - 1))
+                       : prefix_ + std::string(key);
+  }
+
+  bool has(std::string_view key) const { return table_.contains(key); }
+
+  const toml::node* get(std::string_view key) {
+    used_.insert(std::string(key));
+    return table_.get(key);
+  }
+
+  double number(std::string_view key, const Range& range) {
+    const toml::node* node = get(key);
+    if (!node) fail_at(nullptr, key, "is missing (required; " + range.describe() + ")");
+    return checked_number(node, key, range);
+  }
+
+  double number_or(std::string_view key, double fallback, const Range& range) {
+    const toml::node* node = get(key);
+    return node ? checked_number(node, key, range) : fallback;
+  }
+
+  std::optional<double> optional_number(std::string_view key, const Range& range) {
+    const toml::node* node = get(key);
+    if (!node) return std::nullopt;
+    return checked_number(node, key, range);
+  }
+
+  int integer_or(std::string_view key, int fallback, int low, int high) {
+    const toml::node* node = get(key);
+    if (!node) return fallback;
+    if (!node->is_integer()) fail_at(node, key, "= " + node_text(*node) + " must be an integer from " + std::to_string(low) + " to " + std::to_string(high));
+    const auto v = *node->value<std::int64_t>();
+    if (v < low || v > high) fail_at(node, key, "= " + std::to_string(v) + " is out of range: must be from " + std::to_string(low) + " to " + std::to_string(high));
+    return static_cast<int>(v);
+  }
+
+  std::string string(std::string_view key) {
+    const toml::node* node = get(key);
+    if (!node) fail_at(nullptr, key, "is missing (required string)");
+    if (!node->is_string()) fail_at(node, key, "= " + node_text(*node) + " has the wrong type: expected a string, got " + type_name(*node));
+    return *node->value<std::string>();
+  }
+
+  std::string string_or(std::string_view key, const std::string& fallback) {
+    return has(key) ? string(key) : (get(key), fallback);
+  }
+
+  std::string choice(std::string_view key, const std::string& fallback,
+                     std::initializer_list<std::string_view> allowed, bool required = false) {
+    if (!has(key)) {
+      if (required) fail_at(nullptr, key, "is missing (required; one of " + list(allowed) + ")");
+      get(key);
+      return fallback;
+    }
+    const toml::node* node = get(key);
+    if (!node->is_string()) fail_at(node, key, "= " + node_text(*node) + " has the wrong type: expected one of " + list(allowed));
+    const std::string v = *node->value<std::string>();
+    if (std::find(allowed.begin(), allowed.end(), v) == allowed.end()) {
+      fail_at(node, key, "= \"" + v + "\" is not a known option: allowed values are " + list(allowed));
+    }
+    return v;
+  }
+
+  std::vector<double> number_array(std::string_view key, const Range& range) {
+    const toml::node* node = get(key);
+    if (!node) return {};
+    const toml::array* array = node->as_array();
+    if (!array) fail_at(node, key, "= " + node_text(*node) + " has the wrong type: expected an array of numbers");
+    std::vector<double> values;
+    for (const auto& item : *array) values.push_back(checked_number(&item, key, range));
+    return values;
+  }
+
+  std::vector<std::string> string_array(std::string_view key) {
+    const toml::node* node = get(key);
+    if (!node) return {};
+    const toml::array* array = node->as_array();
+    if (!array) fail_at(node, key, "= " + node_text(*node) + " has the wrong type: expected an array of strings");
+    std::vector<std::string> values;
+    for (const auto& item : *array) {
+      if (!item.is_string()) fail_at(&item, key, "contains " + node_text(item) + ": expected strings only");
+      values.push_back(*item.value<std::string>());
+    }
+    return values;
+  }
+
+  // A sub-table; nullopt if absent. Rejects a key that is present but not a table.
+  std::optional<TableReader> table(std::string_view key) {
+    const toml::node* node = get(key);
+    if (!node) return std::nullopt;
+    const toml::table* t = node->as_table();
+    if (!t) fail_at(node, key, "= " + node_text(*node) + " has the wrong type: expected a table [" + full_key(key) + "]");
+    return TableReader(*t, file_, context_, prefix_ + std::string(key) + ".");
+  }
+
+  TableReader required_table(std::string_view key) {
+    auto t = table(key);
+    if (!t) fail_at(nullptr, key, "is missing: the table [" + full_key(key) + "] is required");
+    return *t;
+  }
+
+  const toml::array* array_of_tables(std::string_view key) {
+    const toml::node* node = get(key);
+    if (!node) return nullptr;
+    const toml::array* array = node->as_array();
+    if (!array || !array->is_array_of_tables()) fail_at(node, key, "has the wrong type: expected an array of tables [[" + full_key(key) + "]]");
+    return array;
+  }
+
+  TableReader element(const toml::node& node, std::string_view key, std::size_t index) const {
+    return TableReader(*node.as_table(), file_, context_, prefix_ + std::string(key) + "[" + std::to_string(index) + "].");
+  }
+
+  // Rejects keys that were never asked for, naming the keys that are allowed.
+  void reject_unknown_keys() const {
+    for (const auto& [key, node] : table_) {
+      if (!used_.count(std::string(key.str()))) {
+        std::string allowed;
+        for (const auto& k : used_) allowed += (allowed.empty() ? "" : ", ") + k;
+        fail_at(&node, key.str(), "is not a known key here" + (allowed.empty() ? std::string() : " (known keys: " + allowed + ")"));
+      }
+    }
+  }
+
+  const toml::table& raw() const { return table_; }
+  const std::string& file() const { return file_; }
+
+ private:
+  static std::string list(std::initializer_list<std::string_view> allowed) {
+    std::string s;
+    for (auto a : allowed) s += (s.empty() ? "\"" : ", \"") + std::string(a) + "\"";
+    return s;
+  }
+
+  double checked_number(const toml::node* node, std::string_view key, const Range& range) const {
+    double v = 0.0;
+    if (node->is_floating_point()) {
+      v = *node->value<double>();
+    } else if (node->is_integer()) {
+      v = static_cast<double>(*node->value<std::int64_t>());
+    } else {
+      fail_at(node, key, "= " + node_text(*node) + " has the wrong type: expected a number that " + range.describe().substr(8));
+    }
+    if (!range.contains(v)) fail_at(node, key, "= " + number_text(v) + " is out of range: " + range.describe());
+    return v;
+  }
+
+  const toml::table& table_;
+  std::string file_;
+  std::string context_;
+  std::string prefix_;
+  std::set<std::string> used_;
+};
+
+void read_sph(TableReader& t, SphSettings& s) {
+  s.kernel = t.choice("kernel", s.kernel, {"wendland_c2", "cubic_spline"});
+  s.viscosity = t.choice("viscosity", s.viscosity, {"artificial", "laminar_sps"});
+  s.artificial_viscosity_alpha = t.number_or("artificial_viscosity_alpha", s.artificial_viscosity_alpha, between(0.0, 1.0));
+  s.sps_smagorinsky_constant = t.number_or("sps_smagorinsky_constant", s.sps_smagorinsky_constant, between(0.0, 1.0));
+  s.sps_blin_constant = t.number_or("sps_blin_constant", s.sps_blin_constant, between(0.0, 1.0));
+  s.boundary = t.choice("boundary", s.boundary, {"dbc", "mdbc"});
+  s.density_diffusion = t.choice("density_diffusion", s.density_diffusion, {"none", "molteni", "fourtakas"});
+  s.density_diffusion_coefficient = t.number_or("density_diffusion_coefficient", s.density_diffusion_coefficient, between(0.0, 1.0));
+  s.sound_speed_coefficient = t.number_or("sound_speed_coefficient", s.sound_speed_coefficient, Range{1.0, 1000.0, false, false, "c0 / sqrt(g H_max)"});
+  s.sound_speed_m_s = t.number_or("sound_speed_m_s", s.sound_speed_m_s, non_negative("m/s", 1e5));
+  s.cfl_number = t.number_or("cfl_number", s.cfl_number, Range{0.0, 1.0, true, false, ""});
+  s.coef_h = t.number_or("coef_h", s.coef_h, Range{0.5, 3.0, false, false, "h = coef_h sqrt(2) dx"});
+  s.time_integrator = t.choice("time_integrator", s.time_integrator, {"symplectic", "verlet"});
+  s.verlet_euler_interval = t.integer_or("verlet_euler_interval", s.verlet_euler_interval, 1, 1000);
+  s.boundary_layers = t.integer_or("boundary_layers", s.boundary_layers, 0, 20);
+  s.max_density_variation = t.number_or("max_density_variation", s.max_density_variation, Range{0.0, 0.5, true, false, "|rho/rho0 - 1|"});
+  s.checkpoint_interval_wall_s = t.number_or("checkpoint_interval_wall_s", s.checkpoint_interval_wall_s, positive("s", 1e6));
+  t.reject_unknown_keys();
+}
+
+void read_vof(TableReader& t, VofSettings& v) {
+  v.turbulence_model = t.choice("turbulence_model", v.turbulence_model, {"laminar", "kOmegaSST"});
+  v.max_courant = t.number_or("max_courant", v.max_courant, Range{0.0, 5.0, true, false, ""});
+  v.max_alpha_courant = t.number_or("max_alpha_courant", v.max_alpha_courant, Range{0.0, 5.0, true, false, ""});
+  v.max_time_step_s = t.number_or("max_time_step_s", v.max_time_step_s, positive("s", 1.0));
+  v.mesh_strategy = t.choice("mesh_strategy", v.mesh_strategy, {"cartesian_cut", "body_fitted"});
+  v.surface_refinement_band_m = t.number_or("surface_refinement_band_m", v.surface_refinement_band_m, non_negative("m", 100.0));
+  t.reject_unknown_keys();
+}
+
+void read_resolution(TableReader& t, Resolution& r, bool require_all) {
+  const Range length = positive("m", 10.0);
+  if (require_all) {
+    r.particle_spacing_m = t.number("particle_spacing_m", length);
+    r.vof_cell_size_bed_m = t.number("vof_cell_size_bed_m", length);
+    r.vof_cell_size_bulk_m = t.number("vof_cell_size_bulk_m", length);
+  } else {
+    r.particle_spacing_m = t.number_or("particle_spacing_m", r.particle_spacing_m, length);
+    r.vof_cell_size_bed_m = t.number_or("vof_cell_size_bed_m", r.vof_cell_size_bed_m, length);
+    r.vof_cell_size_bulk_m = t.number_or("vof_cell_size_bulk_m", r.vof_cell_size_bulk_m, length);
+  }
+  if (r.vof_cell_size_bulk_m < r.vof_cell_size_bed_m) {
+    t.fail_at(t.raw().get("vof_cell_size_bulk_m"), "vof_cell_size_bulk_m",
+              "= " + number_text(r.vof_cell_size_bulk_m) + " is out of range: must be >= vof_cell_size_bed_m (" + number_text(r.vof_cell_size_bed_m) + " m)");
+  }
+  t.reject_unknown_keys();
+}
+
+void read_resolutions(TableReader& parent, std::map<std::string, Resolution>& out, bool require_all) {
+  auto t = parent.table("resolution");
+  if (!t) return;
+  for (const auto& [name, node] : t->raw()) {
+    const std::string key(name.str());
+    auto level = t->table(key);
+    Resolution r = out.count(key) ? out.at(key) : Resolution{};
+    if (!require_all && !out.count(key)) {
+      t->fail_at(&node, key, "is not a resolution defined at the study level (define [resolution." + key + "] first)");
+    }
+    r.name = key;
+    read_resolution(*level, r, require_all);
+    out[key] = r;
+  }
+  t->reject_unknown_keys();
+}
+
+void read_run(TableReader& t, RunSettings& run) {
+  run.end_time_s = t.number("end_time_s", positive("s", 1e5));
+  run.output_interval_s = t.number_or("output_interval_s", run.output_interval_s, positive("s", 1e5));
+  if (run.output_interval_s > run.end_time_s) {
+    t.fail_at(t.raw().get("output_interval_s"), "output_interval_s", "= " + number_text(run.output_interval_s) + " is out of range: must be <= run.end_time_s (" + number_text(run.end_time_s) + " s)");
+  }
+  run.average_start_s = t.number_or("average_start_s", 0.5 * run.end_time_s, between(0.0, run.end_time_s, "s, within the run"));
+  run.average_end_s = t.number_or("average_end_s", run.end_time_s, Range{run.average_start_s, run.end_time_s, true, false, "s, after average_start_s and within the run"});
+  t.reject_unknown_keys();
+}
+
+MeasuredValues read_measured(TableReader& t) {
+  MeasuredValues m;
+  m.sequent_depth_m = t.optional_number("sequent_depth_m", positive("m", 100.0));
+  m.jump_length_m = t.optional_number("jump_length_m", positive("m", 1000.0));
+  m.roller_length_m = t.optional_number("roller_length_m", positive("m", 1000.0));
+  m.eta_percent = t.optional_number("eta_percent", between(0.0, 100.0, "%"));
+  m.eta_smooth_percent = t.optional_number("eta_smooth_percent", between(0.0, 100.0, "%"));
+  m.published_sph_eta_percent = t.optional_number("published_sph_eta_percent", between(0.0, 100.0, "%"));
+  m.source = t.string_or("source", "");
+  t.reject_unknown_keys();
+  return m;
+}
+
+// Fails if `stated` differs from `derived` by more than 2 %.
+void check_stated(TableReader& t, std::string_view key, std::optional<double> stated, double derived,
+                  const std::string& derivation) {
+  if (stated && std::abs(*stated - derived) > 0.02 * std::abs(derived)) {
+    t.fail_at(t.raw().get(key), key, "= " + number_text(*stated) + " disagrees with the value derived from " + derivation + ", " + number_text(derived) + ", by " + number_text(std::round(1000.0 * std::abs(*stated / derived - 1.0)) / 10.0) + " % (allowed: 2 %)");
+  }
+}
+
+StillingBasinCase read_stilling_basin(TableReader& c, double g) {
+  StillingBasinCase b;
+  auto inflow = c.required_table("inflow");
+  b.inflow_depth_m = inflow.number("depth_m", positive("m", 10.0));
+  b.inflow_velocity_m_s = inflow.number("velocity_m_s", positive("m/s", 100.0));
+  b.stated_discharge_m2_s = inflow.optional_number("discharge_m2_s", positive("m^2/s"));
+  b.stated_froude = inflow.optional_number("froude", positive(""));
+  const auto hyd0 = jump_hydraulics(b.inflow_depth_m, b.inflow_velocity_m_s, b.inflow_depth_m, g);
+  check_stated(inflow, "discharge_m2_s", b.stated_discharge_m2_s, hyd0.discharge_m2_s, "depth_m * velocity_m_s");
+  check_stated(inflow, "froude", b.stated_froude, hyd0.froude1, "velocity_m_s / sqrt(g depth_m)");
+  if (!(hyd0.froude1 > 1.0)) {
+    inflow.fail_at(inflow.raw().get("velocity_m_s"), "velocity_m_s", "= " + number_text(b.inflow_velocity_m_s) + " gives Fr1 = " + number_text(hyd0.froude1) + ": a hydraulic jump needs supercritical inflow, Fr1 > 1, i.e. velocity_m_s > " + number_text(std::sqrt(g * b.inflow_depth_m)) + " m/s");
+  }
+  inflow.reject_unknown_keys();
+
+  auto tail = c.required_table("tailwater");
+  if (tail.has("rule") && tail.has("depth_m")) {
+    tail.fail_at(tail.raw().get("rule"), "rule", "and tailwater.depth_m are both given: give one of them");
+  }
+  b.tailwater_rule = tail.choice("rule", "given", {"given", "belanger"});
+  if (b.tailwater_rule == "belanger") {
+    b.tailwater_depth_m = hyd0.belanger_y2_m;
+  } else {
+    b.tailwater_depth_m = tail.number("depth_m", Range{b.inflow_depth_m, 100.0, true, false, "m, above the inflow depth y1"});
+  }
+  tail.reject_unknown_keys();
+
+  auto domain = c.required_table("domain");
+  b.upstream_length_m = domain.number("upstream_length_m", Range{0.0, 1000.0, true, false, "m"});
+  b.basin_length_m = domain.number("basin_length_m", positive("m", 1000.0));
+  b.downstream_length_m = domain.number("downstream_length_m", non_negative("m", 1000.0));
+  b.air_height_m = domain.number("air_height_m", positive("m", 100.0));
+  domain.reject_unknown_keys();
+
+  auto bed = c.required_table("bed");
+  b.bed.profile = bed.choice("profile", "", {"smooth", "sinusoidal"}, true);
+  if (b.bed.profile == "sinusoidal") {
+    b.bed.wavelength_m = bed.number("wavelength_m", positive("m", 100.0));
+    b.bed.height_m = bed.number("height_m", positive("m", 100.0));
+    const double basin_start = b.upstream_length_m, basin_end = basin_start + b.basin_length_m;
+    const double s = b.bed.wavelength_m;
+    b.bed.reach_start_m = bed.number_or("reach_start_m", basin_start, between(0.0, basin_end, "m, within the domain upstream of the basin end"));
+    const double whole = std::floor((basin_end - b.bed.reach_start_m) / s + 1e-9);
+    if (whole < 1.0) {
+      bed.fail_at(bed.raw().get("wavelength_m"), "wavelength_m", "= " + number_text(s) + " is out of range: the basin from reach_start_m to its end (" + number_text(basin_end - b.bed.reach_start_m) + " m) must hold at least one wavelength");
+    }
+    b.bed.reach_end_m = bed.number_or("reach_end_m", b.bed.reach_start_m + whole * s, Range{b.bed.reach_start_m, basin_end + 1e-9, true, false, "m, after reach_start_m and not past the basin end"});
+    const double n = (b.bed.reach_end_m - b.bed.reach_start_m) / s;
+    if (std::abs(n - std::round(n)) > 1e-6 * std::max(1.0, n)) {
+      bed.fail_at(bed.raw().get("reach_end_m"), "reach_end_m", "= " + number_text(b.bed.reach_end_m) + " is out of range: the corrugated reach must be a whole number of wavelengths so it ends on a crest; nearest allowed values are " + number_text(b.bed.reach_start_m + std::floor(n) * s) + " and " + number_text(b.bed.reach_start_m + std::ceil(n) * s) + " m");
+    }
+  } else {
+    for (const char* key : {"wavelength_m", "height_m", "reach_start_m", "reach_end_m"}) {
+      if (bed.has(key)) bed.fail_at(bed.raw().get(key), key, "is only used with profile = \"sinusoidal\" (this bed is \"smooth\")");
+    }
+  }
+  bed.reject_unknown_keys();
+
+  if (auto m = c.table("measured")) b.measured = read_measured(*m);
+  return b;
+}
+
+DamBreakCase read_dam_break(TableReader& c, const std::filesystem::path& base_dir) {
+  DamBreakCase d;
+  auto column = c.required_table("column");
+  d.column_width_m = column.number("width_m", positive("m", 1000.0));
+  d.column_height_m = column.number("height_m", positive("m", 1000.0));
+  column.reject_unknown_keys();
+  auto tank = c.required_table("tank");
+  d.tank_length_m = tank.number("length_m", Range{d.column_width_m, 1000.0, true, false, "m, longer than the column"});
+  d.tank_height_m = tank.number("height_m", Range{d.column_height_m, 1000.0, false, false, "m, at least the column height"});
+  tank.reject_unknown_keys();
+  if (auto gate = c.table("gate")) {
+    d.gate = gate->choice("type", "instant", {"instant", "lifted"});
+    if (d.gate == "lifted") d.gate_lift_speed_m_s = gate->number("lift_speed_m_s", positive("m/s", 1000.0));
+    gate->reject_unknown_keys();
+  }
+  if (auto gauges = c.table("gauges")) {
+    d.gauges_x_m = gauges->number_array("x_m", Range{0.0, d.tank_length_m, true, true, "m, inside the tank"});
+    gauges->reject_unknown_keys();
+  }
+  if (auto measured = c.table("measured")) {
+    if (measured->has("front_file")) {
+      const std::string file = measured->string("front_file");
+      std::filesystem::path p(file);
+      if (p.is_relative()) p = base_dir / p;
+      if (!std::filesystem::exists(p)) {
+        measured->fail_at(measured->raw().get("front_file"), "front_file", "= \"" + file + "\": no such file (looked for '" + p.string() + "')");
+      }
+      d.measured_front_file = std::filesystem::absolute(p).lexically_normal();
+    }
+    measured->reject_unknown_keys();
+  }
+  return d;
+}
+
+StillWaterCase read_still_water(TableReader& c) {
+  StillWaterCase s;
+  auto tank = c.required_table("tank");
+  s.tank_length_m = tank.number("length_m", positive("m", 1000.0));
+  s.tank_height_m = tank.number("height_m", positive("m", 1000.0));
+  tank.reject_unknown_keys();
+  auto water = c.required_table("water");
+  s.water_depth_m = water.number("depth_m", Range{0.0, s.tank_height_m, true, false, "m, up to the tank height"});
+  water.reject_unknown_keys();
+  return s;
+}
+
+PoiseuilleCase read_poiseuille(TableReader& c) {
+  PoiseuilleCase p;
+  auto channel = c.required_table("channel");
+  p.channel_width_m = channel.number("width_m", positive("m", 100.0));
+  p.channel_length_m = channel.number("length_m", positive("m", 1000.0));
+  p.body_force_m_s2 = channel.number("body_force_m_s2", positive("m/s^2", 1000.0));
+  channel.reject_unknown_keys();
+  return p;
+}
+
+std::vector<Section> read_sections(TableReader& c, const toml::array& array, double x_min, double x_max) {
+  std::vector<Section> sections;
+  std::set<std::string> names;
+  std::size_t index = 0;
+  for (const auto& node : array) {
+    auto t = c.element(node, "sections", index++);
+    Section s;
+    s.name = t.string("name");
+    if (!names.insert(s.name).second) t.fail_at(t.raw().get("name"), "name", "= \"" + s.name + "\" is used by two sections: names must be unique");
+    s.x_m = t.number("x_m", Range{x_min, x_max, false, false, "m, inside the domain"});
+    s.role = t.choice("role", "interior", {"upstream", "toe", "interior", "downstream", "gauge"});
+    t.reject_unknown_keys();
+    sections.push_back(s);
+  }
+  return sections;
+}
+
+// Resolution-dependent checks of one case at one resolution level.
+void check_resolution(const Case& c, const Resolution& r, const std::string& file) {
+  const auto fail = [&](const std::string& what) {
+    throw SpecError(file + ": case \"" + c.id + "\" at resolution \"" + r.name + "\": " + what);
+  };
+  const double dx = r.particle_spacing_m;
+  if (const auto* b = c.stilling_basin()) {
+    if (b->bed.profile == "sinusoidal" && b->bed.wavelength_m < 4.0 * dx - 1e-12) {
+      fail("resolution." + r.name + ".particle_spacing_m = " + number_text(dx) + " resolves bed.wavelength_m = " + number_text(b->bed.wavelength_m) + " with " + number_text(b->bed.wavelength_m / dx) + " spacings: must be at least 4, i.e. particle_spacing_m <= " + number_text(b->bed.wavelength_m / 4.0) + " m");
+    }
+    if (b->inflow_depth_m < 5.0 * dx - 1e-12) {
+      fail("resolution." + r.name + ".particle_spacing_m = " + number_text(dx) + " puts " + number_text(b->inflow_depth_m / dx) + " particles across inflow.depth_m = " + number_text(b->inflow_depth_m) + ": must be at least 5, i.e. particle_spacing_m <= " + number_text(b->inflow_depth_m / 5.0) + " m");
+    }
+  } else if (const auto* d = c.dam_break()) {
+    if (d->column_width_m < 4.0 * dx) fail("particle_spacing_m = " + number_text(dx) + " puts fewer than 4 particles across column.width_m");
+  } else if (const auto* s = c.still_water()) {
+    if (s->water_depth_m < 4.0 * dx) fail("particle_spacing_m = " + number_text(dx) + " puts fewer than 4 particles across water.depth_m");
+  } else if (const auto* p = c.poiseuille()) {
+    if (p->channel_width_m < 8.0 * dx) fail("particle_spacing_m = " + number_text(dx) + " puts fewer than 8 particles across channel.width_m");
+  }
+}
+
+Case read_case(TableReader& c, std::size_t index, const Study& study, const SphSettings& sph,
+               const VofSettings& vof, const std::map<std::string, Resolution>& resolutions,
+               const std::filesystem::path& base_dir) {
+  Case result;
+  result.id = c.string("id");
+  if (result.id.empty() || result.id.find_first_of("/\\ \t") != std::string::npos) {
+    c.fail_at(c.raw().get("id"), "id", "= \"" + result.id + "\" is not usable as a directory name: use letters, digits, '_' or '-'");
+  }
+  (void)index;
+  result.kind = c.choice("kind", "", {"stilling_basin", "dam_break", "still_water", "poiseuille"}, true);
+  result.description = c.string_or("description", "");
+  result.sph = sph;
+  result.vof = vof;
+  if (auto t = c.table("sph")) read_sph(*t, result.sph);
+  if (auto t = c.table("vof")) read_vof(*t, result.vof);
+  result.resolutions = resolutions;
+  read_resolutions(c, result.resolutions, false);
+  auto run = c.required_table("run");
+  read_run(run, result.run);
+
+  const double g = study.fluid.gravity_m_s2;
+  if (result.kind == "stilling_basin") {
+    result.data = read_stilling_basin(c, g);
+  } else if (result.kind == "dam_break") {
+    result.data = read_dam_break(c, base_dir);
+  } else if (result.kind == "still_water") {
+    result.data = read_still_water(c);
+  } else {
+    result.data = read_poiseuille(c);
+  }
+  // Sections need the domain, which make_geometry derives; use it (sections are not read yet).
+  const CaseGeometry geo = make_geometry(result, study.fluid);
+  if (const toml::array* array = c.array_of_tables("sections")) {
+    result.sections = read_sections(c, *array, geo.x_min_m, geo.x_max_m);
+    result.sections_given = true;
+  } else if (const auto* b = result.stilling_basin()) {
+    result.sections = default_stilling_basin_sections(*b);
+  } else if (const auto* d = result.dam_break()) {
+    for (std::size_t i = 0; i < d->gauges_x_m.size(); ++i) {
+      result.sections.push_back({"H" + std::to_string(i + 1), d->gauges_x_m[i], "gauge"});
+    }
+  }
+  c.reject_unknown_keys();
+  return result;
+}
+
+}  // namespace
+
+const Resolution& Case::resolution(const std::string& name) const {
+  const auto it = resolutions.find(name);
+  if (it == resolutions.end()) {
+    std::string known;
+    for (const auto& [k, v] : resolutions) known += (known.empty() ? "\"" : ", \"") + k + "\"";
+    throw SpecError("case \"" + id + "\": no resolution called \"" + name + "\" (defined: " +
+                    (known.empty() ? std::string("none") : known) + ")");
+  }
+  return it->second;
+}
+
+const Case* Study::find_case(const std::string& id) const {
+  for (const auto& c : cases) {
+    if (c.id == id) return &c;
+  }
+  return nullptr;
+}
+
+Study parse_study(std::string_view toml_text, const std::string& source_name,
+                  const std::filesystem::path& base_dir) {
+  toml::table root;
+  try {
+    root = toml::parse(toml_text, source_name);
+  } catch (const toml::parse_error& e) {
+    throw SpecError(source_name + ":" + std::to_string(e.source().begin.line) + ": not valid TOML: " + std::string(e.description()));
+  }
+  Study study;
+  study.source_file = source_name;
+  TableReader top(root, source_name, "", "");
+
+  auto head = top.required_table("study");
+  study.name = head.string("name");
+  study.description = head.string_or("description", "");
+  study.citations = head.string_array("citations");
+  head.reject_unknown_keys();
+
+  if (auto fluid = top.table("fluid")) {
+    study.fluid.density_kg_m3 = fluid->number_or("density_kg_m3", study.fluid.density_kg_m3, positive("kg/m^3", 1e5));
+    study.fluid.kinematic_viscosity_m2_s = fluid->number_or("kinematic_viscosity_m2_s", study.fluid.kinematic_viscosity_m2_s, positive("m^2/s", 1.0));
+    study.fluid.gravity_m_s2 = fluid->number_or("gravity_m_s2", study.fluid.gravity_m_s2, positive("m/s^2", 100.0));
+    fluid->reject_unknown_keys();
+  }
+  SphSettings sph;
+  if (auto t = top.table("sph")) read_sph(*t, sph);
+  VofSettings vof;
+  if (auto t = top.table("vof")) read_vof(*t, vof);
+  std::map<std::string, Resolution> resolutions;
+  read_resolutions(top, resolutions, true);
+  if (resolutions.empty()) {
+    top.fail_at(nullptr, "resolution", "is missing: define at least one level, e.g. [resolution.quick] with particle_spacing_m, vof_cell_size_bed_m and vof_cell_size_bulk_m");
+  }
+
+  const toml::array* cases = top.array_of_tables("case");
+  if (!cases || cases->empty()) top.fail_at(nullptr, "case", "is missing: a study needs at least one [[case]]");
+  std::set<std::string> ids;
+  std::size_t index = 0;
+  for (const auto& node : *cases) {
+    TableReader c = top.element(node, "case", index);
+    // Name the case in every message about it once its id is known.
+    std::string id;
+    if (const auto* id_node = node.as_table()->get("id"); id_node && id_node->is_string()) id = *id_node->value<std::string>();
+    TableReader named(*node.as_table(), source_name, id.empty() ? "" : "case \"" + id + "\": ", "");
+    Case parsed = read_case(id.empty() ? c : named, index, study, sph, vof, resolutions, base_dir);
+    if (!ids.insert(parsed.id).second) {
+      named.fail_at(node.as_table()->get("id"), "id", "= \"" + parsed.id + "\" is used by two cases: ids must be unique");
+    }
+    for (const auto& [name, r] : parsed.resolutions) check_resolution(parsed, r, source_name);
+    study.cases.push_back(std::move(parsed));
+    ++index;
+  }
+  top.reject_unknown_keys();
+  return study;
+}
+
+Study load_study(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw SpecError(file.string() + ": cannot open the study file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  const auto base = file.has_parent_path() ? file.parent_path() : std::filesystem::path(".");
+  Study study = parse_study(text.str(), file.string(), base);
+  study.source_file = file;
+  return study;
+}
+
+Study load_embedded_default_study() {
+  // Relative data paths of the embedded study resolve against the source tree's cases/ folder.
+  return parse_study(embedded_default_study_text(), "<embedded cases/ead2002.toml>", std::filesystem::path("cases"));
+}
+
+void validate_for_resolution(const Study& study, const Case& c, const std::string& resolution) {
+  check_resolution(c, c.resolution(resolution), study.source_file.string());
+}
+
+namespace {
+
+std::string quoted(const std::string& s) {
+  std::string out = "\"";
+  for (char ch : s) {
+    switch (ch) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\n': out += "\\n"; break;
+      case '\t': out += "\\t"; break;
+      default:
+        if (static_cast<unsigned char>(ch) < 0x20) {
+          char buf[8];
+          std::snprintf(buf, sizeof buf, "\\u%04x", ch);
+          out += buf;
+        } else {
+          out += ch;
+        }
+    }
+  }
+  return out + "\"";
+}
+
+// Writes "key = value" lines of a flat TOML table.
+class TomlWriter {
+ public:
+  void header(const std::string& h) { out_ << "\n" << h << "\n"; }
+  void num(const std::string& k, double v) { out_ << k << " = " << toml_number(v) << "\n"; }
+  void integer(const std::string& k, long v) { out_ << k << " = " << v << "\n"; }
+  void str(const std::string& k, const std::string& v) { out_ << k << " = " << quoted(v) << "\n"; }
+  void opt(const std::string& k, const std::optional<double>& v) {
+    if (v) num(k, *v);
+  }
+  void strings(const std::string& k, const std::vector<std::string>& v) {
+    out_ << k << " = [";
+    for (std::size_t i = 0; i < v.size(); ++i) out_ << (i ? ", " : "") << quoted(v[i]);
+    out_ << "]\n";
+  }
+  void numbers(const std::string& k, const std::vector<double>& v) {
+    out_ << k << " = [";
+    for (std::size_t i = 0; i < v.size(); ++i) out_ << (i ? ", " : "") << toml_number(v[i]);
+    out_ << "]\n";
+  }
+  void comment(const std::string& c) { out_ << "# " << c << "\n"; }
+  std::string text() const { return out_.str(); }
+
+ private:
+  std::ostringstream out_;
+};
+
+void write_sph(TomlWriter& w, const SphSettings& s) {
+  w.str("kernel", s.kernel);
+  w.str("viscosity", s.viscosity);
+  w.num("artificial_viscosity_alpha", s.artificial_viscosity_alpha);
+  w.num("sps_smagorinsky_constant", s.sps_smagorinsky_constant);
+  w.num("sps_blin_constant", s.sps_blin_constant);
+  w.str("boundary", s.boundary);
+  w.str("density_diffusion", s.density_diffusion);
+  w.num("density_diffusion_coefficient", s.density_diffusion_coefficient);
+  w.num("sound_speed_coefficient", s.sound_speed_coefficient);
+  w.num("sound_speed_m_s", s.sound_speed_m_s);
+  w.num("cfl_number", s.cfl_number);
+  w.num("coef_h", s.coef_h);
+  w.str("time_integrator", s.time_integrator);
+  w.integer("verlet_euler_interval", s.verlet_euler_interval);
+  w.integer("boundary_layers", s.boundary_layers);
+  w.num("max_density_variation", s.max_density_variation);
+  w.num("checkpoint_interval_wall_s", s.checkpoint_interval_wall_s);
+}
+
+void write_vof(TomlWriter& w, const VofSettings& v) {
+  w.str("turbulence_model", v.turbulence_model);
+  w.num("max_courant", v.max_courant);
+  w.num("max_alpha_courant", v.max_alpha_courant);
+  w.num("max_time_step_s", v.max_time_step_s);
+  w.str("mesh_strategy", v.mesh_strategy);
+  w.num("surface_refinement_band_m", v.surface_refinement_band_m);
+}
+
+}  // namespace
+
+void write_resolved_case(const Study& study, const Case& c, const std::string& resolution,
+                         const std::filesystem::path& out_file) {
+  const Resolution& r = c.resolution(resolution);
+  TomlWriter w;
+  w.comment("Resolved by hydrojump from " + study.source_file.string() + ": case \"" + c.id +
+            "\" at resolution \"" + resolution + "\", every default made explicit.");
+  w.header("[study]");
+  w.str("name", study.name);
+  w.str("description", study.description);
+  w.strings("citations", study.citations);
+  w.header("[fluid]");
+  w.num("density_kg_m3", study.fluid.density_kg_m3);
+  w.num("kinematic_viscosity_m2_s", study.fluid.kinematic_viscosity_m2_s);
+  w.num("gravity_m_s2", study.fluid.gravity_m_s2);
+  w.header("[sph]");
+  write_sph(w, c.sph);
+  w.header("[vof]");
+  write_vof(w, c.vof);
+  w.header("[resolution." + r.name + "]");
+  w.num("particle_spacing_m", r.particle_spacing_m);
+  w.num("vof_cell_size_bed_m", r.vof_cell_size_bed_m);
+  w.num("vof_cell_size_bulk_m", r.vof_cell_size_bulk_m);
+  w.header("[[case]]");
+  w.str("id", c.id);
+  w.str("kind", c.kind);
+  w.str("description", c.description);
+  w.header("[case.run]");
+  w.num("end_time_s", c.run.end_time_s);
+  w.num("output_interval_s", c.run.output_interval_s);
+  w.num("average_start_s", c.run.average_start_s);
+  w.num("average_end_s", c.run.average_end_s);
+  if (const auto* b = c.stilling_basin()) {
+    w.header("[case.bed]");
+    w.str("profile", b->bed.profile);
+    if (b->bed.profile == "sinusoidal") {
+      w.num("wavelength_m", b->bed.wavelength_m);
+      w.num("height_m", b->bed.height_m);
+      w.num("reach_start_m", b->bed.reach_start_m);
+      w.num("reach_end_m", b->bed.reach_end_m);
+    }
+    w.header("[case.inflow]");
+    w.num("depth_m", b->inflow_depth_m);
+    w.num("velocity_m_s", b->inflow_velocity_m_s);
+    w.opt("discharge_m2_s", b->stated_discharge_m2_s);
+    w.opt("froude", b->stated_froude);
+    w.header("[case.tailwater]");
+    if (b->tailwater_rule == "belanger") w.comment("from rule = \"belanger\" (y2* of the inflow)");
+    w.num("depth_m", b->tailwater_depth_m);
+    w.header("[case.domain]");
+    w.num("upstream_length_m", b->upstream_length_m);
+    w.num("basin_length_m", b->basin_length_m);
+    w.num("downstream_length_m", b->downstream_length_m);
+    w.num("air_height_m", b->air_height_m);
+    const auto& m = b->measured;
+    w.header("[case.measured]");
+    w.opt("sequent_depth_m", m.sequent_depth_m);
+    w.opt("jump_length_m", m.jump_length_m);
+    w.opt("roller_length_m", m.roller_length_m);
+    w.opt("eta_percent", m.eta_percent);
+    w.opt("eta_smooth_percent", m.eta_smooth_percent);
+    w.opt("published_sph_eta_percent", m.published_sph_eta_percent);
+    if (!m.source.empty()) w.str("source", m.source);
+  } else if (const auto* d = c.dam_break()) {
+    w.header("[case.column]");
+    w.num("width_m", d->column_width_m);
+    w.num("height_m", d->column_height_m);
+    w.header("[case.tank]");
+    w.num("length_m", d->tank_length_m);
+    w.num("height_m", d->tank_height_m);
+    w.header("[case.gate]");
+    w.str("type", d->gate);
+    if (d->gate == "lifted") w.num("lift_speed_m_s", d->gate_lift_speed_m_s);
+    if (!d->gauges_x_m.empty()) {
+      w.header("[case.gauges]");
+      w.numbers("x_m", d->gauges_x_m);
+    }
+    if (!d->measured_front_file.empty()) {
+      w.header("[case.measured]");
+      w.str("front_file", d->measured_front_file.string());
+    }
+  } else if (const auto* s = c.still_water()) {
+    w.header("[case.tank]");
+    w.num("length_m", s->tank_length_m);
+    w.num("height_m", s->tank_height_m);
+    w.header("[case.water]");
+    w.num("depth_m", s->water_depth_m);
+  } else if (const auto* p = c.poiseuille()) {
+    w.header("[case.channel]");
+    w.num("width_m", p->channel_width_m);
+    w.num("length_m", p->channel_length_m);
+    w.num("body_force_m_s2", p->body_force_m_s2);
+  }
+  for (const auto& s : c.sections) {
+    w.header("[[case.sections]]");
+    w.str("name", s.name);
+    w.num("x_m", s.x_m);
+    w.str("role", s.role);
+  }
+  write_file_atomically(out_file, w.text());
+}
+
+}  // namespace hydrojump::cases

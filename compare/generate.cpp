@@ -1,0 +1,158 @@
+#include "compare/generate.hpp"
+
+#include <cstdio>
+#include <iomanip>
+#include <iostream>
+#include <ostream>
+#include <sstream>
+
+#include "cases/geometry.hpp"
+#include "cases/hydraulics.hpp"
+#include "cases/spec_reader.hpp"
+#include "reference/cli.hpp"
+#include "sph/cli.hpp"
+
+namespace hydrojump::compare {
+namespace {
+
+std::string fixed(double v, int digits) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(digits) << v;
+  return s.str();
+}
+
+}  // namespace
+
+void print_study_summary(const cases::Study& study, std::ostream& out) {
+  out << "study \"" << study.name << "\" (" << study.source_file.string() << "): " << study.cases.size()
+      << " case" << (study.cases.size() == 1 ? "" : "s") << "\n";
+  if (!study.description.empty()) out << "  " << study.description << "\n";
+  const double g = study.fluid.gravity_m_s2;
+  bool basin_header = false;
+  for (const auto& c : study.cases) {
+    if (const auto* b = c.stilling_basin()) {
+      if (!basin_header) {
+        out << "\n  stilling basins (q per unit width; E above the local floor; eta with the case's tailwater)\n";
+        out << "  " << std::left << std::setw(10) << "case" << std::setw(12) << "bed" << std::right
+            << std::setw(8) << "y1 m" << std::setw(8) << "U1 m/s" << std::setw(10) << "q m2/s"
+            << std::setw(7) << "Fr1" << std::setw(9) << "y2* m" << std::setw(9) << "y2 m" << std::setw(9)
+            << "E1 m" << std::setw(9) << "E2 m" << std::setw(9) << "eta %" << std::setw(11) << "eta* %"
+            << std::setw(11) << "lab eta %" << "\n";
+        basin_header = true;
+      }
+      const auto j = cases::jump_hydraulics(b->inflow_depth_m, b->inflow_velocity_m_s,
+                                            b->tailwater_depth_m, g);
+      std::string bed = b->bed.profile == "sinusoidal"
+                            ? "S" + fixed(b->bed.wavelength_m * 1000, 0) + "/T" + fixed(b->bed.height_m * 1000, 0)
+                            : "smooth";
+      out << "  " << std::left << std::setw(10) << c.id << std::setw(12) << bed << std::right
+          << std::setw(8) << fixed(b->inflow_depth_m, 4) << std::setw(8) << fixed(b->inflow_velocity_m_s, 2)
+          << std::setw(10) << fixed(j.discharge_m2_s, 4) << std::setw(7) << fixed(j.froude1, 2)
+          << std::setw(9) << fixed(j.belanger_y2_m, 3) << std::setw(9) << fixed(b->tailwater_depth_m, 3)
+          << std::setw(9) << fixed(j.e1_m, 4) << std::setw(9) << fixed(j.e2_m, 4) << std::setw(9)
+          << fixed(100 * j.eta, 2) << std::setw(11) << fixed(100 * j.eta_smooth, 2) << std::setw(11)
+          << (b->measured.eta_percent ? fixed(*b->measured.eta_percent, 2) : std::string("-")) << "\n";
+    }
+  }
+  for (const auto& c : study.cases) {
+    if (c.stilling_basin()) continue;
+    out << "\n  " << c.id << " (" << c.kind << "): " << c.description << "\n";
+    const auto geo = cases::make_geometry(c, study.fluid);
+    out << "    domain x " << geo.x_min_m << ".." << geo.x_max_m << " m, z " << geo.z_min_m << ".."
+        << geo.z_max_m << " m; H_max " << geo.max_water_height_m << " m; expected max speed "
+        << fixed(geo.max_flow_speed_m_s, 3) << " m/s\n";
+  }
+  out << "\n  resolutions:";
+  if (!study.cases.empty()) {
+    for (const auto& [name, r] : study.cases.front().resolutions) {
+      out << "  " << name << " (SPH dx " << r.particle_spacing_m << " m, VOF " << r.vof_cell_size_bed_m
+          << "/" << r.vof_cell_size_bulk_m << " m)";
+    }
+  }
+  out << "\n";
+}
+
+std::vector<const cases::Case*> select_cases(const cases::Study& study,
+                                             const std::vector<std::string>& ids) {
+  std::vector<const cases::Case*> selected;
+  if (ids.empty()) {
+    for (const auto& c : study.cases) selected.push_back(&c);
+    return selected;
+  }
+  for (const auto& id : ids) {
+    const auto* c = study.find_case(id);
+    if (!c) {
+      std::string known;
+      for (const auto& k : study.cases) known += (known.empty() ? "" : ", ") + k.id;
+      throw cases::SpecError(study.source_file.string() + ": --case " + id +
+                             ": no such case (cases in this study: " + known + ")");
+    }
+    selected.push_back(c);
+  }
+  return selected;
+}
+
+void generate_cases(const cases::Study& study, const std::vector<const cases::Case*>& selected,
+                    const std::string& resolution, const std::filesystem::path& out_dir,
+                    std::ostream& log) {
+  // Validate everything first: nothing is written while any selected case is invalid.
+  for (const auto* c : selected) cases::validate_for_resolution(study, *c, resolution);
+  for (const auto* c : selected) {
+    const auto dir = out_dir / c->id;
+    sph::write_sph_input(study, *c, resolution, dir / "sph");
+    reference::write_vof_case(study, *c, resolution, dir / "vof");
+    log << "generated " << (dir / "sph").string() << " and " << (dir / "vof").string() << "\n";
+  }
+}
+
+namespace {
+
+cases::Study load_spec_argument(const std::string& spec) {
+  if (spec == "default" || spec == "embedded") return cases::load_embedded_default_study();
+  return cases::load_study(spec);
+}
+
+}  // namespace
+
+void register_case_commands(CLI::App& app) {
+  auto* check = app.add_subcommand(
+      "check",
+      "Validate a study spec and print every case with its derived quantities (q, Fr1, Belanger's y2*, "
+      "E1, E2, eta). Exit status 2 and one message naming file, line and key if the spec is invalid.");
+  auto check_spec = std::make_shared<std::string>();
+  check->add_option("SPEC", *check_spec,
+                    "study file (TOML), or \"default\" for the embedded cases/ead2002.toml")
+      ->required();
+  check->callback([check_spec] {
+    const auto study = load_spec_argument(*check_spec);
+    print_study_summary(study, std::cout);
+  });
+
+  struct GenerateOptions {
+    std::string spec;
+    std::filesystem::path out;
+    std::vector<std::string> cases;
+    std::string resolution = "quick";
+  };
+  auto options = std::make_shared<GenerateOptions>();
+  auto* generate = app.add_subcommand(
+      "generate",
+      "Write the case directories of both solvers: OUT/<case>/sph/ (read by `hydrojump sph`) and "
+      "OUT/<case>/vof/ (a complete OpenFOAM case, run by `hydrojump vof` or its Allrun), each with the "
+      "resolved spec (case.toml) for provenance. Every selected case is validated first; nothing is "
+      "written if one fails.");
+  generate->add_option("SPEC", options->spec, "study file (TOML), or \"default\" for the embedded one")
+      ->required();
+  generate->add_option("--out,-o", options->out, "output directory")->required();
+  generate->add_option("--case,-c", options->cases, "case id to generate (repeatable; default: all)");
+  generate->add_option("--resolution,-r", options->resolution,
+                       "resolution level defined in the spec (quick, default, fine)")
+      ->capture_default_str();
+  generate->callback([options] {
+    const auto study = load_spec_argument(options->spec);
+    generate_cases(study, select_cases(study, options->cases), options->resolution, options->out,
+                   std::cout);
+  });
+}
+
+}  // namespace hydrojump::compare

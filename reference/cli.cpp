@@ -1,0 +1,15 @@
+#include "reference/cli.hpp"
+
+#include "cases/spec_reader.hpp"
+
+namespace hydrojump::reference {
+
+void register_commands(CLI::App& /*app*/) {}
+
+void write_vof_case(const cases::Study& study, const cases::Case& c, const std::string& resolution,
+                    const std::filesystem::path& dir) {
+  std::filesystem::create_directories(dir);
+  cases::write_resolved_case(study, c, resolution, dir / "case.toml");
+}
+
+}  // namespace hydrojump::reference

@@ -1,0 +1,50 @@
+// Derived hydraulic quantities against hand-computed values (issue 2 acceptance).
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "cases/hydraulics.hpp"
+#include "cases/spec_reader.hpp"
+
+using namespace hydrojump::cases;
+
+TEST_CASE("Run A derived quantities match hand computation", "[cases][hydraulics]") {
+  // y1 = 25.4 mm, U1 = 2.00 m/s, g = 9.81:
+  //   q = 0.0254 * 2 = 0.0508 m^2/s; Fr1 = 2 / sqrt(9.81 * 0.0254) = 4.0066;
+  //   y2* = 0.0254/2 (sqrt(1 + 8 * 4.0066^2) - 1) = 0.1319 m;
+  //   E1 = 0.0254 + 0.0508^2/(2*9.81*0.0254^2) = 0.22927 m; E2* = 0.1319 + ... = 0.13953 m
+  //   eta* = 1 - E2*/E1 = 39.1 %  (the study lists 39.36 %)
+  const auto j = jump_hydraulics(0.0254, 2.00, 0.104, 9.81);
+  CHECK(j.discharge_m2_s == Approx(0.0508).epsilon(1e-12));
+  CHECK(j.froude1 == Approx(4.0066).margin(1e-4));
+  CHECK(j.belanger_y2_m == Approx(0.1319).margin(5e-4));
+  CHECK(j.belanger_y2_m == Approx(0.132).margin(1e-3));
+  CHECK(j.e1_m == Approx(0.22927).margin(1e-4));
+  CHECK(std::abs(100.0 * j.eta_smooth - 39.36) < 0.5);
+}
+
+TEST_CASE("Belanger's ratio and energy identities", "[cases][hydraulics]") {
+  // For Fr1 = 1 the jump degenerates: y2 = y1 and no loss.
+  CHECK(belanger_sequent_depth(0.1, 1.0) == Approx(0.1));
+  // Smooth-bed energy loss equals (y2 - y1)^3 / (4 y1 y2) (momentum + continuity).
+  for (double fr : {2.0, 4.0, 6.0, 8.0}) {
+    const double y1 = 0.03, g = 9.81, u1 = fr * std::sqrt(g * y1), q = y1 * u1;
+    const double y2 = belanger_sequent_depth(y1, fr);
+    const double loss = specific_energy(y1, q, g) - specific_energy(y2, q, g);
+    CHECK(loss == Approx(std::pow(y2 - y1, 3) / (4 * y1 * y2)).epsilon(1e-9));
+  }
+  CHECK(energy_dissipation_rate(2.0, 1.0) == Approx(0.5));
+}
+
+TEST_CASE("Smooth-bed eta of all five runs matches the study's table within 0.5 points",
+          "[cases][hydraulics]") {
+  const Study study = load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/cases/ead2002.toml");
+  struct Row { const char* id; double eta_smooth; };
+  for (const Row row : {Row{"A", 39.36}, Row{"B", 56.05}, Row{"C", 66.12}, Row{"D", 54.97}, Row{"E", 54.97}}) {
+    const auto* b = study.find_case(row.id)->stilling_basin();
+    REQUIRE(b);
+    const auto j = jump_hydraulics(b->inflow_depth_m, b->inflow_velocity_m_s, b->tailwater_depth_m, 9.81);
+    INFO("run " << row.id << ": eta* = " << 100 * j.eta_smooth);
+    CHECK(std::abs(100.0 * j.eta_smooth - row.eta_smooth) < 0.5);
+  }
+}

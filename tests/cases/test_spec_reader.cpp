@@ -1,0 +1,241 @@
+// Loading and validating study specs: the reference study loads, every rejection class gives one
+// message naming file, line and key, and a resolved case reproduces the original.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <regex>
+#include <string>
+
+#include "cases/geometry.hpp"
+#include "cases/spec_reader.hpp"
+
+using namespace hydrojump::cases;
+
+namespace {
+
+const std::string source_dir = HYDROJUMP_SOURCE_DIR;
+
+// A minimal valid stilling-basin study; tests replace one line at a time.
+const std::string valid_spec = R"(
+[study]
+name = "mini"
+
+[resolution.quick]
+particle_spacing_m = 0.005
+vof_cell_size_bed_m = 0.005
+vof_cell_size_bulk_m = 0.01
+
+[[case]]
+id = "A"
+kind = "stilling_basin"
+[case.run]
+end_time_s = 10.0
+average_start_s = 6.0
+[case.bed]
+profile = "sinusoidal"
+wavelength_m = 0.068
+height_m = 0.013
+[case.inflow]
+depth_m = 0.0254
+velocity_m_s = 2.0
+discharge_m2_s = 0.051
+[case.tailwater]
+depth_m = 0.104
+[case.domain]
+upstream_length_m = 0.2
+basin_length_m = 1.36
+downstream_length_m = 0.2
+air_height_m = 0.1
+)";
+
+std::string replaced(const std::string& text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  REQUIRE(at != std::string::npos);
+  return text.substr(0, at) + to + text.substr(at + from.size());
+}
+
+// The message of the SpecError that parsing `text` throws (fails the test if none is thrown).
+std::string rejection(const std::string& text) {
+  try {
+    parse_study(text, "spec.toml", ".");
+  } catch (const SpecError& e) {
+    return e.what();
+  }
+  FAIL("the spec was accepted");
+  return {};
+}
+
+int line_of(const std::string& text, const std::string& needle) {
+  const auto at = text.find(needle);
+  REQUIRE(at != std::string::npos);
+  return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n'));
+}
+
+}  // namespace
+
+TEST_CASE("The minimal spec is valid and derives sections", "[cases][spec]") {
+  const Study s = parse_study(valid_spec, "spec.toml", ".");
+  REQUIRE(s.cases.size() == 1);
+  const auto& c = s.cases[0];
+  const auto* b = c.stilling_basin();
+  REQUIRE(b);
+  CHECK(b->bed.reach_start_m == Approx(0.2));
+  CHECK(b->bed.reach_end_m == Approx(0.2 + 20 * 0.068));
+  CHECK(c.run.average_end_s == 10.0);
+  CHECK(c.sph.kernel == "wendland_c2");
+  REQUIRE(c.sections.size() >= 3);
+  CHECK(c.sections.front().role == "upstream");
+  CHECK(c.sections.back().role == "downstream");
+  CHECK(c.sections.back().x_m == Approx(0.2 + 8 * 0.104));
+}
+
+TEST_CASE("The reference study lists the ten stilling-basin cases", "[cases][spec]") {
+  const Study s = load_study(source_dir + "/cases/ead2002.toml");
+  REQUIRE(s.cases.size() == 10);
+  for (const char* id : {"A", "B", "C", "D", "E", "A_smooth", "B_smooth", "C_smooth", "D_smooth", "E_smooth"}) {
+    const auto* c = s.find_case(id);
+    REQUIRE(c);
+    CHECK(c->kind == "stilling_basin");
+  }
+  const auto* e = s.find_case("E")->stilling_basin();
+  CHECK(e->bed.height_m == Approx(0.022));
+  CHECK(*e->measured.eta_percent == Approx(60.87));
+  // Smooth twins take Belanger's y2* as tailwater.
+  CHECK(s.find_case("A_smooth")->stilling_basin()->tailwater_depth_m == Approx(0.132).margin(1e-3));
+  // Runs D and E override the resolution levels.
+  CHECK(s.find_case("D")->resolution("quick").particle_spacing_m == Approx(0.01));
+  CHECK(s.find_case("A")->resolution("quick").particle_spacing_m == Approx(0.005));
+  // The embedded default is the same file.
+  CHECK(load_embedded_default_study().cases.size() == 10);
+}
+
+TEST_CASE("The verification specs load", "[cases][spec]") {
+  for (const char* name : {"dam_break.toml", "still_water.toml", "poiseuille.toml"}) {
+    INFO(name);
+    const Study s = load_study(source_dir + "/cases/" + name);
+    REQUIRE(s.cases.size() == 1);
+  }
+  const Study dam = load_study(source_dir + "/cases/dam_break.toml");
+  CHECK(std::filesystem::exists(dam.cases[0].dam_break()->measured_front_file));
+  CHECK(dam.cases[0].sections.size() == 4);
+}
+
+TEST_CASE("Unknown keys are rejected with file, line and key", "[cases][spec][reject]") {
+  const auto text = replaced(valid_spec, "height_m = 0.013", "height_m = 0.013\nheigth_mm = 13");
+  const auto msg = rejection(text);
+  CHECK_THAT(msg, Catch::Contains("spec.toml:" + std::to_string(line_of(text, "heigth_mm"))));
+  CHECK_THAT(msg, Catch::Contains("bed.heigth_mm"));
+  CHECK_THAT(msg, Catch::Contains("not a known key"));
+  CHECK_THAT(msg, Catch::Contains("case \"A\""));
+}
+
+TEST_CASE("Wrong types are rejected with file, line and key", "[cases][spec][reject]") {
+  const auto text = replaced(valid_spec, "depth_m = 0.0254", "depth_m = \"25.4 mm\"");
+  const auto msg = rejection(text);
+  CHECK_THAT(msg, Catch::Contains("spec.toml:" + std::to_string(line_of(text, "25.4 mm"))));
+  CHECK_THAT(msg, Catch::Contains("inflow.depth_m"));
+  CHECK_THAT(msg, Catch::Contains("wrong type"));
+
+  const auto msg2 = rejection(replaced(valid_spec, "profile = \"sinusoidal\"", "profile = \"zigzag\""));
+  CHECK_THAT(msg2, Catch::Contains("bed.profile"));
+  CHECK_THAT(msg2, Catch::Contains("\"smooth\", \"sinusoidal\""));
+}
+
+TEST_CASE("Missing required keys are rejected naming the key", "[cases][spec][reject]") {
+  const auto msg = rejection(replaced(valid_spec, "velocity_m_s = 2.0\n", ""));
+  CHECK_THAT(msg, Catch::Contains("inflow.velocity_m_s"));
+  CHECK_THAT(msg, Catch::Contains("missing"));
+  CHECK_THAT(msg, Catch::Matches("spec.toml:[0-9]+: .*"));
+  const auto msg2 = rejection(replaced(valid_spec, "[case.tailwater]\ndepth_m = 0.104\n", ""));
+  CHECK_THAT(msg2, Catch::Contains("[tailwater] is required"));
+}
+
+TEST_CASE("Non-physical values are rejected with the allowed range", "[cases][spec][reject]") {
+  SECTION("negative depth") {
+    const auto text = replaced(valid_spec, "depth_m = 0.0254", "depth_m = -0.0254");
+    const auto msg = rejection(text);
+    CHECK_THAT(msg, Catch::Contains("spec.toml:" + std::to_string(line_of(text, "-0.0254"))));
+    CHECK_THAT(msg, Catch::Contains("inflow.depth_m = -0.0254 is out of range: must be > 0"));
+  }
+  SECTION("zero tailwater") {
+    const auto msg = rejection(replaced(valid_spec, "depth_m = 0.104", "depth_m = 0"));
+    CHECK_THAT(msg, Catch::Contains("tailwater.depth_m = 0 is out of range"));
+  }
+  SECTION("subcritical inflow cannot make a jump") {
+    const auto msg = rejection(replaced(replaced(valid_spec, "velocity_m_s = 2.0", "velocity_m_s = 0.4"),
+                                        "discharge_m2_s = 0.051\n", ""));
+    CHECK_THAT(msg, Catch::Contains("inflow.velocity_m_s = 0.4"));
+    CHECK_THAT(msg, Catch::Contains("Fr1 > 1"));
+  }
+  SECTION("wavelength resolved by fewer than 4 particle spacings") {
+    const auto msg = rejection(replaced(valid_spec, "wavelength_m = 0.068", "wavelength_m = 0.015"));
+    CHECK_THAT(msg, Catch::Contains("spec.toml"));
+    CHECK_THAT(msg, Catch::Contains("particle_spacing_m = 0.005"));
+    CHECK_THAT(msg, Catch::Contains("bed.wavelength_m = 0.015"));
+    CHECK_THAT(msg, Catch::Contains("at least 4"));
+  }
+  SECTION("averaging window outside the run") {
+    const auto text = replaced(valid_spec, "average_start_s = 6.0", "average_start_s = 12.0");
+    const auto msg = rejection(text);
+    CHECK_THAT(msg, Catch::Contains("spec.toml:" + std::to_string(line_of(text, "average_start_s"))));
+    CHECK_THAT(msg, Catch::Contains("run.average_start_s = 12 is out of range: must be >= 0 and <= 10"));
+  }
+  SECTION("section outside the domain") {
+    const auto text = valid_spec + "[[case.sections]]\nname = \"far\"\nx_m = 9.0\n";
+    const auto msg = rejection(text);
+    CHECK_THAT(msg, Catch::Contains("spec.toml:" + std::to_string(line_of(text, "x_m = 9.0"))));
+    CHECK_THAT(msg, Catch::Contains("sections[0].x_m = 9 is out of range: must be >= 0 and <= 1.76"));
+  }
+  SECTION("corrugated reach not a whole number of wavelengths") {
+    const auto msg = rejection(replaced(valid_spec, "height_m = 0.013", "height_m = 0.013\nreach_end_m = 1.0"));
+    CHECK_THAT(msg, Catch::Contains("bed.reach_end_m = 1"));
+    CHECK_THAT(msg, Catch::Contains("whole number of wavelengths"));
+  }
+  SECTION("too few particles across y1") {
+    const auto msg = rejection(replaced(valid_spec, "particle_spacing_m = 0.005", "particle_spacing_m = 0.0125"));
+    CHECK_THAT(msg, Catch::Contains("inflow.depth_m = 0.0254"));
+  }
+}
+
+TEST_CASE("A stated discharge or Froude number that disagrees by more than 2 % is an error",
+          "[cases][spec][reject]") {
+  const auto text = replaced(valid_spec, "discharge_m2_s = 0.051", "discharge_m2_s = 0.06");
+  const auto msg = rejection(text);
+  CHECK_THAT(msg, Catch::Contains("spec.toml:" + std::to_string(line_of(text, "discharge_m2_s = 0.06"))));
+  CHECK_THAT(msg, Catch::Contains("inflow.discharge_m2_s = 0.06"));
+  CHECK_THAT(msg, Catch::Contains("0.0508"));
+  const auto msg2 = rejection(replaced(valid_spec, "discharge_m2_s = 0.051", "froude = 4.5"));
+  CHECK_THAT(msg2, Catch::Contains("inflow.froude = 4.5"));
+  CHECK_THAT(msg2, Catch::Contains("4.006"));
+}
+
+TEST_CASE("Syntax errors and duplicate ids are reported with a line", "[cases][spec][reject]") {
+  CHECK_THAT(rejection(valid_spec + "\nthis is not toml\n"), Catch::Matches("spec.toml:[0-9]+: not valid TOML.*"));
+  const auto dup = valid_spec + valid_spec.substr(valid_spec.find("[[case]]"));
+  CHECK_THAT(rejection(dup), Catch::Contains("used by two cases"));
+  CHECK_THAT(rejection(replaced(valid_spec, "[study]\nname = \"mini\"\n", "[study]\n")), Catch::Contains("study.name"));
+}
+
+TEST_CASE("A resolved case reloads to the same case", "[cases][spec]") {
+  const Study s = load_study(source_dir + "/cases/ead2002.toml");
+  const auto dir = std::filesystem::temp_directory_path() / "hydrojump_test_resolved";
+  std::filesystem::remove_all(dir);
+  for (const char* id : {"B", "B_smooth"}) {
+    const Case& c = *s.find_case(id);
+    write_resolved_case(s, c, "default", dir / (std::string(id) + ".toml"));
+    const Study r = load_study(dir / (std::string(id) + ".toml"));
+    REQUIRE(r.cases.size() == 1);
+    const Case& rc = r.cases[0];
+    CHECK(rc.id == c.id);
+    REQUIRE(rc.resolutions.size() == 1);
+    CHECK(rc.resolution("default").particle_spacing_m == c.resolution("default").particle_spacing_m);
+    const auto *a = c.stilling_basin(), *b = rc.stilling_basin();
+    CHECK(b->tailwater_depth_m == a->tailwater_depth_m);
+    CHECK(b->bed.reach_end_m == a->bed.reach_end_m);
+    CHECK(b->inflow_velocity_m_s == a->inflow_velocity_m_s);
+    CHECK(rc.sph.viscosity == c.sph.viscosity);
+    REQUIRE(rc.sections.size() == c.sections.size());
+    for (std::size_t i = 0; i < c.sections.size(); ++i) CHECK(rc.sections[i].x_m == c.sections[i].x_m);
+  }
+  std::filesystem::remove_all(dir);
+}
