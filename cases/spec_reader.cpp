@@ -751,6 +751,10 @@ void write_vof(TomlWriter& w, const VofSettings& v) {
 
 void write_resolved_case(const Study& study, const Case& c, const std::string& resolution,
                          const std::filesystem::path& out_file) {
+  write_file_atomically(out_file, resolved_case_text(study, c, resolution));
+}
+
+std::string resolved_case_text(const Study& study, const Case& c, const std::string& resolution) {
   const Resolution& r = c.resolution(resolution);
   TomlWriter w;
   w.comment("Resolved by hydrojump from " + study.source_file.string() + ": case \"" + c.id +
@@ -847,7 +851,7 @@ void write_resolved_case(const Study& study, const Case& c, const std::string& r
     w.num("x_m", s.x_m);
     w.str("role", s.role);
   }
-  write_file_atomically(out_file, w.text());
+  return w.text();
 }
 
 }  // namespace hydrojump::cases

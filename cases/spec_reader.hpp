@@ -43,4 +43,7 @@ void validate_for_resolution(const Study& study, const Case& c, const std::strin
 void write_resolved_case(const Study& study, const Case& c, const std::string& resolution,
                          const std::filesystem::path& out_file);
 
+// The text write_resolved_case writes (used to detect whether a case changed between runs).
+std::string resolved_case_text(const Study& study, const Case& c, const std::string& resolution);
+
 }  // namespace hydrojump::cases

@@ -105,14 +105,10 @@ void generate_cases(const cases::Study& study, const std::vector<const cases::Ca
   }
 }
 
-namespace {
-
 cases::Study load_spec_argument(const std::string& spec) {
   if (spec == "default" || spec == "embedded") return cases::load_embedded_default_study();
   return cases::load_study(spec);
 }
-
-}  // namespace
 
 void register_case_commands(CLI::App& app) {
   auto* check = app.add_subcommand(

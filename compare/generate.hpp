@@ -13,6 +13,9 @@
 
 namespace hydrojump::compare {
 
+// The study named on a command line: a file, or "default" / "embedded" for the built-in study.
+cases::Study load_spec_argument(const std::string& spec);
+
 // Prints every case of `study` with its derived quantities (q, Fr1, y2*, E1, eta, ...).
 void print_study_summary(const cases::Study& study, std::ostream& out);
 

@@ -7,6 +7,7 @@
 #include "cases/spec_reader.hpp"
 #include "compare/cli.hpp"
 #include "compare/generate.hpp"
+#include "compare/study.hpp"
 #include "hydrojump/version.hpp"
 #include "reference/cli.hpp"
 #include "sph/cli.hpp"
@@ -31,6 +32,7 @@ int main(int argc, char** argv) {
   hydrojump::sph::register_commands(app);
   hydrojump::reference::register_commands(app);
   hydrojump::compare::register_commands(app);
+  hydrojump::compare::register_study_command(app);
 
   try {
     app.parse(argc, argv);

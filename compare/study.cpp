@@ -1,0 +1,297 @@
+#include "compare/study.hpp"
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <ctime>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <mutex>
+#include <sstream>
+#include <thread>
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "cases/atomic_file.hpp"
+#include "cases/spec_reader.hpp"
+#include "compare/generate.hpp"
+#include "hydrojump/version.hpp"
+
+extern char** environ;
+
+namespace hydrojump::compare {
+namespace {
+
+// FNV-1a, 64 bit: a stable fingerprint of a resolved case (not a security hash).
+std::uint64_t fnv1a(std::string_view text) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (unsigned char ch : text) {
+    h ^= ch;
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+std::string hex(std::uint64_t v) {
+  std::ostringstream s;
+  s << std::hex << std::setw(16) << std::setfill('0') << v;
+  return s.str();
+}
+
+std::string read_text(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+std::string clock_now() {
+  const auto t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm tm{};
+  localtime_r(&t, &tm);
+  std::ostringstream s;
+  s << std::put_time(&tm, "%H:%M:%S");
+  return s.str();
+}
+
+std::string duration_text(double seconds) {
+  std::ostringstream s;
+  const long total = static_cast<long>(seconds + 0.5);
+  if (total >= 3600) s << total / 3600 << "h" << std::setw(2) << std::setfill('0') << (total / 60) % 60 << "m";
+  else if (total >= 60) s << total / 60 << "m" << std::setw(2) << std::setfill('0') << total % 60 << "s";
+  else s << total << "s";
+  return s.str();
+}
+
+// Runs `args` as a child process with stdout and stderr appended to `log_file`; returns its exit
+// status (128 + signal number if it was killed).
+int run_child(const std::vector<std::string>& args, const std::filesystem::path& log_file) {
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log_file.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+  std::vector<char*> argv;
+  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (rc != 0) return 127;
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0) {
+    if (errno != EINTR) return 127;
+  }
+  if (WIFEXITED(status)) return WEXITSTATUS(status);
+  if (WIFSIGNALED(status)) return 128 + WTERMSIG(status);
+  return 1;
+}
+
+struct StageResult {
+  std::string stage;
+  std::string state;     // "done", "cached", "failed", "skipped"
+  double seconds = 0.0;
+  int exit_status = 0;
+};
+
+struct CaseResult {
+  std::string id;
+  std::vector<StageResult> stages;
+  bool failed() const {
+    for (const auto& s : stages) {
+      if (s.state == "failed") return true;
+    }
+    return false;
+  }
+};
+
+class StudyRunner {
+ public:
+  StudyRunner(const StudyOptions& options, const cases::Study& study, std::ostream& log)
+      : options_(options),
+        study_(study),
+        log_(log),
+        self_(options.executable.empty() ? std::filesystem::read_symlink("/proc/self/exe") : options.executable) {}
+
+  CaseResult run_case(const cases::Case& c) {
+    CaseResult result{c.id, {}};
+    const auto dir = options_.out / c.id;
+    std::string text = cases::resolved_case_text(study_, c, options_.resolution);
+    text = text.substr(text.find('\n') + 1);  // the first line names the source file: not part of the case
+    const std::string fingerprint = hex(fnv1a(text + "\nversion " + version_string));
+
+    // Regenerate the case directories only when the case changed (keeps finished results).
+    const auto generated_stamp = dir / "generate.stamp";
+    if (options_.force || read_text(generated_stamp) != fingerprint) {
+      for (const char* stage : {"sph", "vof", "compare"}) std::filesystem::remove(dir / (std::string(stage) + ".stamp"));
+      generate_cases(study_, {&c}, options_.resolution, options_.out, log_stream());
+      cases::write_file_atomically(generated_stamp, fingerprint);
+    }
+    bool any_solver_ok = false;
+    for (const auto& method : options_.methods) {
+      std::vector<std::string> args = {self_.string(), method, (dir / method).string()};
+      if (method == "vof" && options_.mpi_ranks > 1) {
+        args.push_back("--np");
+        args.push_back(std::to_string(options_.mpi_ranks));
+      }
+      const auto started = dir / (method + ".started");
+      if (std::filesystem::exists(started)) args.push_back("--resume");
+      const auto stage = run_stage(c.id, method, args, dir, fingerprint, started);
+      any_solver_ok = any_solver_ok || stage.state == "done" || stage.state == "cached";
+      result.stages.push_back(stage);
+    }
+    if (any_solver_ok) {
+      result.stages.push_back(run_stage(c.id, "compare", {self_.string(), "compare", dir.string()}, dir,
+                                        fingerprint, {}));
+    } else {
+      result.stages.push_back({"compare", "skipped", 0.0, 0});
+    }
+    return result;
+  }
+
+ private:
+  StageResult run_stage(const std::string& id, const std::string& stage, const std::vector<std::string>& args,
+                        const std::filesystem::path& dir, const std::string& fingerprint,
+                        const std::filesystem::path& started_marker) {
+    const auto stamp = dir / (stage + ".stamp");
+    if (!options_.force && read_text(stamp) == fingerprint) {
+      say(id + ": " + stage + " up to date (cached)");
+      return {stage, "cached", 0.0, 0};
+    }
+    const auto log_file = dir / (stage + ".log");
+    if (!started_marker.empty()) cases::write_file_atomically(started_marker, fingerprint);
+    say(id + ": " + stage + " started (log: " + log_file.string() + ")");
+    const auto t0 = std::chrono::steady_clock::now();
+    const int status = run_child(args, log_file);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (status != 0) {
+      say(id + ": " + stage + " FAILED (exit status " + std::to_string(status) + ") after " +
+          duration_text(seconds) + "; last lines of " + log_file.string() + ":\n" + tail(log_file, 8));
+      return {stage, "failed", seconds, status};
+    }
+    cases::write_file_atomically(stamp, fingerprint);
+    if (!started_marker.empty()) std::filesystem::remove(started_marker);
+    say(id + ": " + stage + " finished in " + duration_text(seconds));
+    return {stage, "done", seconds, 0};
+  }
+
+  static std::string tail(const std::filesystem::path& file, int lines) {
+    const std::string text = read_text(file);
+    std::size_t at = text.size();
+    for (int n = 0; n <= lines && at > 0; ++n) {
+      const auto p = text.rfind('\n', at - 1);
+      if (p == std::string::npos) {
+        at = 0;
+        break;
+      }
+      at = p;
+      if (n == lines) ++at;
+    }
+    std::string out;
+    std::istringstream in(text.substr(at));
+    for (std::string line; std::getline(in, line);) out += "    | " + line + "\n";
+    return out;
+  }
+
+  void say(const std::string& message) {
+    std::lock_guard lock(mutex_);
+    log_ << "[" << clock_now() << "] " << message << std::endl;
+  }
+
+  std::ostream& log_stream() { return log_; }
+
+  const StudyOptions& options_;
+  const cases::Study& study_;
+  std::ostream& log_;
+  std::filesystem::path self_;
+  std::mutex mutex_;
+};
+
+void write_study_report(const StudyOptions& options, const cases::Study& study,
+                        const std::vector<CaseResult>& results) {
+  std::ostringstream md;
+  md << "# Study \"" << study.name << "\" at resolution \"" << options.resolution << "\"\n\n";
+  if (!study.description.empty()) md << study.description << "\n\n";
+  md << "Generated by hydrojump " << version_string << " from `" << study.source_file.string() << "`.\n\n";
+  md << "| case | stage | state | wall time | report |\n|---|---|---|---|---|\n";
+  for (const auto& r : results) {
+    for (const auto& s : r.stages) {
+      const bool has_report = std::filesystem::exists(options.out / r.id / "report.md");
+      md << "| " << r.id << " | " << s.stage << " | " << s.state
+         << (s.state == "failed" ? " (exit " + std::to_string(s.exit_status) + ")" : "") << " | "
+         << (s.state == "done" || s.state == "failed" ? duration_text(s.seconds) : "-") << " | "
+         << (has_report && s.stage == "compare" ? "[" + r.id + "/report.md](" + r.id + "/report.md)" : "")
+         << " |\n";
+    }
+  }
+  if (!study.citations.empty()) {
+    md << "\n## References\n\n";
+    for (const auto& c : study.citations) md << "- " << c << "\n";
+  }
+  cases::write_file_atomically(options.out / "study_report.md", md.str());
+}
+
+}  // namespace
+
+int run_study(const StudyOptions& options, std::ostream& log) {
+  const cases::Study study = load_spec_argument(options.spec);
+  const auto selected = select_cases(study, options.cases);
+  // Validate every selected case first: nothing runs while one is invalid.
+  for (const auto* c : selected) cases::validate_for_resolution(study, *c, options.resolution);
+  std::filesystem::create_directories(options.out);
+  log << "study \"" << study.name << "\": " << selected.size() << " case(s) at resolution \""
+      << options.resolution << "\" into " << options.out.string() << " (" << options.jobs
+      << " at a time)" << std::endl;
+
+  StudyRunner runner(options, study, log);
+  std::vector<CaseResult> results(selected.size());
+  std::atomic<std::size_t> next{0};
+  const auto worker = [&] {
+    for (std::size_t i = next++; i < selected.size(); i = next++) results[i] = runner.run_case(*selected[i]);
+  };
+  std::vector<std::thread> pool;
+  const int jobs = std::max(1, std::min<int>(options.jobs, static_cast<int>(selected.size())));
+  for (int j = 0; j < jobs; ++j) pool.emplace_back(worker);
+  for (auto& t : pool) t.join();
+
+  write_study_report(options, study, results);
+  int failed = 0;
+  for (const auto& r : results) failed += r.failed() ? 1 : 0;
+  log << "study report: " << (options.out / "study_report.md").string() << "; " << failed << " of "
+      << results.size() << " case(s) had a failed stage" << std::endl;
+  return failed;
+}
+
+void register_study_command(CLI::App& app) {
+  auto options = std::make_shared<StudyOptions>();
+  auto* cmd = app.add_subcommand(
+      "study",
+      "Run a whole study: generate every case, run the SPH solver and the OpenFOAM reference, compare "
+      "them on common sections, plot, and write OUT/study_report.md. Finished stages are cached by a "
+      "hash of the resolved case and the program version, so a re-run only runs what changed and an "
+      "interrupted study resumes. One failed case is reported and does not stop the others.");
+  cmd->add_option("SPEC", options->spec, "study file (TOML), or \"default\" for the embedded ead2002 study")
+      ->capture_default_str();
+  cmd->add_option("--resolution,-r", options->resolution, "resolution level (quick, default, fine)")
+      ->capture_default_str();
+  cmd->add_option("--cases", options->cases, "comma-separated case ids (default: all)")->delimiter(',');
+  cmd->add_option("--out,-o", options->out, "study directory")->capture_default_str();
+  cmd->add_option("--jobs,-j", options->jobs, "cases run at the same time")->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  cmd->add_option("--np", options->mpi_ranks, "MPI ranks for each OpenFOAM run")->check(CLI::Range(1, 256))
+      ->capture_default_str();
+  cmd->add_option("--methods", options->methods, "solvers to run: sph,vof")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"sph", "vof"}));
+  cmd->add_flag("--force", options->force, "ignore cached results and run every stage again");
+  cmd->callback([options] {
+    const int failed = run_study(*options, std::cout);
+    if (failed > 0) throw CLI::RuntimeError(1);
+  });
+}
+
+}  // namespace hydrojump::compare

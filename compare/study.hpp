@@ -1,0 +1,42 @@
+// `hydrojump study`: a whole side-by-side study from one spec. For every selected case it generates
+// the case directories, runs the SPH solver and the OpenFOAM reference, compares them, and finally
+// writes the study-level report.
+//
+// Each stage of each case runs as a child process of this executable (`hydrojump sph DIR`,
+// `hydrojump vof DIR`, `hydrojump compare DIR`) with its output in OUT/<case>/<stage>.log, so one
+// failing or crashing case is reported and does not stop the others.
+//
+// Caching: a stage that finished writes OUT/<case>/<stage>.stamp holding a hash of the resolved case
+// and the program version; a re-run skips stages whose stamp matches, so only what changed runs
+// again, and an interrupted study resumes where it stopped (solvers resume from their checkpoints).
+#pragma once
+
+#include <filesystem>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+namespace hydrojump::compare {
+
+struct StudyOptions {
+  std::string spec = "default";              // file, or "default" for the embedded study
+  std::string resolution = "quick";
+  std::vector<std::string> cases;            // empty: all
+  std::filesystem::path out = "study";
+  int jobs = 1;                              // cases run at the same time
+  int mpi_ranks = 1;                         // --np for the OpenFOAM runs
+  std::vector<std::string> methods = {"sph", "vof"};  // which solvers to run
+  bool force = false;                        // ignore the stamps and run everything again
+  std::filesystem::path executable;          // the hydrojump binary run for each stage
+                                             // (empty: this process's own executable)
+};
+
+// Runs the study; returns the number of cases with a failed stage (0: all good).
+int run_study(const StudyOptions& options, std::ostream& log);
+
+// Adds `study` to `app`.
+void register_study_command(CLI::App& app);
+
+}  // namespace hydrojump::compare

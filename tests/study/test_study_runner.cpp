@@ -1,0 +1,140 @@
+// The study runner: stages run as child processes, a failing case does not stop the others, finished
+// stages are cached by the resolved case's fingerprint, and a changed case runs again.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "compare/study.hpp"
+
+namespace fs = std::filesystem;
+using hydrojump::compare::StudyOptions;
+using hydrojump::compare::run_study;
+
+namespace {
+
+const std::string mini_study = R"(
+[study]
+name = "mini"
+[resolution.quick]
+particle_spacing_m = 0.005
+vof_cell_size_bed_m = 0.005
+vof_cell_size_bulk_m = 0.01
+[[case]]
+id = "A"
+kind = "stilling_basin"
+[case.run]
+end_time_s = 1.0
+[case.bed]
+profile = "smooth"
+[case.inflow]
+depth_m = 0.0254
+velocity_m_s = 2.0
+[case.tailwater]
+depth_m = TAILWATER
+[case.domain]
+upstream_length_m = 0.2
+basin_length_m = 1.36
+downstream_length_m = 0.2
+air_height_m = 0.1
+[[case]]
+id = "B"
+kind = "stilling_basin"
+[case.run]
+end_time_s = 1.0
+[case.bed]
+profile = "smooth"
+[case.inflow]
+depth_m = 0.0254
+velocity_m_s = 3.0
+[case.tailwater]
+rule = "belanger"
+[case.domain]
+upstream_length_m = 0.2
+basin_length_m = 2.04
+downstream_length_m = 0.25
+air_height_m = 0.12
+)";
+
+std::vector<std::string> lines_of(const fs::path& p) {
+  std::vector<std::string> lines;
+  std::ifstream in(p);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+void write(const fs::path& p, const std::string& text) {
+  std::ofstream out(p);
+  out << text;
+}
+
+std::string with_tailwater(const std::string& value) {
+  std::string s = mini_study;
+  s.replace(s.find("TAILWATER"), 9, value);
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("Study runner: failures are isolated, results cached, changes re-run", "[study]") {
+  const fs::path dir = fs::temp_directory_path() / "hydrojump_test_study";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path calls = dir / "calls.txt";
+  // A stand-in for the hydrojump executable: records each call; the SPH run of case B fails.
+  const fs::path fake = dir / "fake_hydrojump";
+  write(fake, "#!/bin/sh\necho \"$*\" >> '" + calls.string() +
+                  "'\ncase \"$1 $2\" in\n  \"sph \"*/B/sph) echo 'B diverged' ; exit 3 ;;\nesac\nexit 0\n");
+  fs::permissions(fake, fs::perms::owner_all);
+  write(dir / "mini.toml", with_tailwater("0.104"));
+
+  StudyOptions options;
+  options.spec = (dir / "mini.toml").string();
+  options.out = dir / "out";
+  options.executable = fake;
+  std::ostringstream log;
+
+  // First run: every stage runs; B's SPH fails but B's VOF and comparison still run.
+  CHECK(run_study(options, log) == 1);
+  auto first = lines_of(calls);
+  CHECK(first.size() == 6);
+  CHECK(std::count_if(first.begin(), first.end(), [](const std::string& l) { return l.rfind("compare", 0) == 0; }) == 2);
+  CHECK(fs::exists(options.out / "A" / "sph" / "case.toml"));
+  CHECK(fs::exists(options.out / "study_report.md"));
+  CHECK_THAT(log.str(), Catch::Contains("B: sph FAILED (exit status 3)"));
+  CHECK_THAT(log.str(), Catch::Contains("B diverged"));
+
+  // Second run: only the failed stage runs again, resuming.
+  fs::remove(calls);
+  CHECK(run_study(options, log) == 1);
+  auto second = lines_of(calls);
+  REQUIRE(second.size() == 1);
+  CHECK_THAT(second[0], Catch::StartsWith("sph ") && Catch::Contains("/B/sph") && Catch::EndsWith("--resume"));
+
+  // A changed case runs all its stages again; the unchanged one does not.
+  write(dir / "mini.toml", with_tailwater("0.11"));
+  fs::remove(calls);
+  run_study(options, log);
+  auto third = lines_of(calls);
+  CHECK(std::count_if(third.begin(), third.end(), [](const std::string& l) { return l.find("/A") != std::string::npos; }) == 3);
+  CHECK(std::count_if(third.begin(), third.end(), [](const std::string& l) { return l.find("/B") != std::string::npos; }) == 1);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("Study runner validates before running anything", "[study]") {
+  const fs::path dir = fs::temp_directory_path() / "hydrojump_test_study_invalid";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  write(dir / "bad.toml", with_tailwater("-1"));
+  StudyOptions options;
+  options.spec = (dir / "bad.toml").string();
+  options.out = dir / "out";
+  options.executable = "/bin/false";
+  std::ostringstream log;
+  CHECK_THROWS_WITH(run_study(options, log), Catch::Contains("tailwater.depth_m = -1"));
+  CHECK_FALSE(fs::exists(options.out));
+  fs::remove_all(dir);
+}
