@@ -1,5 +1,6 @@
 #include "compare/generate.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <iomanip>
 #include <iostream>
@@ -29,11 +30,13 @@ void print_study_summary(const cases::Study& study, std::ostream& out) {
   if (!study.description.empty()) out << "  " << study.description << "\n";
   const double g = study.fluid.gravity_m_s2;
   bool basin_header = false;
+  int id_width = 10;
+  for (const auto& c : study.cases) id_width = std::max(id_width, static_cast<int>(c.id.size()) + 2);
   for (const auto& c : study.cases) {
     if (const auto* b = c.stilling_basin()) {
       if (!basin_header) {
         out << "\n  stilling basins (q per unit width; E above the local floor; eta with the case's tailwater)\n";
-        out << "  " << std::left << std::setw(10) << "case" << std::setw(12) << "bed" << std::right
+        out << "  " << std::left << std::setw(id_width) << "case" << std::setw(12) << "bed" << std::right
             << std::setw(8) << "y1 m" << std::setw(8) << "U1 m/s" << std::setw(10) << "q m2/s"
             << std::setw(7) << "Fr1" << std::setw(9) << "y2* m" << std::setw(9) << "y2 m" << std::setw(9)
             << "E1 m" << std::setw(9) << "E2 m" << std::setw(9) << "eta %" << std::setw(11) << "eta* %"
@@ -45,7 +48,7 @@ void print_study_summary(const cases::Study& study, std::ostream& out) {
       std::string bed = b->bed.profile == "sinusoidal"
                             ? "S" + fixed(b->bed.wavelength_m * 1000, 0) + "/T" + fixed(b->bed.height_m * 1000, 0)
                             : "smooth";
-      out << "  " << std::left << std::setw(10) << c.id << std::setw(12) << bed << std::right
+      out << "  " << std::left << std::setw(id_width) << c.id << std::setw(12) << bed << std::right
           << std::setw(8) << fixed(b->inflow_depth_m, 4) << std::setw(8) << fixed(b->inflow_velocity_m_s, 2)
           << std::setw(10) << fixed(j.discharge_m2_s, 4) << std::setw(7) << fixed(j.froude1, 2)
           << std::setw(9) << fixed(j.belanger_y2_m, 3) << std::setw(9) << fixed(b->tailwater_depth_m, 3)
