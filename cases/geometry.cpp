@@ -32,7 +32,13 @@ std::vector<Section> default_stilling_basin_sections(const StillingBasinCase& ba
       sections.push_back({"x_" + std::to_string(k) + "y2", x, "interior"});
     }
   }
-  const double x_down = std::min(x_toe + 8.0 * y2, x_outlet - 3.0 * y2);
+  double x_down = std::min(x_toe + 8.0 * y2, x_outlet - 3.0 * y2);
+  // On a corrugated reach, E2 and y2 are taken over a crest (depth above the crests, as measured).
+  const auto& bed = basin.bed;
+  if (bed.profile == "sinusoidal" && x_down > bed.reach_start_m && x_down < bed.reach_end_m) {
+    const double crest = bed.reach_start_m + std::round((x_down - bed.reach_start_m) / bed.wavelength_m) * bed.wavelength_m;
+    x_down = crest <= x_outlet - 3.0 * y2 ? crest : crest - bed.wavelength_m;
+  }
   sections.push_back({"downstream", x_down, "downstream"});
   return sections;
 }

@@ -77,7 +77,8 @@ CaseGeometry make_geometry(const Case& c, const FluidProperties& fluid);
 //   "upstream"   x_toe - min(10 y1, upstream_length / 2)          (role "upstream", for E1)
 //   "toe"        x_toe                                              (role "toe")
 //   "x_2y2", "x_4y2", "x_6y2"  x_toe + k y2                         (role "interior")
-//   "downstream" x_toe + 8 y2, kept 3 y2 clear of the outlet        (role "downstream", for E2, y2)
+//   "downstream" x_toe + 8 y2, kept 3 y2 clear of the outlet        (role "downstream", for E2, y2);
+//                on a corrugated reach moved to the nearest crest, so y2 and E2 are read over a crest
 std::vector<Section> default_stilling_basin_sections(const StillingBasinCase& basin);
 
 }  // namespace hydrojump::cases

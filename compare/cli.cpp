@@ -1,7 +1,68 @@
 #include "compare/cli.hpp"
 
+#include <iostream>
+#include <memory>
+
+#include "compare/case_comparison.hpp"
+
 namespace hydrojump::compare {
 
-void register_commands(CLI::App& /*app*/) {}
+namespace {
+struct CompareCommandOptions {
+  std::filesystem::path run_dir;
+  std::filesystem::path out_dir;
+  std::string interpolation = "mls_linear";
+  std::vector<double> window;
+  bool no_plots = false;
+  std::filesystem::path sph_pvd;
+  double station_spacing_m = 0.0;
+};
+}  // namespace
+
+void register_commands(CLI::App& app) {
+  auto o = std::make_shared<CompareCommandOptions>();
+  auto* cmd = app.add_subcommand(
+      "compare",
+      "Compare the SPH and VOF results of one case directory written by `hydrojump generate` (RUN_DIR/sph with "
+      "its .pvd particle series, RUN_DIR/vof with the OpenFOAM case) on the case's sections over its averaging "
+      "window: free surface, velocity profiles, discharge, kinetic-energy coefficient, specific energy, toe, "
+      "sequent depth y2, jump and roller lengths, eta = (E1-E2)/E1, velocity decay; SPH vs VOF discrepancies and "
+      "both against the laboratory values in the spec. Writes comparison.json, csv/*.csv, figures/*.png, "
+      "report.md and report.html into RUN_DIR (or --out). A missing result is reported as missing.");
+  cmd->add_option("RUN_DIR", o->run_dir, "case directory (holds sph/ and vof/)")->required()->check(CLI::ExistingDirectory);
+  cmd->add_option("--out,-o", o->out_dir, "output directory (default: RUN_DIR)");
+  cmd->add_option("--interpolation", o->interpolation,
+                  "mls_linear: Shepard with a linear (moving-least-squares) correction, exact for linear fields; "
+                  "shepard: plain Shepard normalisation")
+      ->check(CLI::IsMember({"mls_linear", "shepard"}))
+      ->capture_default_str();
+  cmd->add_option("--window", o->window, "averaging window T0 T1 in s (default: the case's run.average_*)")
+      ->expected(2);
+  cmd->add_option("--sph-pvd", o->sph_pvd, "the SPH .pvd series (default: the one found under RUN_DIR/sph)")
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--station-spacing", o->station_spacing_m,
+                  "spacing of the columns along the channel in m (default: the finer of SPH dx and the VOF bed cell)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_flag("--no-plots", o->no_plots, "skip the matplotlib figures");
+  cmd->callback([o] {
+    CompareOptions options;
+    options.out_dir = o->out_dir;
+    options.scheme = parse_interpolation_scheme(o->interpolation);
+    if (o->window.size() == 2) {
+      if (!(o->window[1] >= o->window[0])) throw CLI::ValidationError("--window", "T1 must be >= T0");
+      options.window_start_s = o->window[0];
+      options.window_end_s = o->window[1];
+    }
+    options.plots = !o->no_plots;
+    options.sph_pvd = o->sph_pvd;
+    options.station_spacing_m = o->station_spacing_m;
+    const CaseComparison c = compare_case_directory(o->run_dir, options, std::cout);
+    if (!c.sph.available && !c.vof.available) {
+      std::cerr << "hydrojump compare: neither result is available:\n  sph: " << c.sph.status
+                << "\n  vof: " << c.vof.status << "\n(the report lists them as missing)\n";
+      throw CLI::RuntimeError(1);
+    }
+  });
+}
 
 }  // namespace hydrojump::compare

@@ -1,14 +1,79 @@
 #include "reference/cli.hpp"
 
+#include <iostream>
+#include <memory>
+
 #include "cases/spec_reader.hpp"
+#include "reference/case_writer.hpp"
+#include "reference/runner.hpp"
 
 namespace hydrojump::reference {
 
-void register_commands(CLI::App& /*app*/) {}
+namespace {
+
+struct VofOptions {
+  std::string dir;
+  int np = 1;
+  bool resume = false;
+  bool self_test = false;
+  bool force_body_fitted = false;
+  double progress_interval_s = 30.0;
+};
+
+}  // namespace
+
+void register_commands(CLI::App& app) {
+  auto options = std::make_shared<VofOptions>();
+  CLI::App* vof = app.add_subcommand(
+      "vof",
+      "Mesh and run the OpenFOAM interFoam (VOF) reference case in DIR (DIR/<case>/vof written by "
+      "`hydrojump generate`).\n"
+      "Steps: check that OpenFOAM is usable; blockMesh (+ topoSet/subsetMesh for the staircase bed);\n"
+      "checkMesh (a bad mesh stops the run with its report); setFields (initial water); interFoam,\n"
+      "serial or with MPI (--np N: decomposePar, mpirun, reconstructPar). Shows the simulated time and\n"
+      "an ETA, stops a diverging run (Courant blow-up, NaN, crash) with the last lines of its log, and\n"
+      "continues an interrupted run with --resume. Ctrl-C (or SIGTERM) makes interFoam write the current\n"
+      "time and stop, ready for --resume. Logs: DIR/log.<application>. The case can also be\n"
+      "run by hand with DIR/Allrun. Needs OpenFOAM v1912 (WM_PROJECT_DIR, default /usr/share/openfoam).");
+  vof->add_option("DIR", options->dir, "case directory (holds case.toml, system/, constant/, 0.orig/)");
+  vof->add_option("--np", options->np, "MPI ranks (1 = serial; >1 runs decomposePar + mpirun)")
+      ->check(CLI::Range(1, 1024));
+  vof->add_flag("--resume", options->resume,
+                "continue from the latest complete time directory instead of refusing to overwrite");
+  vof->add_flag("--self-test", options->self_test,
+                "only check OpenFOAM and run the self-test for faces not aligned with the axes "
+                "(decides whether mesh_strategy = \"body_fitted\" can run on this build)");
+  vof->add_flag("--force-body-fitted", options->force_body_fitted,
+                "run a body_fitted mesh even when the self-test shows the defect (for patched builds)");
+  vof->add_option("--progress-interval", options->progress_interval_s,
+                  "seconds between progress lines when the output is not a terminal (default 30)")
+      ->check(CLI::PositiveNumber);
+  vof->callback([options]() {
+    if (options->self_test) {
+      const OpenFoamInstallation inst = check_openfoam(false);
+      std::cout << "OpenFOAM " << inst.version << " at " << inst.project_dir.string() << "\n";
+      const SelfTestResult r =
+          self_test_non_orthogonal(std::filesystem::temp_directory_path());
+      std::cout << r.summary() << "\n"
+                << (r.sheared_ok ? "body_fitted meshes can run on this build\n"
+                                 : "body_fitted meshes are refused on this build (use cartesian_cut)\n");
+      return;
+    }
+    if (options->dir.empty()) throw CLI::RequiredError("DIR");
+    RunOptions run;
+    run.np = options->np;
+    run.resume = options->resume;
+    run.progress_interval_s = options->progress_interval_s;
+    run.force_body_fitted = options->force_body_fitted;
+    run_vof_case(options->dir, run, std::cout);
+  });
+}
 
 void write_vof_case(const cases::Study& study, const cases::Case& c, const std::string& resolution,
                     const std::filesystem::path& dir) {
+  const VofCase vof = build_vof_case(study, c, resolution);
   std::filesystem::create_directories(dir);
+  write_vof_files(vof, dir);
   cases::write_resolved_case(study, c, resolution, dir / "case.toml");
 }
 

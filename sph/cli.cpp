@@ -1,15 +1,230 @@
 #include "sph/cli.hpp"
 
+#include <atomic>
+#include <csignal>
+#include <fstream>
+#include <functional>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <sstream>
+
+#include <omp.h>
+#include <unistd.h>
+
+#include "cases/geometry.hpp"
 #include "cases/spec_reader.hpp"
+#include "sph/bench.hpp"
+#include "sph/checkpoint.hpp"
+#include "sph/particle_generator.hpp"
+#include "sph/run.hpp"
+#include "sph/settings.hpp"
+#include "sph/solver.hpp"
+#include "sph/vtk_output.hpp"
 
 namespace hydrojump::sph {
 
-void register_commands(CLI::App& /*app*/) {}
+namespace {
+
+// Set by SIGINT/SIGTERM; the run loop polls it, writes a checkpoint and returns. (A signal handler
+// can only reach static storage; this flag is the one such object and only the handler writes it.)
+std::atomic<bool> g_stop_requested{false};
+std::atomic<int> g_stop_signal{0};
+static_assert(std::atomic<bool>::is_always_lock_free);
+
+extern "C" void request_stop(int sig) {
+  g_stop_signal.store(sig);
+  g_stop_requested.store(true);
+}
+
+std::string read_text(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// FNV-1a of the resolved case text: a checkpoint only resumes the case it was written for.
+std::string fingerprint_of(const std::string& text) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (unsigned char ch : text) {
+    h ^= ch;
+    h *= 1099511628211ull;
+  }
+  std::ostringstream o;
+  o << std::hex << std::setw(16) << std::setfill('0') << h;
+  return o.str();
+}
+
+}  // namespace
+
+int run_sph_directory(const SphOptions& opt) {
+  const std::filesystem::path dir = opt.dir;
+  const std::filesystem::path case_file = dir / "case.toml";
+  if (!std::filesystem::exists(case_file))
+    throw std::runtime_error("'" + case_file.string() +
+                             "' not found: DIR must be a directory written by `hydrojump generate` (DIR/<case>/sph)");
+  if (opt.threads > 0) omp_set_num_threads(opt.threads);
+  const cases::Study study = cases::load_study(case_file);
+  if (study.cases.size() != 1)
+    throw std::runtime_error("'" + case_file.string() + "' holds " + std::to_string(study.cases.size()) +
+                             " cases; a run directory holds exactly one (write it with `hydrojump generate`)");
+  const cases::Case& c = study.cases.front();
+  if (c.resolutions.size() != 1)
+    throw std::runtime_error("'" + case_file.string() + "' defines " + std::to_string(c.resolutions.size()) +
+                             " resolutions; a run directory holds exactly one");
+  const cases::Resolution& resolution = c.resolutions.begin()->second;
+  if (c.stilling_basin() != nullptr)
+    throw std::runtime_error("case \"" + c.id +
+                             "\" is a stilling basin: its inflow and outflow boundaries are not implemented in the SPH "
+                             "solver yet (the SPH hydraulic-jump issue); only dam_break, still_water and poiseuille "
+                             "cases run");
+  const cases::CaseGeometry geometry = cases::make_geometry(c, study.fluid);
+  const SolverSettings settings = make_settings(c, study.fluid, geometry, resolution.particle_spacing_m);
+
+  RunOptions ro;
+  ro.dir = dir;
+  ro.end_time_s = opt.end_time > 0.0 ? opt.end_time : c.run.end_time_s;
+  ro.output_interval_s = c.run.output_interval_s;
+  ro.checkpoint_interval_wall_s = c.sph.checkpoint_interval_wall_s;
+  ro.fingerprint = fingerprint_of(read_text(case_file));
+  for (const auto& section : geometry.sections) ro.gauges.push_back({section.name, section.x_m});
+  if (const auto* d = c.dam_break()) {  // its gauges are among the geometry's sections
+    ro.record_front = true;
+    ro.front_layer_m = 0.1 * d->column_width_m;
+  }
+  if (!opt.quiet) {
+    ro.progress = &std::cerr;
+    ro.progress_is_terminal = ::isatty(STDERR_FILENO) != 0;
+  }
+  ro.stop_requested = &g_stop_requested;
+
+  std::optional<Checkpoint> checkpoint;
+  const auto ck = checkpoint_path(dir);
+  if (opt.resume) {
+    if (!std::filesystem::exists(ck))
+      throw std::runtime_error("--resume: no checkpoint '" + ck.string() + "' to resume from");
+    checkpoint = read_checkpoint(ck);
+    if (checkpoint->fingerprint != ro.fingerprint)
+      throw std::runtime_error("--resume: '" + case_file.string() +
+                               "' changed since the checkpoint was written; run with --restart to start over");
+  } else if (std::filesystem::exists(ck) && !opt.restart) {
+    throw std::runtime_error("'" + dir.string() +
+                             "' already holds a run (checkpoint.bin): use --resume to continue it or --restart to "
+                             "start over (overwriting its outputs)");
+  }
+
+  std::unique_ptr<Solver> solver;
+  if (checkpoint) {
+    solver = std::make_unique<Solver>(settings, checkpoint->particles, checkpoint->clock);
+    checkpoint->particles = ParticleSet{};
+  } else {
+    solver = std::make_unique<Solver>(settings, generate_particles(geometry, settings, c.sph.boundary_layers));
+  }
+  std::cerr << "hydrojump sph: case \"" << c.id << "\" (" << c.kind << "), dx = " << settings.dx << " m, "
+            << solver->particles().fluid_count() << " fluid + "
+            << solver->particles().size() - solver->particles().fluid_count() << " boundary particles, "
+            << omp_get_max_threads() << " thread(s), c0 = " << settings.eos.c0 << " m/s, "
+            << (checkpoint ? "resuming at t = " + std::to_string(solver->time()) + " s" : std::string("from t = 0"))
+            << "\n";
+
+  g_stop_requested.store(false);
+  struct sigaction action {};
+  action.sa_handler = request_stop;
+  sigemptyset(&action.sa_mask);
+  struct sigaction old_int {}, old_term {};
+  sigaction(SIGINT, &action, &old_int);
+  sigaction(SIGTERM, &action, &old_term);
+  RunStatus status;
+  try {
+    status = run_case(*solver, ro, checkpoint);
+  } catch (...) {
+    sigaction(SIGINT, &old_int, nullptr);
+    sigaction(SIGTERM, &old_term, nullptr);
+    throw;
+  }
+  sigaction(SIGINT, &old_int, nullptr);
+  sigaction(SIGTERM, &old_term, nullptr);
+  if (status == RunStatus::interrupted) {
+    const int sig = g_stop_signal.load();
+    std::cerr << "hydrojump sph: stopped by " << (sig == SIGTERM ? "SIGTERM" : "SIGINT") << " at t = " << solver->time()
+              << " s; checkpoint written to " << ck.string() << " (continue with --resume)\n";
+    return 128 + sig;
+  }
+  std::cerr << "hydrojump sph: finished at t = " << solver->time() << " s after " << solver->clock().steps
+            << " steps; outputs in " << dir.string() << " (particles.pvd, run_log.csv, gauges.csv)\n";
+  return 0;
+}
+
+void register_commands(CLI::App& app) {
+  auto opt = std::make_shared<SphOptions>();
+  CLI::App* sph = app.add_subcommand(
+      "sph",
+      "Run the weakly compressible SPH solver on a case directory written by `generate` (DIR/<case>/sph).\n"
+      "Reads DIR/case.toml; writes DIR/particles.pvd with one .vtp per output time (open it in ParaView),\n"
+      "DIR/run_log.csv (mass, energies, max density variation, dt), DIR/gauges.csv (free-surface elevation\n"
+      "at the sections and gauges) and DIR/checkpoint.bin (every sph.checkpoint_interval_wall_s seconds and\n"
+      "at exit). Ctrl-C (SIGINT) or SIGTERM writes a checkpoint and stops; continue with --resume. An unstable\n"
+      "run stops with a diagnosis in DIR/failure.txt and keeps its last good checkpoint.");
+  sph->add_option("DIR", opt->dir, "case directory holding case.toml")->required()->check(CLI::ExistingDirectory);
+  sph->add_flag("--resume", opt->resume, "continue from DIR/checkpoint.bin");
+  sph->add_flag("--restart", opt->restart, "start over even if DIR holds a previous run (overwrites its outputs)");
+  sph->add_option("--threads", opt->threads, "OpenMP threads (default: OMP_NUM_THREADS or all cores)")
+      ->check(CLI::Range(1, 1024));
+  sph->add_option("--end-time", opt->end_time, "stop at this simulated time in s instead of the case's end_time_s")
+      ->check(CLI::PositiveNumber);
+  sph->add_flag("--quiet", opt->quiet, "no progress line");
+  sph->callback([opt]() {
+    if (opt->resume && opt->restart) throw CLI::ValidationError("--resume and --restart", "choose one of them");
+    const int code = run_sph_directory(*opt);
+    if (code != 0) throw CLI::RuntimeError(code);
+  });
+
+  auto bench_opt = std::make_shared<BenchmarkOptions>();
+  auto json = std::make_shared<bool>(false);
+  CLI::App* bench = app.add_subcommand(
+      "bench",
+      "SPH benchmark: 2D dam break (column 1 m x 2 m, tank 4 m), dx = 0.01 m (20,000 fluid particles), Wendland\n"
+      "C2, h = sqrt(2) dx, artificial viscosity 0.02, Fourtakas diffusion 0.1, DBC, Verlet, CFL 0.2,\n"
+      "c0 = 20 sqrt(g 2 m), 0.3 s of physical time. Prints particle-steps per second (all particles times\n"
+      "steps over the wall time of the time loop) and the peak memory.");
+  bench->add_option("--steps", bench_opt->max_steps, "stop after N steps (a quick figure)")->check(CLI::PositiveNumber);
+  bench->add_option("--threads", bench_opt->threads, "OpenMP threads")->check(CLI::Range(1, 1024));
+  bench->add_option("--end-time", bench_opt->end_time_s, "physical time to simulate in s (default 0.3)")
+      ->check(CLI::PositiveNumber);
+  bench->add_option("--dx", bench_opt->particle_spacing_m, "particle spacing in m (default 0.01)")
+      ->check(CLI::Range(0.002, 0.1));
+  bench->add_flag("--json", *json, "print the result as one JSON object");
+  bench->callback([bench_opt, json]() {
+    const BenchmarkResult r = run_benchmark(*bench_opt);
+    if (*json) {
+      std::cout << to_json(r) << "\n";
+      return;
+    }
+    std::cout << "hydrojump bench: dam break dx = " << bench_opt->particle_spacing_m << " m, " << r.particles
+              << " particles (" << r.fluid_particles << " fluid), " << r.threads << " thread(s)\n"
+              << "  " << r.steps << " steps to t = " << r.simulated_time_s << " s in " << r.seconds << " s wall, "
+              << r.cpu_seconds << " s CPU (a CPU time well above threads x wall, or a wall time well above the CPU\n"
+              << "  time on one thread, means the machine was busy with other work)\n"
+              << "  " << std::fixed << std::setprecision(3) << r.particle_steps_per_second / 1e6
+              << " M particle-steps/s (" << r.particle_steps_per_second * static_cast<double>(r.fluid_particles) /
+                                                  static_cast<double>(r.particles) / 1e6
+              << " M counting fluid particles only)\n"
+              << "  peak memory " << static_cast<double>(r.peak_memory_bytes) / 1048576.0 << " MiB\n";
+  });
+}
 
 void write_sph_input(const cases::Study& study, const cases::Case& c, const std::string& resolution,
                      const std::filesystem::path& dir) {
   std::filesystem::create_directories(dir);
   cases::write_resolved_case(study, c, resolution, dir / "case.toml");
+  const cases::CaseGeometry geometry = cases::make_geometry(c, study.fluid);
+  const SolverSettings settings =
+      make_settings(c, study.fluid, geometry, c.resolution(resolution).particle_spacing_m);
+  ParticleSet ps = generate_particles(geometry, settings, c.sph.boundary_layers);
+  for (Eigen::Index i = 0; i < ps.size(); ++i) ps.p[i] = settings.eos.pressure(ps.rho[i]);
+  write_particles_vtp(ps, dir / "initial_particles.vtp");
 }
 
 }  // namespace hydrojump::sph

@@ -11,6 +11,21 @@
 
 namespace hydrojump::sph {
 
+// What `hydrojump sph DIR` was asked to do.
+struct SphOptions {
+  std::string dir;            // holds case.toml (written by `generate` / write_sph_input)
+  bool resume = false;        // continue from DIR/checkpoint.bin
+  bool restart = false;       // start over although DIR holds a run
+  int threads = 0;            // 0: OpenMP default
+  double end_time = 0.0;      // > 0: stop at this time instead of the case's end_time_s
+  bool quiet = false;         // no progress line
+};
+
+// Runs the case in opt.dir. Returns 0 when finished, 128 + signal number when stopped by
+// SIGINT/SIGTERM (after writing a checkpoint). Throws SimulationFailure (sph/run.hpp) when the run goes
+// unstable, std::runtime_error / cases::SpecError on bad input.
+int run_sph_directory(const SphOptions& opt);
+
 // Adds `hydrojump sph DIR` (run a generated case) and `hydrojump bench` to `app`.
 void register_commands(CLI::App& app);
 

@@ -86,7 +86,9 @@ TEST_CASE("The minimal spec is valid and derives sections", "[cases][spec]") {
   REQUIRE(c.sections.size() >= 3);
   CHECK(c.sections.front().role == "upstream");
   CHECK(c.sections.back().role == "downstream");
-  CHECK(c.sections.back().x_m == Approx(0.2 + 8 * 0.104));
+  // x_toe + 8 y2 = 1.032 m, moved to the nearest crest: 0.2 + 12 * 0.068 = 1.016 m.
+  CHECK(c.sections.back().x_m == Approx(0.2 + 12 * 0.068));
+  CHECK(b->bed.profile == "sinusoidal");
 }
 
 TEST_CASE("The reference study lists the ten stilling-basin cases", "[cases][spec]") {

@@ -1,0 +1,242 @@
+#include "compare/case_comparison.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <ostream>
+#include <sstream>
+#include <stdexcept>
+
+#include "cases/geometry.hpp"
+#include "cases/hydraulics.hpp"
+#include "cases/spec_reader.hpp"
+#include "compare/readers.hpp"
+#include "compare/report.hpp"
+#include "sph/kernel.hpp"
+
+namespace fs = std::filesystem;
+
+namespace hydrojump::compare {
+
+cases::Study load_run_case(const fs::path& run_dir) {
+  for (const fs::path& p : {run_dir / "sph" / "case.toml", run_dir / "vof" / "case.toml"})
+    if (fs::exists(p)) return cases::load_study(p);
+  throw std::runtime_error(run_dir.string() + ": no case.toml in " + (run_dir / "sph").string() + " or " +
+                           (run_dir / "vof").string() + " (is this a directory written by `hydrojump generate`?)");
+}
+
+namespace {
+
+// Progress lines "sph: frame 3/40 at t = 5.15 s (elapsed 12 s, ETA 2 min)".
+class Progress {
+ public:
+  Progress(std::ostream& log, std::string what, std::size_t total)
+      : log_(log), what_(std::move(what)), total_(total), t0_(std::chrono::steady_clock::now()) {}
+  void step(std::size_t done, double time_s) {
+    const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
+    if (done < total_ && el - last_ < 5.0 && done != 1) return;
+    last_ = el;
+    const double eta = done > 0 ? el / static_cast<double>(done) * static_cast<double>(total_ - done) : 0.0;
+    log_ << what_ << ": frame " << done << "/" << total_ << " at t = " << std::setprecision(4) << time_s
+         << " s (elapsed " << std::lround(el) << " s, ETA " << std::lround(eta) << " s)" << std::endl;
+  }
+
+ private:
+  std::ostream& log_;
+  std::string what_;
+  std::size_t total_;
+  std::chrono::steady_clock::time_point t0_;
+  double last_ = -1e9;
+};
+
+std::string window_text(double t0, double t1) {
+  std::ostringstream s;
+  s << "[" << t0 << ", " << t1 << "] s";
+  return s.str();
+}
+
+// "ok", or "ok; N unreadable frame(s) skipped, the first: ..."
+std::string skipped_status(const std::vector<std::string>& skipped) {
+  if (skipped.empty()) return "ok";
+  return "ok; " + std::to_string(skipped.size()) + " unreadable frame(s) skipped, the first: " + skipped.front();
+}
+
+}  // namespace
+
+CaseComparison compare_case(const cases::Study& study, const fs::path& run_dir, const CompareOptions& options,
+                            std::ostream& log) {
+  if (study.cases.size() != 1)
+    throw std::runtime_error(study.source_file.string() + ": expected exactly one [[case]] (a resolved case), found " +
+                             std::to_string(study.cases.size()));
+  const cases::Case& c = study.cases.front();
+  const cases::StillingBasinCase* basin = c.stilling_basin();
+  if (!basin)
+    throw std::runtime_error("case \"" + c.id + "\" is of kind \"" + c.kind +
+                             "\": `hydrojump compare` handles kind \"stilling_basin\" only");
+  if (c.resolutions.size() != 1)
+    throw std::runtime_error(study.source_file.string() + ": a resolved case has exactly one [resolution.*] table, found " +
+                             std::to_string(c.resolutions.size()));
+  const cases::Resolution& res = c.resolutions.begin()->second;
+  const cases::CaseGeometry geo = cases::make_geometry(c, study.fluid);
+  const double g = study.fluid.gravity_m_s2;
+
+  CaseComparison r;
+  r.case_id = c.id;
+  r.description = c.description;
+  r.resolution = res.name;
+  r.inflow_depth_m = basin->inflow_depth_m;
+  r.inflow_velocity_m_s = basin->inflow_velocity_m_s;
+  r.tailwater_depth_m = basin->tailwater_depth_m;
+  r.gravity_m_s2 = g;
+  r.floor_z_m = geo.bed.elevation(geo.inflows.empty() ? geo.x_min_m : geo.inflows.front().x_m);
+  r.basin_start_m = basin->upstream_length_m;
+  r.basin_end_m = basin->upstream_length_m + basin->basin_length_m;
+  r.bed_wavelength_m = geo.bed.corrugated() ? geo.bed.wavelength_m() : 0.0;
+  r.window_start_s = options.window_start_s.value_or(c.run.average_start_s);
+  r.window_end_s = options.window_end_s.value_or(c.run.average_end_s > 0.0 ? c.run.average_end_s : c.run.end_time_s);
+  if (!(r.window_end_s >= r.window_start_s))
+    throw std::runtime_error("case \"" + c.id + "\": averaging window " + window_text(r.window_start_s, r.window_end_s) +
+                             " is empty (end before start)");
+  const cases::JumpHydraulics jh = cases::jump_hydraulics(r.inflow_depth_m, r.inflow_velocity_m_s, r.tailwater_depth_m, g);
+  r.belanger_y2_m = jh.belanger_y2_m;
+  r.eta_smooth_theory_percent = 100.0 * jh.eta_smooth;
+  r.particle_spacing_m = res.particle_spacing_m;
+  r.vof_cell_size_m = res.vof_cell_size_bed_m;
+  r.interpolation = to_string(options.scheme);
+  r.measured_source = basin->measured.source;
+  r.lab.sequent_depth_m = basin->measured.sequent_depth_m;
+  r.lab.jump_length_m = basin->measured.jump_length_m;
+  r.lab.roller_length_m = basin->measured.roller_length_m;
+  r.lab.eta_percent = basin->measured.eta_percent;
+  r.lab.eta_smooth_percent = basin->measured.eta_smooth_percent;
+  r.lab.published_sph_eta_percent = basin->measured.published_sph_eta_percent;
+
+  // Columns: the case's sections, and stations along the whole channel.
+  for (const auto& s : geo.sections)
+    r.sections.push_back({s.name, s.role, s.x_m, geo.bed.elevation(s.x_m), options.section_points});
+  const double length = geo.x_max_m - geo.x_min_m;
+  double ds = options.station_spacing_m;
+  if (!(ds > 0.0)) {
+    ds = std::min(res.particle_spacing_m > 0 ? res.particle_spacing_m : 1e9,
+                  res.vof_cell_size_bed_m > 0 ? res.vof_cell_size_bed_m : 1e9);
+    if (ds > 1e8) ds = length / 500.0;
+  }
+  ds = std::max(ds, length / 3000.0);
+  const int n_stations = std::max(3, static_cast<int>(std::floor(length / ds)));
+  std::vector<ColumnSpec> stations;
+  for (int i = 0; i < n_stations; ++i) {
+    const double x = geo.x_min_m + (i + 0.5) * length / n_stations;
+    stations.push_back({"", "station", x, geo.bed.elevation(x), options.station_points});
+  }
+  SnapshotGrid grid;
+  grid.x_min = geo.x_min_m; grid.x_max = geo.x_max_m;
+  grid.z_min = geo.z_min_m; grid.z_max = geo.z_max_m;
+  grid.nx = std::min(800, std::max(50, static_cast<int>(length / ds)));
+  grid.nz = std::clamp(static_cast<int>(std::lround(grid.nx * (geo.z_max_m - geo.z_min_m) / length)), 10, 400);
+  std::vector<double> grid_bed(static_cast<std::size_t>(grid.nx));
+  for (int i = 0; i < grid.nx; ++i)
+    grid_bed[static_cast<std::size_t>(i)] = geo.bed.elevation(grid.x_min + i * length / (grid.nx - 1));
+
+  const double t0 = r.window_start_s, t1 = r.window_end_s;
+  // ---- SPH
+  r.sph.method = "sph";
+  try {
+    const fs::path pvd = options.sph_pvd.empty() ? find_pvd(run_dir / "sph") : options.sph_pvd;
+    r.sph.source = pvd.string();
+    const auto all = read_pvd(pvd);
+    const auto entries = entries_in_window(all, t0, t1);
+    if (entries.empty()) {
+      r.sph.status = "missing: no output time of " + pvd.string() + " lies in the averaging window " +
+                     window_text(t0, t1) + " (the series covers " + window_text(all.front().time_s, all.back().time_s) + ")";
+    } else {
+      SphSamplingSettings s;
+      s.kernel = c.sph.kernel;
+      s.particle_spacing_m = res.particle_spacing_m;
+      s.smoothing_length_m = sph::smoothing_length(c.sph.coef_h, res.particle_spacing_m);
+      s.reference_density_kg_m3 = study.fluid.density_kg_m3;
+      s.scheme = options.scheme;
+      s.z_ceiling_m = geo.z_max_m + 2.0 * s.smoothing_length_m;  // a particle thrown above the domain is no surface
+      MethodAccumulator acc("sph", r.sections, stations, grid, g);
+      Progress progress(log, "sph", entries.size());
+      std::vector<std::string> skipped;
+      for (std::size_t i = 0; i < entries.size(); ++i) {
+        try {
+          const ParticleFrame f = read_vtp_particles(entries[i].file, entries[i].time_s);
+          acc.add_frame(*make_sph_sampler(f, s), i + 1 == entries.size(), grid_bed);
+        } catch (const std::exception& e) {  // one unreadable frame does not lose the others
+          skipped.push_back(e.what());
+          log << "sph: frame at t = " << entries[i].time_s << " s skipped: " << e.what() << std::endl;
+        }
+        progress.step(i + 1, entries[i].time_s);
+      }
+      if (acc.frame_count() == 0) throw std::runtime_error("no readable frame: " + skipped.front());
+      r.sph.stats = acc.finish(options.section_points);
+      r.sph.available = true;
+      r.sph.status = skipped_status(skipped);
+    }
+  } catch (const std::exception& e) {
+    r.sph.status = std::string("missing: ") + e.what();
+  }
+  // ---- VOF
+  r.vof.method = "vof";
+  const fs::path vof_dir = run_dir / "vof";
+  r.vof.source = vof_dir.string();
+  try {
+    if (!has_openfoam_results(vof_dir)) {
+      r.vof.status = "missing: " + vof_dir.string() + " has no OpenFOAM results (no time directory after 0 with alpha.water)";
+      if (fs::exists(vof_dir / "processor0"))
+        r.vof.status += "; it holds a decomposed run: reconstruct it first (reconstructPar)";
+    } else {
+      OpenFoamResults foam(vof_dir);
+      const auto times = foam.times_in_window(t0, t1);
+      if (times.empty()) {
+        r.vof.status = "missing: no written time of " + vof_dir.string() + " lies in the averaging window " +
+                       window_text(t0, t1) + " (times " + window_text(foam.times().front(), foam.times().back()) + ")";
+      } else {
+        MethodAccumulator acc("vof", r.sections, stations, grid, g);
+        Progress progress(log, "vof", times.size());
+        std::vector<std::string> skipped;
+        for (std::size_t i = 0; i < times.size(); ++i) {
+          try {
+            const CellFrame f = foam.read(times[i]);
+            acc.add_frame(*make_vof_sampler(f, options.scheme), i + 1 == times.size(), grid_bed);
+          } catch (const std::exception& e) {
+            skipped.push_back(e.what());
+            log << "vof: time " << times[i] << " s skipped: " << e.what() << std::endl;
+          }
+          progress.step(i + 1, times[i]);
+        }
+        if (acc.frame_count() == 0) throw std::runtime_error("no readable time: " + skipped.front());
+        r.vof.stats = acc.finish(options.section_points);
+        r.vof.available = true;
+        r.vof.status = skipped_status(skipped);
+      }
+    }
+  } catch (const std::exception& e) {
+    r.vof.status = std::string("missing: ") + e.what();
+  }
+  for (MethodOutcome* m : {&r.sph, &r.vof}) {
+    log << m->method << ": " << m->status << std::endl;
+    if (!m->available) continue;
+    m->metrics = compute_jump_metrics(m->stats, {r.inflow_depth_m, r.inflow_velocity_m_s, r.floor_z_m, g, options.metrics});
+  }
+  if (r.sph.available && r.vof.available) {
+    r.surface = surface_difference(r.sph.stats, r.vof.stats, r.basin_start_m, r.basin_end_m);
+    r.profiles = profile_differences(r.sph.stats, r.vof.stats, r.inflow_velocity_m_s);
+  }
+  r.metrics = metric_table(r.sph.available ? &r.sph.metrics : nullptr, r.vof.available ? &r.vof.metrics : nullptr,
+                           r.lab, r.inflow_depth_m);
+  return r;
+}
+
+CaseComparison compare_case_directory(const fs::path& run_dir, const CompareOptions& options, std::ostream& log) {
+  if (!fs::is_directory(run_dir)) throw std::runtime_error(run_dir.string() + ": run directory does not exist");
+  const cases::Study study = load_run_case(run_dir);
+  CaseComparison r = compare_case(study, run_dir, options, log);
+  const fs::path out = options.out_dir.empty() ? run_dir : options.out_dir;
+  write_report(r, out, options.plots, log);
+  return r;
+}
+
+}  // namespace hydrojump::compare

@@ -1,0 +1,74 @@
+// Comparing one case directory: `compare_case_directory(RUN_DIR)` reads RUN_DIR/sph (a .pvd particle
+// series) and RUN_DIR/vof (an OpenFOAM case) over the case's averaging window, samples both on the
+// case's sections and on a line of stations along the channel, computes the jump metrics of each, the
+// discrepancies between them and against the laboratory values, and writes the report (report.hpp).
+// This is the one call a study runner needs per case; a missing method is reported, not fatal.
+//
+// The case comes from RUN_DIR/sph/case.toml (or RUN_DIR/vof/case.toml), the resolved one-case spec
+// written by `hydrojump generate`; the geometry (bed, sections, domain) from cases::make_geometry.
+#pragma once
+
+#include <filesystem>
+#include <iosfwd>
+#include <optional>
+#include <string>
+
+#include "cases/spec.hpp"
+#include "compare/discrepancy.hpp"
+#include "compare/jump_metrics.hpp"
+#include "compare/point_cloud.hpp"
+#include "compare/time_statistics.hpp"
+
+namespace hydrojump::compare {
+
+struct CompareOptions {
+  std::filesystem::path out_dir;                 // empty: RUN_DIR
+  InterpolationScheme scheme = InterpolationScheme::mls_linear;
+  std::optional<double> window_start_s, window_end_s;  // override the case's averaging window
+  bool plots = true;
+  int section_points = 41;                       // profile points per section (odd)
+  int station_points = 21;                       // profile points per station (odd)
+  double station_spacing_m = 0.0;                // 0: the finer of SPH dx and the VOF bed cell size
+  JumpMetricOptions metrics;
+  std::filesystem::path sph_pvd;                 // empty: the .pvd found under RUN_DIR/sph
+};
+
+struct MethodOutcome {
+  std::string method;                            // "sph" | "vof"
+  bool available = false;
+  std::string status;                            // "ok", or why the result is missing
+  std::string source;                            // the file or directory read
+  MethodStatistics stats;
+  JumpMetrics metrics;
+};
+
+struct CaseComparison {
+  std::string case_id, description, resolution;
+  double inflow_depth_m = 0.0, inflow_velocity_m_s = 0.0, tailwater_depth_m = 0.0, gravity_m_s2 = 9.81;
+  double floor_z_m = 0.0, basin_start_m = 0.0, basin_end_m = 0.0;
+  double bed_wavelength_m = 0.0;                 // 0 for a smooth bed
+  double window_start_s = 0.0, window_end_s = 0.0;
+  double belanger_y2_m = 0.0, eta_smooth_theory_percent = 0.0;
+  double particle_spacing_m = 0.0, vof_cell_size_m = 0.0;
+  std::string interpolation;
+  std::string measured_source;
+  MeasuredReference lab;
+  std::vector<ColumnSpec> sections;
+  MethodOutcome sph, vof;
+  SurfaceDifference surface;
+  std::vector<ProfileDifference> profiles;
+  std::vector<MetricRow> metrics;
+};
+
+// Reads the one-case spec in RUN_DIR/sph/case.toml or RUN_DIR/vof/case.toml. Throws naming both paths.
+cases::Study load_run_case(const std::filesystem::path& run_dir);
+
+// Everything except writing: samples both methods and computes metrics and discrepancies.
+CaseComparison compare_case(const cases::Study& study, const std::filesystem::path& run_dir,
+                            const CompareOptions& options, std::ostream& log);
+
+// compare_case, then write_report into options.out_dir (default RUN_DIR). Returns the comparison.
+CaseComparison compare_case_directory(const std::filesystem::path& run_dir, const CompareOptions& options,
+                                      std::ostream& log);
+
+}  // namespace hydrojump::compare

@@ -1,0 +1,101 @@
+#include "compare/discrepancy.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace hydrojump::compare {
+
+SurfaceDifference surface_difference(const MethodStatistics& sph, const MethodStatistics& vof, double x_from,
+                                     double x_to) {
+  SurfaceDifference d;
+  const std::size_t n = std::min(sph.stations.size(), vof.stations.size());
+  double ss = 0.0, worst = -1.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto& a = sph.stations[i];
+    const auto& b = vof.stations[i];
+    if (std::abs(a.spec.x_m - b.spec.x_m) > 1e-9) continue;  // the stations must coincide
+    if (a.spec.x_m < x_from || a.spec.x_m > x_to) continue;
+    const double diff = a.surface.mean - b.surface.mean;
+    if (!std::isfinite(diff)) continue;
+    ss += diff * diff;
+    ++d.n_stations;
+    if (std::abs(diff) > worst) { worst = std::abs(diff); d.x_of_max_m = a.spec.x_m; }
+  }
+  if (d.n_stations > 0) {
+    d.rms_m = std::sqrt(ss / d.n_stations);
+    d.max_abs_m = worst;
+  }
+  return d;
+}
+
+static double interpolate_wet(const ColumnStatistics& s, double z) {
+  if (s.z.size() < 2 || z < s.z.front() || z > s.z.back()) return not_a_number;
+  const auto it = std::upper_bound(s.z.begin(), s.z.end(), z);
+  std::size_t k = static_cast<std::size_t>(it - s.z.begin());
+  if (k >= s.z.size()) k = s.z.size() - 1;
+  if (k == 0) k = 1;
+  if (s.wet_fraction[k - 1] < 0.5 || s.wet_fraction[k] < 0.5) return not_a_number;
+  const double t = (z - s.z[k - 1]) / (s.z[k] - s.z[k - 1]);
+  return s.u_mean[k - 1] + t * (s.u_mean[k] - s.u_mean[k - 1]);
+}
+
+std::vector<ProfileDifference> profile_differences(const MethodStatistics& sph, const MethodStatistics& vof,
+                                                   double u1) {
+  std::vector<ProfileDifference> out;
+  for (const auto& a : sph.sections) {
+    const auto it = std::find_if(vof.sections.begin(), vof.sections.end(),
+                                 [&](const ColumnStatistics& b) { return b.spec.name == a.spec.name; });
+    if (it == vof.sections.end()) continue;
+    ProfileDifference d;
+    d.section = a.spec.name;
+    d.x_m = a.spec.x_m;
+    double ss = 0.0;
+    for (std::size_t k = 0; k < a.z.size(); ++k) {
+      if (a.wet_fraction[k] < 0.5) continue;
+      const double vb = interpolate_wet(*it, a.z[k]);
+      const double diff = a.u_mean[k] - vb;
+      if (!std::isfinite(diff)) continue;
+      ss += diff * diff;
+      ++d.n_points;
+    }
+    if (d.n_points > 0) {
+      d.l2_m_s = std::sqrt(ss / d.n_points);
+      d.l2_over_u1 = u1 != 0.0 ? d.l2_m_s / std::abs(u1) : not_a_number;
+    }
+    out.push_back(d);
+  }
+  return out;
+}
+
+std::vector<MetricRow> metric_table(const JumpMetrics* sph, const JumpMetrics* vof, const MeasuredReference& lab,
+                                    double inflow_depth_m) {
+  auto v = [](const JumpMetrics* m, double JumpMetrics::*f, double scale = 1.0) {
+    return m ? m->*f * scale : not_a_number;
+  };
+  auto o = [](const std::optional<double>& x) { return x ? *x : not_a_number; };
+  std::vector<MetricRow> rows;
+  rows.push_back({"upstream_depth", "m", v(sph, &JumpMetrics::upstream_depth_m), v(vof, &JumpMetrics::upstream_depth_m),
+                  inflow_depth_m, not_a_number, not_a_number});
+  rows.push_back({"toe_position", "m", v(sph, &JumpMetrics::toe_x_m), v(vof, &JumpMetrics::toe_x_m), not_a_number,
+                  not_a_number, not_a_number});
+  rows.push_back({"toe_std", "m", v(sph, &JumpMetrics::toe_std_m), v(vof, &JumpMetrics::toe_std_m), not_a_number,
+                  not_a_number, not_a_number});
+  rows.push_back({"sequent_depth", "m", v(sph, &JumpMetrics::sequent_depth_m), v(vof, &JumpMetrics::sequent_depth_m),
+                  o(lab.sequent_depth_m), not_a_number, not_a_number});
+  rows.push_back({"jump_length", "m", v(sph, &JumpMetrics::jump_length_m), v(vof, &JumpMetrics::jump_length_m),
+                  o(lab.jump_length_m), not_a_number, not_a_number});
+  rows.push_back({"roller_length", "m", v(sph, &JumpMetrics::roller_length_m), v(vof, &JumpMetrics::roller_length_m),
+                  o(lab.roller_length_m), not_a_number, not_a_number});
+  rows.push_back({"eta", "%", v(sph, &JumpMetrics::eta, 100.0), v(vof, &JumpMetrics::eta, 100.0), o(lab.eta_percent),
+                  o(lab.published_sph_eta_percent), o(lab.eta_smooth_percent)});
+  rows.push_back({"eta_alpha1", "%", v(sph, &JumpMetrics::eta_alpha1, 100.0), v(vof, &JumpMetrics::eta_alpha1, 100.0),
+                  o(lab.eta_percent), o(lab.published_sph_eta_percent), o(lab.eta_smooth_percent)});
+  rows.push_back({"eta_crest_depth", "%", v(sph, &JumpMetrics::eta_crest_depth, 100.0),
+                  v(vof, &JumpMetrics::eta_crest_depth, 100.0), o(lab.eta_percent), o(lab.published_sph_eta_percent),
+                  o(lab.eta_smooth_percent)});
+  rows.push_back({"velocity_settling_distance", "m", v(sph, &JumpMetrics::velocity_settling_distance_m),
+                  v(vof, &JumpMetrics::velocity_settling_distance_m), not_a_number, not_a_number, not_a_number});
+  return rows;
+}
+
+}  // namespace hydrojump::compare

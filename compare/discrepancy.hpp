@@ -1,0 +1,58 @@
+// Discrepancies between the two methods and against the laboratory (and published SPH) values.
+//
+//   surface      time-mean free surface of SPH minus VOF at the stations on the basin (both wet):
+//                RMS and maximum absolute difference (and where it occurs)
+//   profiles     at each section, the L2 (root-mean-square) difference of the time-mean u(z) over the
+//                heights that are under water in at least half of the frames of both methods (the VOF
+//                profile linearly interpolated onto the SPH heights); also relative to U1
+//   metrics      y2, Lj, Lr, eta (and toe, upstream depth): SPH, VOF, experiment, published SPH side
+//                by side; the report shows the differences
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "compare/jump_metrics.hpp"
+#include "compare/time_statistics.hpp"
+
+namespace hydrojump::compare {
+
+struct SurfaceDifference {
+  double rms_m = not_a_number;
+  double max_abs_m = not_a_number;
+  double x_of_max_m = not_a_number;
+  int n_stations = 0;
+};
+
+struct ProfileDifference {
+  std::string section;
+  double x_m = 0.0;
+  double l2_m_s = not_a_number;
+  double l2_over_u1 = not_a_number;
+  int n_points = 0;
+};
+
+// One quantity side by side; NaN where a value does not exist.
+struct MetricRow {
+  std::string quantity;        // "sequent_depth", "jump_length", "roller_length", "eta", ...
+  std::string unit;            // "m", "%"
+  double sph = not_a_number, vof = not_a_number, experiment = not_a_number,
+         published_sph = not_a_number, smooth_theory = not_a_number;
+};
+
+struct MeasuredReference {
+  std::optional<double> sequent_depth_m, jump_length_m, roller_length_m, eta_percent,
+      eta_smooth_percent, published_sph_eta_percent;
+};
+
+// Both arguments may be null (a method without results). x range [x_from, x_to] limits the surface
+// comparison (the basin).
+SurfaceDifference surface_difference(const MethodStatistics& sph, const MethodStatistics& vof, double x_from,
+                                     double x_to);
+std::vector<ProfileDifference> profile_differences(const MethodStatistics& sph, const MethodStatistics& vof,
+                                                   double u1);
+std::vector<MetricRow> metric_table(const JumpMetrics* sph, const JumpMetrics* vof, const MeasuredReference& lab,
+                                    double inflow_depth_m);
+
+}  // namespace hydrojump::compare

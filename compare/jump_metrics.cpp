@@ -1,0 +1,166 @@
+#include "compare/jump_metrics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace hydrojump::compare {
+
+double section_energy(const ColumnStatistics& s, double gravity, bool alpha_one) {
+  const double h = s.depth.mean, u = s.mean_velocity.mean;
+  if (!std::isfinite(h) || !std::isfinite(u)) return not_a_number;
+  if (alpha_one) return s.spec.z_bed_m + h + u * u / (2.0 * gravity);
+  // Time mean of E(t) = z_b + h + alpha U^2/(2g) per frame.
+  return s.specific_energy.mean;
+}
+
+double dissipation_rate(double e1, double e2) { return (e1 - e2) / e1; }
+
+std::vector<double> running_mean(const std::vector<double>& v, int half_width) {
+  std::vector<double> out(v.size(), not_a_number);
+  const long n = static_cast<long>(v.size());
+  for (long i = 0; i < n; ++i) {
+    double s = 0.0;
+    int c = 0;
+    for (long k = std::max(0L, i - half_width); k <= std::min(n - 1, i + half_width); ++k)
+      if (std::isfinite(v[static_cast<std::size_t>(k)])) { s += v[static_cast<std::size_t>(k)]; ++c; }
+    if (c > 0) out[static_cast<std::size_t>(i)] = s / c;
+  }
+  return out;
+}
+
+std::size_t find_toe(const std::vector<double>& x, const std::vector<double>& zeta, double x_from,
+                     const JumpInputs& in) {
+  if (x.size() < 3) return x.size();
+  const double y1 = in.inflow_depth_m;
+  const double ds = (x.back() - x.front()) / static_cast<double>(x.size() - 1);
+  const int half = std::max(0, static_cast<int>(std::lround(0.5 * in.options.toe_window_y1 * y1 / ds)));
+  const std::vector<double> zm = running_mean(zeta, half);
+  const std::size_t persist = static_cast<std::size_t>(std::ceil(in.options.toe_persistence_y1 * y1 / ds));
+  const double threshold = in.options.toe_threshold_y1 * y1;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    if (x[i] < x_from) continue;
+    bool ok = true;
+    for (std::size_t k = i; k <= std::min(x.size() - 1, i + persist); ++k)
+      if (!(zm[k] > threshold)) { ok = false; break; }
+    if (ok) return i;
+  }
+  return x.size();
+}
+
+static const ColumnStatistics* find_role(const MethodStatistics& m, const std::string& role) {
+  for (const auto& s : m.sections)
+    if (s.spec.role == role) return &s;
+  return nullptr;
+}
+
+JumpMetrics compute_jump_metrics(const MethodStatistics& m, const JumpInputs& in) {
+  JumpMetrics r;
+  const double g = in.gravity_m_s2;
+  const double y1 = in.inflow_depth_m;
+  const ColumnStatistics* up = find_role(m, "upstream");
+  const ColumnStatistics* down = find_role(m, "downstream");
+  if (up && up->n_wet > 0) {
+    r.upstream_depth_m = up->surface.mean - in.floor_z_m;
+    r.e1_m = section_energy(*up, g, false);
+  } else {
+    r.notes.push_back("no wet \"upstream\" section: E1 and eta unavailable");
+  }
+  if (down && down->n_wet > 0) {
+    r.sequent_depth_m = down->surface.mean - in.floor_z_m;
+    r.sequent_depth_std_m = down->surface.std;
+    r.e2_m = section_energy(*down, g, false);
+  } else {
+    r.notes.push_back("no wet \"downstream\" section: y2, E2, eta and Lj unavailable");
+  }
+  if (std::isfinite(r.e1_m) && std::isfinite(r.e2_m)) {
+    r.eta = dissipation_rate(r.e1_m, r.e2_m);
+    r.eta_alpha1 = dissipation_rate(section_energy(*up, g, true), section_energy(*down, g, true));
+    // E = y + q^2/(2 g y^2) with y above the floor (crest) level
+    auto crest_energy = [&](const ColumnStatistics& c) {
+      const double y = c.surface.mean - in.floor_z_m, q = c.discharge.mean;
+      return y + q * q / (2.0 * g * y * y);
+    };
+    r.eta_crest_depth = dissipation_rate(crest_energy(*up), crest_energy(*down));
+  }
+
+  // Longitudinal analysis on the stations.
+  const auto& st = m.stations;
+  if (st.size() < 3) {
+    r.notes.push_back("fewer than 3 stations along the channel: toe, Lj and Lr unavailable");
+    return r;
+  }
+  std::vector<double> xs(st.size()), zeta(st.size());
+  for (std::size_t i = 0; i < st.size(); ++i) {
+    xs[i] = st[i].spec.x_m;
+    zeta[i] = st[i].surface.mean - in.floor_z_m;
+  }
+  const double ds = (xs.back() - xs.front()) / static_cast<double>(xs.size() - 1);
+  const int half = std::max(0, static_cast<int>(std::lround(0.5 * in.options.toe_window_y1 * y1 / ds)));
+  const std::vector<double> zm = running_mean(zeta, half);
+  const double x_down = down ? down->spec.x_m : st.back().spec.x_m;
+  const double x_up = up ? up->spec.x_m : st.front().spec.x_m;
+  const std::size_t toe = find_toe(xs, zeta, x_up, in);
+  // The same criterion on each frame's instantaneous surface: how much the toe moves.
+  if (!m.station_surface_series.empty()) {
+    std::vector<double> toes;
+    for (const auto& frame : m.station_surface_series) {
+      if (frame.size() != xs.size()) continue;
+      std::vector<double> z(frame.size());
+      for (std::size_t i = 0; i < frame.size(); ++i) z[i] = frame[i] - in.floor_z_m;
+      const std::size_t k = find_toe(xs, z, x_up, in);
+      toes.push_back(k < xs.size() ? xs[k] : not_a_number);
+    }
+    const ScalarStats ts = stats_of(toes);
+    r.toe_mean_of_frames_x_m = ts.mean;
+    r.toe_std_m = ts.std;
+    r.toe_frames_found = ts.count;
+  }
+  if (toe == st.size()) {
+    std::ostringstream s;
+    s << "no jump toe: the mean surface never stays above " << in.options.toe_threshold_y1 << " y1 = "
+      << in.options.toe_threshold_y1 * y1 << " m above the floor";
+    r.notes.push_back(s.str());
+    return r;
+  }
+  r.toe_x_m = st[toe].spec.x_m;
+  std::size_t last = toe;  // last station up to the downstream section
+  while (last + 1 < st.size() && st[last + 1].spec.x_m <= x_down + 1e-12) ++last;
+
+  if (std::isfinite(r.sequent_depth_m)) {
+    const double band = in.options.settle_tolerance * std::abs(r.sequent_depth_m - y1);
+    std::size_t end = last + 1;
+    for (std::size_t i = last + 1; i-- > toe;) {
+      if (std::isfinite(zm[i]) && std::abs(zm[i] - r.sequent_depth_m) <= band) end = i; else break;
+    }
+    if (end <= last) {
+      r.jump_end_x_m = st[end].spec.x_m;
+      r.jump_length_m = r.jump_end_x_m - r.toe_x_m;
+    } else {
+      r.notes.push_back("the surface has not settled within the tolerance at the downstream section");
+    }
+  }
+  // Roller: last station with reverse near-surface flow.
+  for (std::size_t i = last + 1; i-- > toe + 1;) {
+    if (st[i].near_surface_velocity.mean < 0.0) {
+      r.roller_end_x_m = st[i].spec.x_m;
+      r.roller_length_m = r.roller_end_x_m - r.toe_x_m;
+      break;
+    }
+  }
+  if (!std::isfinite(r.roller_length_m))
+    r.notes.push_back("no reverse near-surface flow downstream of the toe: roller length unavailable");
+  // Velocity decay.
+  const double u_ref = st[last].max_velocity.mean;
+  if (std::isfinite(u_ref)) {
+    const double tol = in.options.velocity_settle_tolerance * std::abs(u_ref);
+    std::size_t k = last + 1;
+    for (std::size_t i = last + 1; i-- > toe;) {
+      if (std::abs(st[i].max_velocity.mean - u_ref) <= tol) k = i; else break;
+    }
+    if (k <= last) r.velocity_settling_distance_m = st[k].spec.x_m - r.toe_x_m;
+  }
+  return r;
+}
+
+}  // namespace hydrojump::compare

@@ -1,0 +1,89 @@
+// Hydraulic-jump metrics from the time-averaged results of one method.
+//
+// Definitions (x positions from the stations, a uniform line of columns along the channel; zeta(x) is
+// the time-mean surface elevation above the upstream floor level z_floor, smoothed by a centred running
+// mean over `toe_window_y1` * y1):
+//   toe x_t      the first x (from the inflow downstream) where zeta > toe_threshold_y1 * y1 and stays
+//                above it over the following toe_persistence_y1 * y1. Experience with interFoam runs
+//                (study notes, section 5): a bare "first x above 1.5 y1" trips on splashes and air
+//                pockets; a ~2 cm running mean that must stay above the threshold for ~5 cm,
+//                time-averaged, was stable. Defaults: 1.5 y1, window 0.8 y1, persistence 2 y1
+//                (2 cm and 5 cm for y1 = 25.4 mm). The same criterion applied to every frame's
+//                instantaneous surface gives the toe's standard deviation over the window.
+//   y2           sequent depth: time-mean surface at the "downstream" section minus z_floor (depth above
+//                the corrugation crests, as measured in the flume).
+//   jump end     the first x >= x_t from which zeta stays within settle_tolerance * (y2 - y1) of y2 up
+//                to the downstream section ("the surface has settled"); Lj = x_end - x_t.
+//   roller end   the last x in (x_t, x_down] where the time-mean near-surface velocity u(eta - 0.1 h) is
+//                negative ("end of the reverse surface flow"); Lr = x_roller - x_t. NaN (with a note)
+//                when no reverse surface flow is found.
+//   eta          (E1 - E2)/E1 with E = z_b + h + alpha U^2/(2g) time-averaged at the "upstream" (E1)
+//                and "downstream" (E2) sections; eta_alpha1 the same with alpha = 1 (the laboratory
+//                convention E = y + U^2/(2g)); eta_crest_depth with E = y + q^2/(2 g y^2), y the mean
+//                surface above the floor/crest level and q the section's mean discharge (how the
+//                experiments' values were computed; it differs from eta when a section lies over a trough).
+//   velocity decay  u_max(x)/U1 and U(x)/U1 along the stations from the toe; the settling distance is
+//                the first x - x_t from which u_max stays within 10 % of its value at the downstream
+//                section.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "compare/time_statistics.hpp"
+
+namespace hydrojump::compare {
+
+struct JumpMetricOptions {
+  double toe_threshold_y1 = 1.5;
+  double toe_window_y1 = 0.8;
+  double toe_persistence_y1 = 2.0;
+  double settle_tolerance = 0.05;
+  double velocity_settle_tolerance = 0.10;
+};
+
+struct JumpInputs {
+  double inflow_depth_m = 0.0;         // y1
+  double inflow_velocity_m_s = 0.0;    // U1
+  double floor_z_m = 0.0;              // upstream floor (= corrugation crest) level
+  double gravity_m_s2 = 9.81;
+  JumpMetricOptions options;
+};
+
+struct JumpMetrics {
+  double toe_x_m = not_a_number;
+  double toe_mean_of_frames_x_m = not_a_number;  // the toe criterion on each frame's surface: mean,
+  double toe_std_m = not_a_number;              // standard deviation (steadiness of the jump)
+  int toe_frames_found = 0;                     // and the number of frames with a toe
+  double sequent_depth_m = not_a_number;       // y2
+  double sequent_depth_std_m = not_a_number;
+  double upstream_depth_m = not_a_number;      // depth at the upstream section (check against y1)
+  double jump_end_x_m = not_a_number;
+  double jump_length_m = not_a_number;         // Lj
+  double roller_end_x_m = not_a_number;
+  double roller_length_m = not_a_number;       // Lr
+  double e1_m = not_a_number, e2_m = not_a_number;
+  double eta = not_a_number;                   // fraction
+  double eta_alpha1 = not_a_number;            // fraction, alpha = 1
+  double eta_crest_depth = not_a_number;       // fraction, laboratory convention (see above)
+  double velocity_settling_distance_m = not_a_number;
+  std::vector<std::string> notes;              // why a metric is missing
+};
+
+// E at a section with the time-mean values: z_b + h + alpha U^2/(2g) (alpha = 1 if `alpha_one`).
+double section_energy(const ColumnStatistics& s, double gravity, bool alpha_one);
+
+// eta = (E1 - E2) / E1
+double dissipation_rate(double e1, double e2);
+
+// Running mean of `v` over a centred window of `half_width` samples each side (NaNs skipped).
+std::vector<double> running_mean(const std::vector<double>& v, int half_width);
+
+// Index of the toe station by the criterion above on the surface zeta(x) above the floor (x evenly
+// spaced), searching from x_from on; x.size() when there is none.
+std::size_t find_toe(const std::vector<double>& x, const std::vector<double>& zeta, double x_from,
+                     const JumpInputs& in);
+
+JumpMetrics compute_jump_metrics(const MethodStatistics& m, const JumpInputs& in);
+
+}  // namespace hydrojump::compare

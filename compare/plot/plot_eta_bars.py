@@ -1,0 +1,74 @@
+#!/usr/bin/env python3
+"""Energy dissipation rate bars across runs: smooth-bed theory, experiment, published SPH, this SPH,
+this VOF.
+
+Usage: plot_eta_bars.py ETA_CSV [ETA_CSV ...] --out PNG
+
+Each ETA_CSV is a case's csv/eta.csv written by `hydrojump compare` (columns case,
+smooth_theory_percent, experiment_percent, published_sph_percent, sph_percent, vof_percent); missing
+values are left out of the bars.
+"""
+import math
+import os
+import sys
+
+import numpy as np
+
+from common import METHOD_STYLE, plt, read_rows, save
+
+SERIES = [
+    ("smooth_theory_percent", "smooth bed (theory)", "0.75"),
+    ("experiment_percent", "experiment", "0.2"),
+    ("published_sph_percent", "published SPH (Bo et al. 2019)", "#2ca02c"),
+    ("sph_percent", METHOD_STYLE["sph"]["label"], METHOD_STYLE["sph"]["color"]),
+    ("vof_percent", METHOD_STYLE["vof"]["label"], METHOD_STYLE["vof"]["color"]),
+]
+
+
+def eta_bars(files, out):
+    rows = []
+    for f in files:
+        rows.extend(read_rows(f))
+    if not rows:
+        return False
+    cases = [str(r["case"]) if not isinstance(r["case"], float) else "%g" % r["case"] for r in rows]
+    x = np.arange(len(rows))
+    width = 0.8 / len(SERIES)
+    fig, ax = plt.subplots(figsize=(max(4.0, 1.3 * len(rows) + 2), 3.6))
+    for i, (key, label, color) in enumerate(SERIES):
+        vals = np.array([r.get(key, math.nan) if isinstance(r.get(key), float) else math.nan for r in rows])
+        ok = np.isfinite(vals)
+        if not ok.any():
+            continue
+        pos = x - 0.4 + (i + 0.5) * width
+        ax.bar(pos[ok], vals[ok], width, color=color, label=label)
+        for p, v in zip(pos[ok], vals[ok]):
+            ax.text(p, v + 0.5, "%.1f" % v, ha="center", va="bottom", fontsize=6, rotation=90)
+    ax.set_xticks(x)
+    ax.set_xticklabels(cases)
+    ax.set_ylabel("η = (E1 − E2)/E1 (%)")
+    ax.set_ylim(0, 100)
+    ax.set_title("Energy dissipation rate")
+    ax.legend(fontsize=7, loc="upper left", ncol=2)
+    ax.grid(axis="y", alpha=0.3)
+    save(fig, out)
+    return True
+
+
+def main(argv):
+    args = argv[1:]
+    if "--out" not in args or args.index("--out") == len(args) - 1:
+        print(__doc__, file=sys.stderr)
+        return 2
+    i = args.index("--out")
+    out = args[i + 1]
+    files = args[:i] + args[i + 2:]
+    missing = [f for f in files if not os.path.exists(f)]
+    if missing:
+        print("plot_eta_bars.py: missing input files: " + ", ".join(missing), file=sys.stderr)
+        return 1
+    return 0 if eta_bars(files, out) else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))

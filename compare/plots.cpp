@@ -1,0 +1,125 @@
+#include "compare/plots.hpp"
+
+#include <cerrno>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+extern char** environ;
+
+namespace fs = std::filesystem;
+
+namespace hydrojump::compare {
+
+fs::path plot_script_dir() {
+  std::vector<fs::path> tried;
+  auto ok = [&](const fs::path& p) {
+    tried.push_back(p);
+    return fs::exists(p / "plot_case.py");
+  };
+  if (const char* env = std::getenv("HYDROJUMP_PLOT_DIR"); env && *env && ok(env)) return env;
+#ifdef HYDROJUMP_PLOT_SCRIPT_DIR
+  if (ok(HYDROJUMP_PLOT_SCRIPT_DIR)) return HYDROJUMP_PLOT_SCRIPT_DIR;
+#endif
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    if (ok(exe.parent_path() / ".." / "share" / "hydrojump" / "plot"))
+      return fs::weakly_canonical(exe.parent_path() / ".." / "share" / "hydrojump" / "plot");
+    if (ok(exe.parent_path() / "plot")) return exe.parent_path() / "plot";
+  }
+  std::string list;
+  for (const auto& p : tried) {
+    list += ' ';
+    list += p.string();
+  }
+  throw std::runtime_error("the plot scripts (plot_case.py) were not found; tried:" + list +
+                           " (set HYDROJUMP_PLOT_DIR to the compare/plot directory)");
+}
+
+static std::string last_line(const fs::path& file) {
+  std::ifstream in(file);
+  std::string line, last;
+  while (std::getline(in, line))
+    if (!line.empty()) last = line;
+  return last;
+}
+
+std::string run_plot_script(const std::string& script, const std::vector<std::string>& args, const fs::path& log_file) {
+  const char* python = "/usr/bin/python3";
+  if (::access(python, X_OK) != 0) return "/usr/bin/python3 is not available";
+  fs::path dir;
+  try {
+    dir = plot_script_dir();
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  std::vector<std::string> argv_s = {python, (dir / script).string()};
+  argv_s.insert(argv_s.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& a : argv_s) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  fs::create_directories(log_file.parent_path());
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, log_file.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+  posix_spawn_file_actions_adddup2(&actions, 1, 2);
+  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
+  // matplotlib without a display, and no user site packages shadowing the system ones
+  std::vector<std::string> env_s;
+  for (char** e = environ; *e; ++e) {
+    const std::string v = *e;
+    if (v.rfind("MPLBACKEND=", 0) == 0 || v.rfind("PYTHONPATH=", 0) == 0) continue;
+    env_s.push_back(v);
+  }
+  env_s.push_back("MPLBACKEND=Agg");
+  std::vector<char*> envp;
+  for (auto& v : env_s) envp.push_back(v.data());
+  envp.push_back(nullptr);
+  pid_t pid = 0;
+  const int rc = posix_spawn(&pid, python, &actions, nullptr, argv.data(), envp.data());
+  posix_spawn_file_actions_destroy(&actions);
+  if (rc != 0) return "could not start /usr/bin/python3";
+  int status = 0;
+  while (waitpid(pid, &status, 0) < 0) {
+    if (errno != EINTR) return "waitpid failed for the plot script";
+  }
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return "";
+  std::ostringstream s;
+  s << script << " failed (";
+  if (WIFEXITED(status)) s << "exit status " << WEXITSTATUS(status);
+  else s << "killed by a signal";
+  s << "): " << last_line(log_file) << " (log: " << log_file.string() << ")";
+  return s.str();
+}
+
+std::string plot_case_figures(const fs::path& csv_dir, const fs::path& fig_dir) {
+  fs::create_directories(fig_dir);
+  return run_plot_script("plot_case.py", {csv_dir.string(), fig_dir.string()}, fig_dir / "plot.log");
+}
+
+std::string plot_eta_bars(const std::vector<fs::path>& eta_csv_files, const fs::path& png, const fs::path& log_file) {
+  std::vector<std::string> args;
+  for (const auto& f : eta_csv_files) args.push_back(f.string());
+  args.push_back("--out");
+  args.push_back(png.string());
+  return run_plot_script("plot_eta_bars.py", args, log_file);
+}
+
+std::string plot_study_eta_bars(const std::vector<fs::path>& case_dirs, const fs::path& png) {
+  std::vector<fs::path> files;
+  for (const auto& d : case_dirs)
+    if (fs::exists(d / "csv" / "eta.csv")) files.push_back(d / "csv" / "eta.csv");
+  if (files.empty()) return "no case has csv/eta.csv (no comparison finished)";
+  fs::path log = png;
+  log.replace_extension(".log");
+  return plot_eta_bars(files, png, log);
+}
+
+}  // namespace hydrojump::compare

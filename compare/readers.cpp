@@ -1,0 +1,266 @@
+#include "compare/readers.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <stdexcept>
+
+#include <vtkCell.h>
+#include <vtkCellData.h>
+#include <vtkCompositeDataIterator.h>
+#include <vtkDataArray.h>
+#include <vtkDoubleArray.h>
+#include <vtkMultiBlockDataSet.h>
+#include <vtkOpenFOAMReader.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLPolyDataReader.h>
+
+namespace fs = std::filesystem;
+
+namespace hydrojump::compare {
+
+namespace {
+
+std::string attribute(const std::string& tag, const std::string& name) {
+  const std::regex re("\\b" + name + "\\s*=\\s*(\"([^\"]*)\"|'([^']*)')");
+  std::smatch m;
+  if (!std::regex_search(tag, m, re)) return {};
+  return m[2].matched ? m[2].str() : m[3].str();
+}
+
+}  // namespace
+
+std::vector<PvdEntry> read_pvd(const fs::path& pvd_file) {
+  std::ifstream in(pvd_file);
+  if (!in) throw std::runtime_error(pvd_file.string() + ": cannot open the .pvd file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string text = ss.str();
+  if (text.find("Collection") == std::string::npos)
+    throw std::runtime_error(pvd_file.string() + ": not a ParaView collection (no <Collection>)");
+  std::vector<PvdEntry> out;
+  const std::regex tag_re("<DataSet\\b[^>]*>");
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), tag_re); it != std::sregex_iterator(); ++it) {
+    const std::string tag = it->str();
+    const std::string t = attribute(tag, "timestep");
+    const std::string f = attribute(tag, "file");
+    if (f.empty())
+      throw std::runtime_error(pvd_file.string() + ": a <DataSet> has no file attribute: " + tag);
+    PvdEntry e;
+    try {
+      std::size_t used = 0;
+      e.time_s = t.empty() ? 0.0 : std::stod(t, &used);
+      if (!t.empty() && used != t.size()) throw std::invalid_argument(t);
+    } catch (const std::exception&) {
+      throw std::runtime_error(pvd_file.string() + ": timestep=\"" + t + "\" is not a number in " + tag);
+    }
+    e.file = fs::path(f).is_absolute() ? fs::path(f) : pvd_file.parent_path() / f;
+    out.push_back(e);
+  }
+  if (out.empty()) throw std::runtime_error(pvd_file.string() + ": the collection lists no <DataSet>");
+  std::stable_sort(out.begin(), out.end(), [](const PvdEntry& a, const PvdEntry& b) { return a.time_s < b.time_s; });
+  return out;
+}
+
+std::vector<PvdEntry> entries_in_window(const std::vector<PvdEntry>& entries, double t0, double t1) {
+  std::vector<PvdEntry> out;
+  for (const auto& e : entries)
+    if (e.time_s >= t0 - 1e-9 && e.time_s <= t1 + 1e-9) out.push_back(e);
+  return out;
+}
+
+static std::string array_names(vtkFieldData* fd) {
+  std::string s;
+  for (int i = 0; i < fd->GetNumberOfArrays(); ++i) {
+    if (!s.empty()) s += ", ";
+    s += fd->GetArrayName(i) ? fd->GetArrayName(i) : "(unnamed)";
+  }
+  return s.empty() ? "none" : s;
+}
+
+ParticleFrame read_vtp_particles(const fs::path& vtp_file, double time_s) {
+  if (!fs::exists(vtp_file)) throw std::runtime_error(vtp_file.string() + ": particle file does not exist");
+  auto reader = vtkSmartPointer<vtkXMLPolyDataReader>::New();
+  if (!reader->CanReadFile(vtp_file.string().c_str()))  // checked quietly, before VTK logs parse errors
+    throw std::runtime_error(vtp_file.string() + ": not a VTK XML PolyData (.vtp) file");
+  reader->SetFileName(vtp_file.string().c_str());
+  reader->Update();
+  vtkPolyData* pd = reader->GetOutput();
+  if (reader->GetErrorCode() != 0 || pd == nullptr || pd->GetPoints() == nullptr)
+    throw std::runtime_error(vtp_file.string() + ": not a readable VTK XML PolyData (.vtp) file");
+  vtkPointData* pt = pd->GetPointData();
+  auto require = [&](const char* name, int comps) -> vtkDataArray* {
+    vtkDataArray* a = pt->GetArray(name);
+    if (a == nullptr)
+      throw std::runtime_error(vtp_file.string() + ": point array \"" + name + "\" is missing (present: " +
+                               array_names(pt) + ")");
+    if (a->GetNumberOfComponents() < comps)
+      throw std::runtime_error(vtp_file.string() + ": point array \"" + name + "\" has " +
+                               std::to_string(a->GetNumberOfComponents()) + " components, expected " +
+                               std::to_string(comps));
+    return a;
+  };
+  vtkDataArray* vel = require("velocity", 2);
+  vtkDataArray* rho = require("density", 1);
+  vtkDataArray* type = require("type", 1);
+  vtkDataArray* p = pt->GetArray("pressure");
+  vtkDataArray* mass = pt->GetArray("mass");
+  const vtkIdType n = pd->GetNumberOfPoints();
+  // The vertical axis: the SPH solver writes points (x, 0, z) as DualSPHysics does; data in the x-y
+  // plane, (x, z, 0), are accepted too. The axis that is constant is the spanwise one.
+  double bounds[6];
+  pd->GetBounds(bounds);
+  const double span_y = n > 0 ? bounds[3] - bounds[2] : 0.0;
+  const double span_z = n > 0 ? bounds[5] - bounds[4] : 0.0;
+  if (span_y > 0.0 && span_z > 0.0)
+    throw std::runtime_error(vtp_file.string() + ": particles are not 2D (they spread in both y and z); expected "
+                             "points (x, 0, z) or (x, z, 0)");
+  const int vertical = span_z > 0.0 ? 2 : 1;
+  ParticleFrame f;
+  f.time_s = time_s;
+  f.x.resize(static_cast<std::size_t>(n)); f.z.resize(f.x.size()); f.u.resize(f.x.size());
+  f.w.resize(f.x.size()); f.density.resize(f.x.size()); f.type.resize(f.x.size());
+  if (p) f.pressure.resize(f.x.size());
+  if (mass) f.mass.resize(f.x.size());
+  if (vel->GetNumberOfComponents() <= vertical)
+    throw std::runtime_error(vtp_file.string() + ": point array \"velocity\" has no component along the vertical axis");
+  for (vtkIdType i = 0; i < n; ++i) {
+    const std::size_t k = static_cast<std::size_t>(i);
+    double xyz[3];
+    pd->GetPoint(i, xyz);
+    f.x[k] = xyz[0];
+    f.z[k] = xyz[vertical];
+    f.u[k] = vel->GetComponent(i, 0);
+    f.w[k] = vel->GetComponent(i, vertical);
+    f.density[k] = rho->GetComponent(i, 0);
+    f.type[k] = static_cast<int>(std::lround(type->GetComponent(i, 0)));
+    if (p) f.pressure[k] = p->GetComponent(i, 0);
+    if (mass) f.mass[k] = mass->GetComponent(i, 0);
+  }
+  return f;
+}
+
+// ---------------------------------------------------------------------------------------- OpenFOAM --
+struct OpenFoamResults::Impl {
+  vtkSmartPointer<vtkOpenFOAMReader> reader = vtkSmartPointer<vtkOpenFOAMReader>::New();
+};
+
+OpenFoamResults::OpenFoamResults(const fs::path& case_dir) : impl_(std::make_unique<Impl>()), case_dir_(case_dir) {
+  const fs::path control = case_dir / "system" / "controlDict";
+  if (!fs::exists(control))
+    throw std::runtime_error(case_dir.string() + ": not an OpenFOAM case (no system/controlDict)");
+  if (!fs::exists(case_dir / "constant" / "polyMesh" / "owner") &&
+      !fs::exists(case_dir / "constant" / "polyMesh" / "owner.gz"))
+    throw std::runtime_error(case_dir.string() + ": the OpenFOAM case has no mesh (constant/polyMesh/owner)");
+  auto& r = *impl_->reader;
+  r.SetFileName(control.string().c_str());
+  r.SkipZeroTimeOff();
+  r.CreateCellToPointOff();
+  r.DecomposePolyhedraOff();
+  r.ReadZonesOff();
+  r.CacheMeshOn();
+  r.UpdateInformation();
+  vtkDoubleArray* tv = r.GetTimeValues();
+  if (tv)
+    for (vtkIdType i = 0; i < tv->GetNumberOfTuples(); ++i) times_.push_back(tv->GetValue(i));
+  std::sort(times_.begin(), times_.end());
+  r.SetPatchArrayStatus("internalMesh", 1);
+  for (int i = 0; i < r.GetNumberOfPatchArrays(); ++i) {
+    const std::string name = r.GetPatchArrayName(i);
+    if (name != "internalMesh") r.SetPatchArrayStatus(name.c_str(), 0);
+  }
+}
+
+OpenFoamResults::~OpenFoamResults() = default;
+
+std::vector<double> OpenFoamResults::times_in_window(double t0, double t1) const {
+  std::vector<double> out;
+  for (double t : times_)
+    if (t >= t0 - 1e-9 && t <= t1 + 1e-9) out.push_back(t);
+  return out;
+}
+
+CellFrame OpenFoamResults::read(double time_s) {
+  auto& r = *impl_->reader;
+  const std::string where = case_dir_.string() + " at t = " + std::to_string(time_s) + " s";
+  r.UpdateTimeStep(time_s);
+  vtkMultiBlockDataSet* mb = r.GetOutput();
+  vtkUnstructuredGrid* grid = nullptr;
+  if (mb) {
+    auto it = vtkSmartPointer<vtkCompositeDataIterator>::Take(mb->NewIterator());
+    for (it->InitTraversal(); !it->IsDoneWithTraversal(); it->GoToNextItem()) {
+      grid = vtkUnstructuredGrid::SafeDownCast(it->GetCurrentDataObject());
+      if (grid) break;
+    }
+  }
+  if (grid == nullptr || grid->GetNumberOfCells() == 0)
+    throw std::runtime_error(where + ": vtkOpenFOAMReader returned no internal mesh");
+  vtkCellData* cd = grid->GetCellData();
+  vtkDataArray* alpha = cd->GetArray("alpha.water");
+  vtkDataArray* u = cd->GetArray("U");
+  vtkDataArray* p = cd->GetArray("p_rgh");
+  if (!p) p = cd->GetArray("p");
+  if (!alpha || !u)
+    throw std::runtime_error(where + ": cell fields \"alpha.water\" and \"U\" are required (present: " +
+                             array_names(cd) + ")");
+  const vtkIdType n = grid->GetNumberOfCells();
+  CellFrame f;
+  f.time_s = time_s;
+  const std::size_t nn = static_cast<std::size_t>(n);
+  for (auto* v : {&f.xc, &f.zc, &f.x_lo, &f.x_hi, &f.z_lo, &f.z_hi, &f.alpha, &f.u, &f.w, &f.pressure})
+    v->resize(nn);
+  for (vtkIdType i = 0; i < n; ++i) {
+    const std::size_t k = static_cast<std::size_t>(i);
+    double b[6];
+    grid->GetCellBounds(i, b);
+    f.x_lo[k] = b[0]; f.x_hi[k] = b[1];
+    f.z_lo[k] = b[2]; f.z_hi[k] = b[3];   // OpenFOAM y is vertical
+    f.xc[k] = 0.5 * (b[0] + b[1]);
+    f.zc[k] = 0.5 * (b[2] + b[3]);
+    f.alpha[k] = alpha->GetComponent(i, 0);
+    f.u[k] = u->GetComponent(i, 0);
+    f.w[k] = u->GetComponent(i, 1);
+    f.pressure[k] = p ? p->GetComponent(i, 0) : not_a_number;
+  }
+  return f;
+}
+
+fs::path find_pvd(const fs::path& sph_dir) {
+  std::vector<fs::path> found;
+  if (fs::is_directory(sph_dir))
+    for (const auto& e : fs::recursive_directory_iterator(sph_dir))
+      if (e.is_regular_file() && e.path().extension() == ".pvd") found.push_back(e.path());
+  if (found.empty()) throw std::runtime_error(sph_dir.string() + ": no .pvd particle series found");
+  if (found.size() == 1) return found.front();
+  std::sort(found.begin(), found.end());
+  for (const char* key : {"particles", "fluid"})
+    for (const auto& f : found)
+      if (f.filename().string().find(key) != std::string::npos) return f;
+  std::string list;
+  for (const auto& f : found) list += "\n  " + f.string();
+  throw std::runtime_error(sph_dir.string() + ": several .pvd files, none named *particles* or *fluid*:" + list);
+}
+
+bool has_openfoam_results(const fs::path& vof_dir) {
+  if (!fs::exists(vof_dir / "system" / "controlDict")) return false;
+  if (!fs::exists(vof_dir / "constant" / "polyMesh" / "owner") &&
+      !fs::exists(vof_dir / "constant" / "polyMesh" / "owner.gz"))
+    return false;
+  for (const auto& e : fs::directory_iterator(vof_dir)) {
+    if (!e.is_directory()) continue;
+    const std::string name = e.path().filename().string();
+    char* end = nullptr;
+    const double t = std::strtod(name.c_str(), &end);
+    if (end && *end == '\0' && !name.empty() && t > 0.0 &&
+        (fs::exists(e.path() / "alpha.water") || fs::exists(e.path() / "alpha.water.gz")))
+      return true;
+  }
+  return false;
+}
+
+}  // namespace hydrojump::compare

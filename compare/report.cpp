@@ -1,0 +1,544 @@
+#include "compare/report.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iomanip>
+#include <ostream>
+#include <sstream>
+
+#include "cases/atomic_file.hpp"
+#include "compare/plots.hpp"
+#include "hydrojump/version.hpp"
+
+namespace fs = std::filesystem;
+
+namespace hydrojump::compare {
+
+namespace {
+
+std::string num(double v, int precision = 6) {
+  if (!std::isfinite(v)) return "nan";
+  std::ostringstream s;
+  s << std::setprecision(precision) << v;
+  return s.str();
+}
+
+// For human-readable tables: fixed decimals, "—" when missing.
+std::string fix(double v, int decimals) {
+  if (!std::isfinite(v)) return "—";
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(decimals) << v;
+  return s.str();
+}
+
+std::string signed_fix(double v, int decimals) {
+  if (!std::isfinite(v)) return "—";
+  std::ostringstream s;
+  s << std::showpos << std::fixed << std::setprecision(decimals) << v;
+  return s.str();
+}
+
+std::string json_string(const std::string& s) {
+  std::string o = "\"";
+  for (char ch : s) {
+    switch (ch) {
+      case '"': o += "\\\""; break;
+      case '\\': o += "\\\\"; break;
+      case '\n': o += "\\n"; break;
+      case '\t': o += "\\t"; break;
+      default:
+        if (static_cast<unsigned char>(ch) < 0x20) {
+          char buf[8];
+          std::snprintf(buf, sizeof buf, "\\u%04x", ch);
+          o += buf;
+        } else {
+          o += ch;
+        }
+    }
+  }
+  return o + "\"";
+}
+
+std::string json_number(double v) { return std::isfinite(v) ? num(v, 10) : "null"; }
+
+// Minimal JSON object/array builder (keys in insertion order).
+class Json {
+ public:
+  Json& key(const std::string& k) { sep(); s_ << json_string(k) << ": "; pending_key_ = true; return *this; }
+  Json& value(double v) { sep(); s_ << json_number(v); return *this; }
+  Json& value(int v) { sep(); s_ << v; return *this; }
+  Json& value(bool v) { sep(); s_ << (v ? "true" : "false"); return *this; }
+  Json& value(const std::string& v) { sep(); s_ << json_string(v); return *this; }
+  Json& value(const char* v) { return value(std::string(v)); }
+  Json& begin_object() { sep(); s_ << "{"; first_.push_back(true); return *this; }
+  Json& end_object() { s_ << "}"; first_.pop_back(); return *this; }
+  Json& begin_array() { sep(); s_ << "["; first_.push_back(true); return *this; }
+  Json& end_array() { s_ << "]"; first_.pop_back(); return *this; }
+  template <class T> Json& field(const std::string& k, const T& v) { key(k); return value(v); }
+  std::string str() const { return s_.str(); }
+
+ private:
+  void sep() {
+    if (pending_key_) { pending_key_ = false; return; }
+    if (!first_.empty()) {
+      if (!first_.back()) s_ << ", ";
+      first_.back() = false;
+    }
+  }
+  std::ostringstream s_;
+  std::vector<bool> first_;
+  bool pending_key_ = false;
+};
+
+void stats_json(Json& j, const std::string& name, const ScalarStats& s) {
+  j.key(name).begin_object().field("mean", s.mean).field("std", s.std).field("count", s.count).end_object();
+}
+
+void metrics_json(Json& j, const JumpMetrics& m) {
+  j.begin_object()
+      .field("toe_x_m", m.toe_x_m)
+      .field("toe_mean_of_frames_x_m", m.toe_mean_of_frames_x_m)
+      .field("toe_std_m", m.toe_std_m)
+      .field("toe_frames_found", m.toe_frames_found)
+      .field("sequent_depth_m", m.sequent_depth_m)
+      .field("sequent_depth_std_m", m.sequent_depth_std_m)
+      .field("upstream_depth_m", m.upstream_depth_m)
+      .field("jump_end_x_m", m.jump_end_x_m)
+      .field("jump_length_m", m.jump_length_m)
+      .field("roller_end_x_m", m.roller_end_x_m)
+      .field("roller_length_m", m.roller_length_m)
+      .field("e1_m", m.e1_m)
+      .field("e2_m", m.e2_m)
+      .field("eta", m.eta)
+      .field("eta_alpha1", m.eta_alpha1)
+      .field("eta_crest_depth", m.eta_crest_depth)
+      .field("velocity_settling_distance_m", m.velocity_settling_distance_m);
+  j.key("notes").begin_array();
+  for (const auto& n : m.notes) j.value(n);
+  j.end_array().end_object();
+}
+
+void method_json(Json& j, const MethodOutcome& m) {
+  j.begin_object().field("available", m.available).field("status", m.status).field("source", m.source);
+  if (m.available) {
+    j.key("times_s").begin_array();
+    for (double t : m.stats.times) j.value(t);
+    j.end_array();
+    j.key("sections").begin_array();
+    for (const auto& s : m.stats.sections) {
+      j.begin_object().field("name", s.spec.name).field("role", s.spec.role).field("x_m", s.spec.x_m)
+          .field("z_bed_m", s.spec.z_bed_m).field("n_times", s.n_times).field("n_wet", s.n_wet);
+      stats_json(j, "surface_m", s.surface);
+      stats_json(j, "surface_from_fraction_m", s.surface_from_fraction);
+      stats_json(j, "depth_m", s.depth);
+      stats_json(j, "discharge_m2_s", s.discharge);
+      stats_json(j, "mean_velocity_m_s", s.mean_velocity);
+      stats_json(j, "max_velocity_m_s", s.max_velocity);
+      stats_json(j, "near_surface_velocity_m_s", s.near_surface_velocity);
+      stats_json(j, "energy_coefficient", s.energy_coefficient);
+      stats_json(j, "specific_energy_m", s.specific_energy);
+      j.end_object();
+    }
+    j.end_array();
+    j.key("metrics");
+    metrics_json(j, m.metrics);
+  }
+  j.end_object();
+}
+
+// Markdown and HTML written side by side from the same calls.
+class Doc {
+ public:
+  void heading(int level, const std::string& text) {
+    md_ << std::string(static_cast<std::size_t>(level), '#') << " " << text << "\n\n";
+    html_ << "<h" << level << ">" << esc(text) << "</h" << level << ">\n";
+  }
+  void paragraph(const std::string& md, const std::string& plain) {
+    md_ << md << "\n\n";
+    html_ << "<p>" << esc(plain) << "</p>\n";
+  }
+  void para(const std::string& text) { paragraph(text, text); }
+  void bullets(const std::vector<std::string>& items) {
+    html_ << "<ul>\n";
+    for (const auto& i : items) {
+      md_ << "- " << i << "\n";
+      html_ << "<li>" << esc(i) << "</li>\n";
+    }
+    md_ << "\n";
+    html_ << "</ul>\n";
+  }
+  void table(const std::vector<std::string>& header, const std::vector<std::vector<std::string>>& rows) {
+    md_ << "|";
+    for (const auto& h : header) md_ << " " << h << " |";
+    md_ << "\n|";
+    for (std::size_t i = 0; i < header.size(); ++i) md_ << (i == 0 ? "---|" : "---:|");
+    md_ << "\n";
+    html_ << "<table>\n<tr>";
+    for (const auto& h : header) html_ << "<th>" << esc(h) << "</th>";
+    html_ << "</tr>\n";
+    for (const auto& r : rows) {
+      md_ << "|";
+      html_ << "<tr>";
+      for (const auto& c : r) {
+        md_ << " " << c << " |";
+        html_ << "<td>" << esc(c) << "</td>";
+      }
+      md_ << "\n";
+      html_ << "</tr>\n";
+    }
+    md_ << "\n";
+    html_ << "</table>\n";
+  }
+  void figure(const fs::path& png, const std::string& relative, const std::string& caption) {
+    md_ << "![" << caption << "](" << relative << ")\n\n*" << caption << "*\n\n";
+    std::ifstream in(png, std::ios::binary);
+    std::ostringstream s;
+    s << in.rdbuf();
+    html_ << "<figure><img src=\"data:image/png;base64," << base64_encode(s.str()) << "\" alt=\"" << esc(caption)
+          << "\"><figcaption>" << esc(caption) << "</figcaption></figure>\n";
+  }
+  std::string markdown() const { return md_.str(); }
+  std::string html(const std::string& title) const {
+    return "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>" + esc(title) +
+           "</title>\n<style>body{font-family:sans-serif;max-width:1100px;margin:2em auto;line-height:1.4}"
+           "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #bbb;padding:3px 8px;text-align:right}"
+           "td:first-child,th:first-child{text-align:left}img{max-width:100%}figcaption{font-style:italic}</style>"
+           "</head><body>\n" +
+           html_.str() + "</body></html>\n";
+  }
+  static std::string esc(const std::string& s) {
+    std::string o;
+    for (char ch : s) {
+      if (ch == '<') o += "&lt;";
+      else if (ch == '>') o += "&gt;";
+      else if (ch == '&') o += "&amp;";
+      else if (ch == '"') o += "&quot;";
+      else o += ch;
+    }
+    return o;
+  }
+
+ private:
+  std::ostringstream md_, html_;
+};
+
+const MethodOutcome* methods_of(const CaseComparison& c, int i) { return i == 0 ? &c.sph : &c.vof; }
+
+void write_csvs(const CaseComparison& c, const fs::path& dir) {
+  {
+    std::ostringstream s;
+    s << "key,value\n"
+      << "case," << c.case_id << "\nresolution," << c.resolution << "\ninflow_depth_m," << num(c.inflow_depth_m)
+      << "\ninflow_velocity_m_s," << num(c.inflow_velocity_m_s) << "\ntailwater_depth_m," << num(c.tailwater_depth_m)
+      << "\nbelanger_y2_m," << num(c.belanger_y2_m) << "\nfloor_z_m," << num(c.floor_z_m) << "\nbasin_start_m,"
+      << num(c.basin_start_m) << "\nbasin_end_m," << num(c.basin_end_m) << "\nbed_wavelength_m," << num(c.bed_wavelength_m) << "\nwindow_start_s," << num(c.window_start_s)
+      << "\nwindow_end_s," << num(c.window_end_s) << "\nmeasured_y2_m,"
+      << num(c.lab.sequent_depth_m.value_or(not_a_number)) << "\nmeasured_jump_length_m,"
+      << num(c.lab.jump_length_m.value_or(not_a_number)) << "\n";
+    for (int i = 0; i < 2; ++i) {
+      const MethodOutcome* m = methods_of(c, i);
+      s << m->method << "_available," << (m->available ? 1 : 0) << "\n";
+      s << m->method << "_toe_x_m," << num(m->available ? m->metrics.toe_x_m : not_a_number) << "\n";
+      s << m->method << "_jump_end_x_m," << num(m->available ? m->metrics.jump_end_x_m : not_a_number) << "\n";
+      s << m->method << "_roller_end_x_m," << num(m->available ? m->metrics.roller_end_x_m : not_a_number) << "\n";
+    }
+    cases::write_file_atomically(dir / "case.csv", s.str());
+  }
+  std::ostringstream sec, prof, lon;
+  sec << "method,section,role,x_m,z_bed_m,n_times,n_wet,surface_mean_m,surface_std_m,surface_from_fraction_mean_m,"
+         "depth_mean_m,depth_std_m,discharge_mean_m2_s,discharge_std_m2_s,mean_velocity_mean_m_s,"
+         "mean_velocity_std_m_s,max_velocity_mean_m_s,max_velocity_std_m_s,energy_coefficient_mean,"
+         "specific_energy_mean_m,specific_energy_std_m\n";
+  prof << "method,section,x_m,z_m,u_mean_m_s,u_std_m_s,w_mean_m_s,wet_fraction\n";
+  lon << "method,x_m,z_bed_m,surface_mean_m,surface_std_m,near_surface_velocity_mean_m_s,mean_velocity_mean_m_s,"
+         "max_velocity_mean_m_s,discharge_mean_m2_s\n";
+  for (int i = 0; i < 2; ++i) {
+    const MethodOutcome* m = methods_of(c, i);
+    if (!m->available) continue;
+    for (const auto& s : m->stats.sections) {
+      sec << m->method << "," << s.spec.name << "," << s.spec.role << "," << num(s.spec.x_m) << "," << num(s.spec.z_bed_m)
+          << "," << s.n_times << "," << s.n_wet << "," << num(s.surface.mean) << "," << num(s.surface.std) << ","
+          << num(s.surface_from_fraction.mean) << "," << num(s.depth.mean) << "," << num(s.depth.std) << ","
+          << num(s.discharge.mean) << "," << num(s.discharge.std) << "," << num(s.mean_velocity.mean) << ","
+          << num(s.mean_velocity.std) << "," << num(s.max_velocity.mean) << "," << num(s.max_velocity.std) << ","
+          << num(s.energy_coefficient.mean) << "," << num(s.specific_energy.mean) << "," << num(s.specific_energy.std)
+          << "\n";
+      for (std::size_t k = 0; k < s.z.size(); ++k)
+        prof << m->method << "," << s.spec.name << "," << num(s.spec.x_m) << "," << num(s.z[k]) << "," << num(s.u_mean[k])
+             << "," << num(s.u_std[k]) << "," << num(s.w_mean[k]) << "," << num(s.wet_fraction[k]) << "\n";
+    }
+    for (const auto& s : m->stats.stations)
+      lon << m->method << "," << num(s.spec.x_m) << "," << num(s.spec.z_bed_m) << "," << num(s.surface.mean) << ","
+          << num(s.surface.std) << "," << num(s.near_surface_velocity.mean) << "," << num(s.mean_velocity.mean) << ","
+          << num(s.max_velocity.mean) << "," << num(s.discharge.mean) << "\n";
+    const FieldSnapshot& f = m->stats.snapshot;
+    if (!f.empty()) {
+      std::ostringstream snap;
+      snap << "time_s,x_m,z_m,u_m_s,w_m_s\n";
+      for (int iz = 0; iz < f.nz; ++iz)
+        for (int ix = 0; ix < f.nx; ++ix) {
+          const std::size_t k = static_cast<std::size_t>(iz) * static_cast<std::size_t>(f.nx) + static_cast<std::size_t>(ix);
+          if (!std::isfinite(f.u[k])) continue;
+          snap << num(f.time_s) << "," << num(f.x0 + ix * f.dx) << "," << num(f.z0 + iz * f.dz) << "," << num(f.u[k], 5)
+               << "," << num(f.w[k], 5) << "\n";
+        }
+      cases::write_file_atomically(dir / ("snapshot_" + m->method + ".csv"), snap.str());
+    }
+  }
+  cases::write_file_atomically(dir / "sections.csv", sec.str());
+  {
+    std::ostringstream ts;
+    ts << "method,section,time_s,surface_m,depth_m,discharge_m2_s,mean_velocity_m_s,max_velocity_m_s,"
+          "specific_energy_m\n";
+    for (int i = 0; i < 2; ++i) {
+      const MethodOutcome* m = methods_of(c, i);
+      if (!m->available) continue;
+      for (std::size_t k = 0; k < m->stats.section_series.size() && k < m->stats.sections.size(); ++k)
+        for (const auto& t : m->stats.section_series[k])
+          ts << m->method << "," << m->stats.sections[k].spec.name << "," << num(t.time_s) << "," << num(t.surface_m)
+             << "," << num(t.depth_m) << "," << num(t.discharge_m2_s) << "," << num(t.mean_velocity_m_s) << ","
+             << num(t.max_velocity_m_s) << "," << num(t.specific_energy_m) << "\n";
+    }
+    cases::write_file_atomically(dir / "section_timeseries.csv", ts.str());
+  }
+  cases::write_file_atomically(dir / "profiles.csv", prof.str());
+  cases::write_file_atomically(dir / "longitudinal.csv", lon.str());
+  {
+    std::ostringstream s;
+    s << "quantity,unit,sph,vof,experiment,published_sph,smooth_theory\n";
+    for (const auto& r : c.metrics)
+      s << r.quantity << "," << r.unit << "," << num(r.sph) << "," << num(r.vof) << "," << num(r.experiment) << ","
+        << num(r.published_sph) << "," << num(r.smooth_theory) << "\n";
+    cases::write_file_atomically(dir / "metrics.csv", s.str());
+  }
+  {
+    std::ostringstream s;
+    s << "section,x_m,l2_m_s,l2_over_u1,n_points\n";
+    for (const auto& p : c.profiles)
+      s << p.section << "," << num(p.x_m) << "," << num(p.l2_m_s) << "," << num(p.l2_over_u1) << "," << p.n_points << "\n";
+    cases::write_file_atomically(dir / "profile_differences.csv", s.str());
+  }
+  {
+    double sph = not_a_number, vof = not_a_number, sph_crest = not_a_number, vof_crest = not_a_number;
+    for (const auto& r : c.metrics) {
+      if (r.quantity == "eta") { sph = r.sph; vof = r.vof; }
+      if (r.quantity == "eta_crest_depth") { sph_crest = r.sph; vof_crest = r.vof; }
+    }
+    std::ostringstream s;
+    s << "case,smooth_theory_percent,experiment_percent,published_sph_percent,sph_percent,vof_percent,"
+         "sph_crest_depth_percent,vof_crest_depth_percent\n"
+      << c.case_id << "," << num(c.lab.eta_smooth_percent.value_or(c.eta_smooth_theory_percent)) << ","
+      << num(c.lab.eta_percent.value_or(not_a_number)) << "," << num(c.lab.published_sph_eta_percent.value_or(not_a_number))
+      << "," << num(sph) << "," << num(vof) << "," << num(sph_crest) << "," << num(vof_crest) << "\n";
+    cases::write_file_atomically(dir / "eta.csv", s.str());
+  }
+}
+
+std::string pretty_quantity(const std::string& q) {
+  if (q == "upstream_depth") return "upstream depth y1 (m)";
+  if (q == "toe_position") return "toe position x_t (m)";
+  if (q == "toe_std") return "toe standard deviation over the frames (m)";
+  if (q == "sequent_depth") return "sequent depth y2 (m)";
+  if (q == "jump_length") return "jump length Lj (m)";
+  if (q == "roller_length") return "roller length Lr (m)";
+  if (q == "eta") return "eta = (E1-E2)/E1, with alpha (%)";
+  if (q == "eta_alpha1") return "eta with alpha = 1 (%)";
+  if (q == "eta_crest_depth") return "eta, lab convention y + q²/(2gy²), y above crests (%)";
+  if (q == "velocity_settling_distance") return "velocity settling distance (m)";
+  return q;
+}
+
+}  // namespace
+
+std::string base64_encode(const std::string& bytes) {
+  static const char* t = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((bytes.size() + 2) / 3 * 4);
+  std::size_t i = 0;
+  for (; i + 2 < bytes.size(); i += 3) {
+    const unsigned v = (static_cast<unsigned char>(bytes[i]) << 16) | (static_cast<unsigned char>(bytes[i + 1]) << 8) |
+                       static_cast<unsigned char>(bytes[i + 2]);
+    out += t[(v >> 18) & 63]; out += t[(v >> 12) & 63]; out += t[(v >> 6) & 63]; out += t[v & 63];
+  }
+  if (i + 1 == bytes.size()) {
+    const unsigned v = static_cast<unsigned char>(bytes[i]) << 16;
+    out += t[(v >> 18) & 63]; out += t[(v >> 12) & 63]; out += "==";
+  } else if (i + 2 == bytes.size()) {
+    const unsigned v = (static_cast<unsigned char>(bytes[i]) << 16) | (static_cast<unsigned char>(bytes[i + 1]) << 8);
+    out += t[(v >> 18) & 63]; out += t[(v >> 12) & 63]; out += t[(v >> 6) & 63]; out += '=';
+  }
+  return out;
+}
+
+std::string comparison_json(const CaseComparison& c) {
+  Json j;
+  j.begin_object()
+      .field("hydrojump_version", std::string(version_string))
+      .field("case", c.case_id)
+      .field("description", c.description)
+      .field("resolution", c.resolution)
+      .field("interpolation", c.interpolation);
+  j.key("window_s").begin_array().value(c.window_start_s).value(c.window_end_s).end_array();
+  j.key("inputs").begin_object()
+      .field("inflow_depth_m", c.inflow_depth_m).field("inflow_velocity_m_s", c.inflow_velocity_m_s)
+      .field("tailwater_depth_m", c.tailwater_depth_m).field("gravity_m_s2", c.gravity_m_s2)
+      .field("belanger_y2_m", c.belanger_y2_m).field("eta_smooth_theory_percent", c.eta_smooth_theory_percent)
+      .field("particle_spacing_m", c.particle_spacing_m).field("vof_cell_size_bed_m", c.vof_cell_size_m)
+      .field("basin_start_m", c.basin_start_m).field("basin_end_m", c.basin_end_m).end_object();
+  j.key("sph");
+  method_json(j, c.sph);
+  j.key("vof");
+  method_json(j, c.vof);
+  j.key("sph_vs_vof").begin_object();
+  j.key("surface").begin_object().field("rms_m", c.surface.rms_m).field("max_abs_m", c.surface.max_abs_m)
+      .field("x_of_max_m", c.surface.x_of_max_m).field("n_stations", c.surface.n_stations).end_object();
+  j.key("profiles").begin_array();
+  for (const auto& p : c.profiles)
+    j.begin_object().field("section", p.section).field("x_m", p.x_m).field("l2_m_s", p.l2_m_s)
+        .field("l2_over_u1", p.l2_over_u1).field("n_points", p.n_points).end_object();
+  j.end_array().end_object();
+  j.key("metrics").begin_array();
+  for (const auto& r : c.metrics)
+    j.begin_object().field("quantity", r.quantity).field("unit", r.unit).field("sph", r.sph).field("vof", r.vof)
+        .field("experiment", r.experiment).field("published_sph", r.published_sph)
+        .field("smooth_theory", r.smooth_theory).field("sph_minus_vof", r.sph - r.vof)
+        .field("sph_minus_experiment", r.sph - r.experiment).field("vof_minus_experiment", r.vof - r.experiment)
+        .end_object();
+  j.end_array();
+  j.field("measured_source", c.measured_source);
+  j.end_object();
+  return j.str() + "\n";
+}
+
+void write_report(const CaseComparison& c, const fs::path& out, bool plots, std::ostream& log) {
+  const fs::path csv = out / "csv";
+  const fs::path figs = out / "figures";
+  fs::create_directories(csv);
+  write_csvs(c, csv);
+  cases::write_file_atomically(out / "comparison.json", comparison_json(c));
+  std::string plot_problem;
+  if (plots && (c.sph.available || c.vof.available)) {
+    plot_problem = plot_case_figures(csv, figs);
+    if (!plot_problem.empty()) log << "plots: " << plot_problem << std::endl;
+  }
+
+  Doc d;
+  d.heading(1, "Case " + c.case_id + ": SPH vs VOF vs experiment");
+  if (!c.description.empty()) d.para(c.description);
+  std::ostringstream info;
+  info << "Resolution \"" << c.resolution << "\" (SPH dx = " << c.particle_spacing_m << " m, VOF bed cells "
+       << c.vof_cell_size_m << " m); averaging window " << c.window_start_s << "–" << c.window_end_s
+       << " s; inflow y1 = " << c.inflow_depth_m << " m, U1 = " << c.inflow_velocity_m_s << " m/s (q = "
+       << c.inflow_depth_m * c.inflow_velocity_m_s << " m²/s); tailwater " << c.tailwater_depth_m
+       << " m; Bélanger y2* = " << fix(c.belanger_y2_m, 4) << " m. Interpolation: " << c.interpolation
+       << ". hydrojump " << version_string << ".";
+  d.para(info.str());
+  std::vector<std::string> status;
+  for (int i = 0; i < 2; ++i) {
+    const MethodOutcome* m = methods_of(c, i);
+    status.push_back(std::string(i == 0 ? "SPH" : "VOF") + ": " +
+                     (m->available ? m->status + ", " + std::to_string(m->stats.times.size()) + " frames from " + m->source
+                                   : m->status));
+  }
+  d.bullets(status);
+
+  d.heading(2, "Jump metrics");
+  std::vector<std::vector<std::string>> rows;
+  for (const auto& r : c.metrics) {
+    const int dec = r.unit == "%" ? 2 : 4;
+    rows.push_back({pretty_quantity(r.quantity), fix(r.sph, dec), fix(r.vof, dec), fix(r.experiment, dec),
+                    fix(r.published_sph, dec), signed_fix(r.sph - r.vof, dec), signed_fix(r.sph - r.experiment, dec),
+                    signed_fix(r.vof - r.experiment, dec)});
+  }
+  d.table({"quantity", "this SPH", "this VOF", "experiment", "published SPH", "SPH − VOF", "SPH − exp.", "VOF − exp."}, rows);
+  {
+    double sph = not_a_number, vof = not_a_number;
+    for (const auto& r : c.metrics)
+      if (r.quantity == "eta") { sph = r.sph; vof = r.vof; }
+    const double exp = c.lab.eta_percent.value_or(not_a_number);
+    const double pub = c.lab.published_sph_eta_percent.value_or(not_a_number);
+    d.heading(3, "Energy dissipation rate η (%)");
+    d.table({"smooth bed (theory)", "experiment", "published SPH", "this SPH", "this VOF", "SPH − exp.", "VOF − exp.",
+             "SPH − published SPH"},
+            {{fix(c.eta_smooth_theory_percent, 2), fix(exp, 2), fix(pub, 2), fix(sph, 2), fix(vof, 2),
+              signed_fix(sph - exp, 2), signed_fix(vof - exp, 2), signed_fix(sph - pub, 2)}});
+  }
+  std::vector<std::string> notes;
+  for (int i = 0; i < 2; ++i) {
+    const MethodOutcome* m = methods_of(c, i);
+    if (m->available)
+      for (const auto& n : m->metrics.notes) notes.push_back(std::string(i == 0 ? "SPH" : "VOF") + ": " + n);
+  }
+  if (!notes.empty()) d.bullets(notes);
+
+  d.heading(2, "SPH vs VOF");
+  if (c.sph.available && c.vof.available) {
+    std::ostringstream s;
+    s << "Time-mean free surface over the basin (" << c.basin_start_m << "–" << c.basin_end_m << " m, "
+      << c.surface.n_stations << " stations): RMS difference " << fix(c.surface.rms_m * 1000, 2)
+      << " mm, maximum " << fix(c.surface.max_abs_m * 1000, 2) << " mm at x = " << fix(c.surface.x_of_max_m, 3) << " m.";
+    d.para(s.str());
+    std::vector<std::vector<std::string>> pr;
+    for (const auto& p : c.profiles)
+      pr.push_back({p.section, fix(p.x_m, 3), fix(p.l2_m_s, 4), fix(100 * p.l2_over_u1, 2), std::to_string(p.n_points)});
+    d.table({"section", "x (m)", "L2 of u(z) difference (m/s)", "L2 / U1 (%)", "points"}, pr);
+  } else {
+    d.para("Not available: it needs both results (see the status above).");
+  }
+
+  d.heading(2, "Sections (time means ± standard deviation)");
+  for (int i = 0; i < 2; ++i) {
+    const MethodOutcome* m = methods_of(c, i);
+    if (!m->available) continue;
+    std::vector<std::vector<std::string>> sr;
+    for (const auto& s : m->stats.sections) {
+      sr.push_back({s.spec.name + " (" + s.spec.role + ")", fix(s.spec.x_m, 3),
+                    fix(s.surface.mean, 4) + " ± " + fix(s.surface.std, 4), fix(s.surface_from_fraction.mean, 4),
+                    fix(s.mean_velocity.mean, 3), fix(s.max_velocity.mean, 3), fix(s.discharge.mean, 4),
+                    fix(s.energy_coefficient.mean, 3), fix(s.specific_energy.mean, 4)});
+    }
+    d.heading(3, i == 0 ? "SPH" : "VOF");
+    d.table({"section", "x (m)", "surface η (m)", "η from ∫fraction (m)", "U (m/s)", "u_max (m/s)", "q (m²/s)", "α",
+             "E (m)"},
+            sr);
+  }
+  std::ostringstream qcheck;
+  qcheck << "Discharge check: every section's q should equal the inflow q = " << fix(c.inflow_depth_m * c.inflow_velocity_m_s, 4)
+         << " m²/s once the jump is steady.";
+  d.para(qcheck.str());
+
+  d.heading(2, "Figures");
+  if (!plot_problem.empty()) d.para("Figures unavailable: " + plot_problem);
+  const std::vector<std::pair<std::string, std::string>> figures = {
+      {"surface.png", "Time-mean free surface (band: ± one standard deviation), bed, experiment y1 and y2"},
+      {"profiles.png", "Time-mean velocity profiles u(z) at the sections"},
+      {"velocity_decay.png", "Decay of the maximum and mean velocity along the basin (normalised by U1)"},
+      {"eta.png", "Energy dissipation rate: smooth-bed theory, experiment, published SPH, this SPH, this VOF"},
+      {"snapshot_sph.png", "SPH velocity field, last frame of the window"},
+      {"snapshot_vof.png", "VOF velocity field, last frame of the window"}};
+  for (const auto& [file, caption] : figures)
+    if (fs::exists(figs / file)) d.figure(figs / file, "figures/" + file, caption);
+
+  d.heading(2, "Definitions");
+  d.bullets({"Free surface: SPH, the 0.5 level of the kernel-interpolated fluid fraction sum_j V_j W; VOF, the "
+             "alpha = 0.5 crossing along the cells of the vertical line (the column integral of the fraction is "
+             "the check shown in the section tables).",
+             "E = z_b + h + αU²/(2g) with α = ∫u³dz/(U³h); η = (E1 − E2)/E1 between the upstream and downstream "
+             "sections; 'η with α = 1' drops the velocity-profile correction; 'lab convention' uses "
+             "E = y + q²/(2gy²) with y the depth above the corrugation crests, as the experiments' values were "
+             "computed (it differs from η when a section lies over a trough).",
+             "Toe: first x where the running mean (0.8 y1) of the time-mean surface stays above 1.5 y1 over 2 y1. "
+             "y2: time-mean surface at the downstream section above the upstream floor (corrugation crests).",
+             "Jump end: first x after the toe from which the mean surface stays within 5 % of (y2 − y1) of y2 up to "
+             "the downstream section; Lj = end − toe. Roller end: last x with a negative time-mean velocity at "
+             "0.1 h below the surface; Lr = end − toe."});
+  if (!c.measured_source.empty()) d.para("Laboratory values: " + c.measured_source);
+
+  cases::write_file_atomically(out / "report.md", d.markdown());
+  cases::write_file_atomically(out / "report.html", d.html("hydrojump comparison, case " + c.case_id));
+  log << "report: " << (out / "report.md").string() << ", " << (out / "report.html").string() << ", "
+      << (out / "comparison.json").string() << std::endl;
+}
+
+}  // namespace hydrojump::compare

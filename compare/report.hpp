@@ -1,0 +1,28 @@
+// Outputs of one case comparison, all written atomically (cases/atomic_file.hpp) into OUT:
+//   comparison.json            every number of the comparison (NaN/missing as null)
+//   csv/sections.csv           per method and section: time means and standard deviations
+//   csv/section_timeseries.csv per method, section and output time: surface, depth, q, U, u_max, E
+//   csv/profiles.csv           per method and section: time-mean u(z), w(z), wet fraction
+//   csv/longitudinal.csv       per method and station: mean surface, near-surface/mean/max velocity
+//   csv/metrics.csv            y2, Lj, Lr, eta, ... SPH, VOF, experiment, published SPH side by side
+//   csv/profile_differences.csv, csv/eta.csv (one row: this case's eta bars), csv/case.csv (inputs),
+//   csv/snapshot_<method>.csv  the velocity field of the last frame in the window
+//   figures/*.png              from compare/plot/plot_case.py (reads the CSVs only)
+//   report.md, report.html     the human-readable report (HTML with the figures embedded, base64)
+#pragma once
+
+#include <filesystem>
+#include <iosfwd>
+#include <string>
+
+#include "compare/case_comparison.hpp"
+
+namespace hydrojump::compare {
+
+void write_report(const CaseComparison& c, const std::filesystem::path& out_dir, bool plots, std::ostream& log);
+
+// Pieces exposed for tests.
+std::string comparison_json(const CaseComparison& c);
+std::string base64_encode(const std::string& bytes);
+
+}  // namespace hydrojump::compare

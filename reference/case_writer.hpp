@@ -1,0 +1,85 @@
+// The OpenFOAM interFoam case of a hydrojump case: every dictionary of 0.orig/, constant/ and system/
+// and the Allrun script, built in memory from the resolved spec and its CaseGeometry, then written.
+//
+// Patches of a stilling basin (2D, spanwise one cell thick):
+//   | patch       | type  | U                          | alpha.water            | p_rgh            |
+//   |-------------|-------|----------------------------|------------------------|------------------|
+//   | inlet       | patch | fixedValue (U1 0 0)        | fixedValue 1           | fixedFluxPressure|
+//   | walls       | wall  | noSlip (sluice gate above y1) | zeroGradient        | fixedFluxPressure|
+//   | bed         | wall  | noSlip                     | zeroGradient           | fixedFluxPressure|
+//   | outlet      | patch | outletPhaseMeanVelocity q/y2 | variableHeightFlowRate | zeroGradient   |
+//   | atmosphere  | patch | pressureInletOutletVelocity| inletOutlet 0          | totalPressure 0  |
+//   | frontAndBack| empty | empty                      | empty                  | empty            |
+// The inlet spans exactly the inflow depth y1 above the upstream floor (a grid line lies at y1); above
+// it the inflow section is closed by the sluice-gate wall, as in the flume. The outlet holds the
+// tailwater by mass balance: `outletPhaseMeanVelocity` scales the outflow so that the water's mean
+// velocity through the outlet is Umean = q / y2, so the steady outlet depth is y2.
+// Dam break and still water: `walls` (tank ends), `bed` (floor), `atmosphere` (open top).
+//
+// Turbulence: "laminar", or "kOmegaSST" with inlet k = 3/2 (I U)^2, I = 5 %, and
+// omega = sqrt(k) / (Cmu^0.25 l), l = 0.07 D_h with D_h = 4 y1 (wide open channel) or the water
+// height for tanks; walls use kqRWallFunction, omegaWallFunction and nutkWallFunction.
+//
+// Function objects in controlDict (written every output_interval_s of the spec):
+//   sections          `sets`: alpha.water and U along a vertical line at each section (raw text)
+//   discharge_<name>  `surfaceFieldValue`: sum of the water flux alphaPhi0.water (and phi) over the
+//                     grid faces nearest to x_section (faceZone "section_<name>", made by
+//                     system/topoSetDict.sections); divided by the spanwise thickness (one cell,
+//                     MeshPlan::thickness_m) it is the water discharge q in m^2/s
+//   discharge_inlet/_outlet  the same on the inlet and outlet patches
+//   freeSurface       `surfaces`: the alpha.water = 0.5 isoSurface (VTK)
+//   average           `fieldAverage` of U and alpha.water over the averaging window (stilling basins)
+//   floor (dam break) `sets`: alpha.water along a line half a cell above the floor (surge front)
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "cases/geometry.hpp"
+#include "cases/spec.hpp"
+#include "reference/foam_dictionary.hpp"
+#include "reference/mesh_plan.hpp"
+
+namespace hydrojump::reference {
+
+// One OpenFOAM utility run: the application and its arguments.
+struct FoamStep {
+  std::string application;
+  std::vector<std::string> arguments;
+};
+
+// Properties not in the spec, fixed here and written into transportProperties (air at 20 C, clean
+// air-water interface).
+struct AirProperties {
+  double density_kg_m3 = 1.0;
+  double kinematic_viscosity_m2_s = 1.48e-5;
+  double surface_tension_n_m = 0.07;
+};
+
+struct VofCase {
+  std::string case_id;
+  std::string resolution;
+  MeshPlan mesh;
+  std::vector<std::string> patches;                 // in blockMeshDict order
+  std::map<std::string, foam::FileHeader> headers;  // by relative path, e.g. "system/controlDict"
+  std::map<std::string, foam::Dictionary> files;    // by relative path
+  std::vector<FoamStep> mesh_steps;                 // blockMesh, [topoSet, subsetMesh]
+  std::string allrun;                               // the Allrun script
+  double end_time_s = 0.0;
+  double output_interval_s = 0.0;
+};
+
+// Builds the case of `c` at resolution `resolution` (no file is written). Throws
+// std::invalid_argument with a clear message for kinds or settings the VOF reference cannot run.
+VofCase build_vof_case(const cases::Study& study, const cases::Case& c, const std::string& resolution);
+
+// Writes `vof` into `dir` (created): 0.orig/, constant/, system/, Allrun. Every file is written
+// atomically. Existing time directories and logs are left alone.
+void write_vof_files(const VofCase& vof, const std::filesystem::path& dir);
+
+// Updates system/decomposeParDict for `subdomains` MPI ranks (simple decomposition along x).
+foam::Dictionary decompose_par_dict(int subdomains);
+
+}  // namespace hydrojump::reference

@@ -1,0 +1,229 @@
+#include "reference/mesh_plan.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace hydrojump::reference {
+
+namespace {
+
+constexpr double max_growth_per_cell = 1.2;   // geometric transition between cell sizes
+
+// A band of uniform cells of about `h`; at least `min_cells`.
+GridBand uniform_band(double begin, double end, double h, int min_cells = 1) {
+  const int n = std::max(min_cells, static_cast<int>(std::lround((end - begin) / h)));
+  return GridBand{begin, end, n, 1.0};
+}
+
+// Bands from `begin` up to `end`: fine cells `h_fine` grow geometrically (at most 20 % per cell) to
+// `h_bulk`, then uniform `h_bulk`. Without room for the transition the fine size continues to `end`.
+void append_transition_and_bulk(std::vector<GridBand>& bands, double begin, double end, double h_fine,
+                                double h_bulk) {
+  const double room = end - begin;
+  if (room <= 1e-12) return;
+  const double ratio = h_bulk / h_fine;
+  if (ratio <= 1.0 + 1e-9) {
+    bands.push_back(uniform_band(begin, end, h_fine));
+    return;
+  }
+  // Cells h q, h q^2, ..., h q^n = h_bulk with q <= 1.2.
+  const int n = std::max(1, static_cast<int>(std::ceil(std::log(ratio) / std::log(max_growth_per_cell) - 1e-9)));
+  const double q = std::pow(ratio, 1.0 / n);
+  const double length = h_fine * q * (std::pow(q, n) - 1.0) / (q - 1.0);
+  if (length + h_bulk > room) {
+    bands.push_back(uniform_band(begin, end, h_fine));
+    return;
+  }
+  bands.push_back(GridBand{begin, begin + length, n, std::pow(q, n - 1)});
+  bands.push_back(uniform_band(begin + length, end, h_bulk));
+}
+
+void require_positive(double value, const std::string& what, const cases::Case& c) {
+  if (!(value > 0.0) || !std::isfinite(value)) {
+    throw std::invalid_argument("case \"" + c.id + "\": " + what + " must be > 0 for the VOF mesh");
+  }
+}
+
+}  // namespace
+
+std::vector<double> band_faces(const std::vector<GridBand>& bands) {
+  std::vector<double> faces;
+  for (const GridBand& b : bands) {
+    if (faces.empty()) faces.push_back(b.begin_m);
+    const double length = b.end_m - b.begin_m;
+    if (std::abs(b.expansion - 1.0) < 1e-12 || b.cells == 1) {
+      for (int i = 1; i <= b.cells; ++i) faces.push_back(b.begin_m + length * i / b.cells);
+    } else {
+      const double q = std::pow(b.expansion, 1.0 / (b.cells - 1));
+      const double first = length * (q - 1.0) / (std::pow(q, b.cells) - 1.0);
+      double z = b.begin_m, h = first;
+      for (int i = 1; i < b.cells; ++i) {
+        z += h;
+        h *= q;
+        faces.push_back(z);
+      }
+      faces.push_back(b.end_m);
+    }
+  }
+  return faces;
+}
+
+int MeshPlan::columns() const {
+  int n = 0;
+  for (const GridBand& b : x_bands) n += b.cells;
+  return n;
+}
+
+int MeshPlan::rows() const {
+  int n = 0;
+  for (const GridBand& b : z_bands) n += b.cells;
+  return n;
+}
+
+long MeshPlan::background_cells() const { return static_cast<long>(columns()) * rows(); }
+
+long MeshPlan::removed_cell_count() const {
+  if (removed.empty()) return 0;
+  const std::vector<double> x = band_faces(x_bands);
+  long n = 0;
+  for (const RemovedColumns& r : removed) {
+    for (std::size_t i = 0; i + 1 < x.size(); ++i) {
+      const double xc = 0.5 * (x[i] + x[i + 1]);
+      if (xc > r.x_begin_m && xc < r.x_end_m) n += r.removed_cells;
+    }
+  }
+  return n;
+}
+
+long MeshPlan::cell_count() const { return background_cells() - removed_cell_count(); }
+
+MeshPlan plan_mesh(const cases::Case& c, const cases::CaseGeometry& g, const cases::Resolution& r) {
+  const double h = r.vof_cell_size_bed_m;
+  const double h_bulk = r.vof_cell_size_bulk_m;
+  require_positive(h, "resolution." + r.name + ".vof_cell_size_bed_m", c);
+  require_positive(h_bulk, "resolution." + r.name + ".vof_cell_size_bulk_m", c);
+  if (h_bulk < h) {
+    throw std::invalid_argument("case \"" + c.id + "\": resolution." + r.name +
+                                ".vof_cell_size_bulk_m must be >= vof_cell_size_bed_m");
+  }
+  const std::string& strategy = c.vof.mesh_strategy;
+  if (strategy != "cartesian_cut" && strategy != "body_fitted") {
+    throw std::invalid_argument("case \"" + c.id + "\": vof.mesh_strategy = \"" + strategy +
+                                "\" is unknown: allowed \"cartesian_cut\", \"body_fitted\"");
+  }
+
+  MeshPlan plan;
+  plan.strategy = strategy;
+  plan.thickness_m = h;
+
+  if (const auto* basin = c.stilling_basin()) {
+    if (g.inflows.empty() || g.outflows.empty()) {
+      throw std::logic_error("case \"" + c.id + "\": stilling-basin geometry without inflow/outflow");
+    }
+    const cases::InflowBoundary& in = g.inflows.front();
+    const double y1 = in.depth_m;
+    if (y1 < 2.0 * h) {
+      throw std::invalid_argument(
+          "case \"" + c.id + "\": resolution." + r.name + ".vof_cell_size_bed_m = " +
+          std::to_string(h) + " m leaves fewer than 2 cells across the inflow depth y1 = " +
+          std::to_string(y1) + " m: must be <= y1/2");
+    }
+    plan.x_bands.push_back(uniform_band(g.x_min_m, g.x_max_m, h, 4));
+    plan.z_floor_m = g.bed.elevation(in.x_m);
+    plan.z_inflow_top_m = plan.z_floor_m + y1;
+    const double z_low = std::min(g.z_min_m, g.bed.lowest_elevation());
+    // Highest expected surface: the initial water surface (y1 ramping to the tailwater) and the
+    // tailwater level at the outlet.
+    double z_surface = plan.z_inflow_top_m;
+    for (double z : g.initial_water.surface_z_m) z_surface = std::max(z_surface, z);
+    for (const auto& out : g.outflows) {
+      z_surface = std::max(z_surface, g.bed.elevation(out.x_m) + out.tailwater_depth_m);
+    }
+    const double band = c.vof.surface_refinement_band_m > 0.0
+                            ? c.vof.surface_refinement_band_m
+                            : std::max(0.25 * basin->tailwater_depth_m, 3.0 * h);
+    plan.z_fine_top_m = std::min(z_surface + band, g.z_max_m);
+    const bool has_troughs = z_low < plan.z_floor_m - 1e-9;
+    GridBand floor_band{z_low, plan.z_floor_m, 0, 1.0};
+    if (has_troughs) floor_band = uniform_band(z_low, plan.z_floor_m, h);
+    const GridBand inflow_band = uniform_band(plan.z_floor_m, plan.z_inflow_top_m, h, 2);
+    if (strategy == "body_fitted") {
+      // The lowest band follows the bed from z_b(x) up to the inflow surface.
+      plan.z_bands.push_back(
+          GridBand{z_low, plan.z_inflow_top_m, floor_band.cells + inflow_band.cells, 1.0});
+    } else {
+      if (has_troughs) plan.z_bands.push_back(floor_band);
+      plan.z_bands.push_back(inflow_band);
+    }
+    if (plan.z_fine_top_m > plan.z_inflow_top_m + 0.5 * h) {
+      plan.z_bands.push_back(uniform_band(plan.z_inflow_top_m, plan.z_fine_top_m, h));
+    } else {
+      plan.z_fine_top_m = plan.z_inflow_top_m;
+    }
+    append_transition_and_bulk(plan.z_bands, plan.z_fine_top_m, g.z_max_m, h, h_bulk);
+
+    if (strategy == "body_fitted") {
+      plan.bed_vertices = g.bed.polyline(g.x_min_m, g.x_max_m, 0.05 * h);
+      plan.x_bands.clear();
+      for (std::size_t i = 0; i + 1 < plan.bed_vertices.size(); ++i) {
+        plan.x_bands.push_back(uniform_band(plan.bed_vertices[i].x(), plan.bed_vertices[i + 1].x(), h));
+      }
+    } else if (has_troughs) {
+      const std::vector<double> x = band_faces(plan.x_bands);
+      const std::vector<double> z = band_faces(plan.z_bands);
+      for (std::size_t i = 0; i + 1 < x.size(); ++i) {
+        const double zb = g.bed.elevation(0.5 * (x[i] + x[i + 1]));
+        int n = 0;
+        while (static_cast<std::size_t>(n) + 1 < z.size() && 0.5 * (z[n] + z[n + 1]) < zb) ++n;
+        if (n == 0) continue;
+        if (!plan.removed.empty() && plan.removed.back().removed_cells == n &&
+            std::abs(plan.removed.back().x_end_m - x[i]) < 1e-12) {
+          plan.removed.back().x_end_m = x[i + 1];
+        } else {
+          plan.removed.push_back(RemovedColumns{x[i], x[i + 1], n, z[n]});
+        }
+      }
+    }
+    return plan;
+  }
+
+  // Closed tanks: dam break and still water (floor at z = 0, walls at both ends, open top).
+  if (!c.dam_break() && !c.still_water()) {
+    throw std::invalid_argument("case \"" + c.id + "\": kind \"" + c.kind +
+                                "\" has no VOF reference (stilling_basin, dam_break, still_water)");
+  }
+  if (strategy == "body_fitted") {
+    throw std::invalid_argument("case \"" + c.id + "\": vof.mesh_strategy = \"body_fitted\" is only "
+                                "meaningful for stilling basins (a tank is already Cartesian): use "
+                                "\"cartesian_cut\"");
+  }
+  double z_water = g.z_min_m;
+  for (double z : g.initial_water.surface_z_m) z_water = std::max(z_water, z);
+  plan.z_floor_m = g.z_min_m;
+  plan.z_inflow_top_m = std::min(z_water, g.z_max_m);
+  // A grid line at the dam-break gate so the initial column has a sharp, exact edge.
+  const double x_gate = g.dam_gate_x_m;
+  if (x_gate > g.x_min_m + h && x_gate < g.x_max_m - h) {
+    plan.x_bands.push_back(uniform_band(g.x_min_m, x_gate, h));
+    plan.x_bands.push_back(uniform_band(x_gate, g.x_max_m, h));
+  } else {
+    plan.x_bands.push_back(uniform_band(g.x_min_m, g.x_max_m, h, 4));
+  }
+  if (plan.z_inflow_top_m > g.z_min_m + 0.5 * h) {
+    plan.z_bands.push_back(uniform_band(g.z_min_m, plan.z_inflow_top_m, h, 2));
+  } else {
+    plan.z_inflow_top_m = g.z_min_m;
+  }
+  const double band = std::max(c.vof.surface_refinement_band_m, 0.0);
+  plan.z_fine_top_m = std::min(plan.z_inflow_top_m + band, g.z_max_m);
+  if (plan.z_fine_top_m > plan.z_inflow_top_m + 0.5 * h) {
+    plan.z_bands.push_back(uniform_band(plan.z_inflow_top_m, plan.z_fine_top_m, h));
+  } else {
+    plan.z_fine_top_m = plan.z_inflow_top_m;
+  }
+  append_transition_and_bulk(plan.z_bands, plan.z_fine_top_m, g.z_max_m, h, h_bulk);
+  return plan;
+}
+
+}  // namespace hydrojump::reference

@@ -1,0 +1,768 @@
+#include "reference/runner.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <chrono>
+#include <csignal>
+#include <deque>
+#include <map>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+#include <limits>
+#include <sstream>
+#include <thread>
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "cases/atomic_file.hpp"
+#include "cases/spec_reader.hpp"
+#include "reference/case_writer.hpp"
+#include "reference/foam_dictionary.hpp"
+#include "reference/solver_log.hpp"
+
+namespace hydrojump::reference {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* default_project_dir = "/usr/share/openfoam";
+
+// The signal the generated controlDict tells interFoam to treat as "write now and stop"
+// (OptimisationSwitches/stopAtWriteNowSignal); SIGUSR2 is forwarded to the ranks by mpirun.
+constexpr int write_and_stop_signal = SIGUSR2;
+
+volatile std::sig_atomic_t stop_requested = 0;
+void reference_runner_request_stop(int) { stop_requested = 1; }
+
+// Installs SIGINT/SIGTERM handlers for its lifetime.
+class StopRequestGuard {
+ public:
+  StopRequestGuard() {
+    stop_requested = 0;
+    struct sigaction sa {};
+    sa.sa_handler = reference_runner_request_stop;
+    sigemptyset(&sa.sa_mask);
+    ::sigaction(SIGINT, &sa, &old_int_);
+    ::sigaction(SIGTERM, &sa, &old_term_);
+  }
+  ~StopRequestGuard() {
+    ::sigaction(SIGINT, &old_int_, nullptr);
+    ::sigaction(SIGTERM, &old_term_, nullptr);
+  }
+  StopRequestGuard(const StopRequestGuard&) = delete;
+  StopRequestGuard& operator=(const StopRequestGuard&) = delete;
+
+ private:
+  struct sigaction old_int_ {};
+  struct sigaction old_term_ {};
+};
+
+std::string describe_exit(int rc) {
+  if (rc > 128 && rc < 128 + 65) {
+    const char* name = ::strsignal(rc - 128);
+    return "was killed by signal " + std::to_string(rc - 128) + " (" + (name ? name : "?") + ")";
+  }
+  return "exited with code " + std::to_string(rc);
+}
+
+std::optional<fs::path> find_on_path(const std::string& name) {
+  const char* path = std::getenv("PATH");
+  if (!path) return std::nullopt;
+  std::stringstream ss(path);
+  std::string dir;
+  while (std::getline(ss, dir, ':')) {
+    if (dir.empty()) continue;
+    const fs::path candidate = fs::path(dir) / name;
+    if (::access(candidate.c_str(), X_OK) == 0) return candidate;
+  }
+  return std::nullopt;
+}
+
+// The last `n` lines of a text file, indented.
+std::string tail_file(const fs::path& file, std::size_t n = 20) {
+  std::ifstream in(file);
+  std::deque<std::string> lines;
+  std::string line;
+  while (std::getline(in, line)) {
+    lines.push_back(line);
+    if (lines.size() > n) lines.pop_front();
+  }
+  std::string out;
+  for (const std::string& l : lines) out += "    " + l + "\n";
+  return out;
+}
+
+// Starts `argv` in `cwd` with stdout and stderr going to `log` (appended or truncated).
+pid_t spawn(const std::vector<std::string>& argv, const fs::path& cwd, const fs::path& log, bool append) {
+  const pid_t pid = ::fork();
+  if (pid < 0) throw OpenFoamError(std::string("cannot start ") + argv.front() + ": fork failed");
+  if (pid == 0) {
+    // Own process group: Ctrl-C reaches hydrojump, which asks the solver to write and stop.
+    ::setpgid(0, 0);
+    if (::chdir(cwd.c_str()) != 0) ::_exit(126);
+    ::setenv("PWD", cwd.c_str(), 1);  // OpenFOAM warns when PWD differs from the working directory
+    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | (append ? O_APPEND : O_TRUNC), 0644);
+    if (fd < 0) ::_exit(126);
+    ::dup2(fd, STDOUT_FILENO);
+    ::dup2(fd, STDERR_FILENO);
+    const int null_fd = ::open("/dev/null", O_RDONLY);
+    if (null_fd >= 0) ::dup2(null_fd, STDIN_FILENO);
+    std::vector<char*> args;
+    for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+    args.push_back(nullptr);
+    ::execvp(args[0], args.data());
+    ::_exit(127);
+  }
+  return pid;
+}
+
+// Exit code of a finished child (128 + signal when killed by one).
+int exit_code(int status) {
+  if (WIFEXITED(status)) return WEXITSTATUS(status);
+  if (WIFSIGNALED(status)) return 128 + WTERMSIG(status);
+  return -1;
+}
+
+int wait_for(pid_t pid) {
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0) {
+    if (errno != EINTR) return -1;
+  }
+  return exit_code(status);
+}
+
+// Stops a child we started: SIGTERM, then SIGKILL after 5 s.
+void stop_child(pid_t pid) {
+  ::kill(pid, SIGTERM);
+  for (int i = 0; i < 50; ++i) {
+    int status = 0;
+    if (::waitpid(pid, &status, WNOHANG) == pid) return;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  ::kill(pid, SIGKILL);
+  wait_for(pid);
+}
+
+std::string command_text(const std::vector<std::string>& argv) {
+  std::string s;
+  for (const std::string& a : argv) s += (s.empty() ? "" : " ") + a;
+  return s;
+}
+
+// Runs one utility to completion; a non-zero exit stops the run with the tail of its log.
+void run_step(const fs::path& dir, const std::vector<std::string>& argv, const std::string& log_name,
+              std::ostream& out) {
+  out << "  " << command_text(argv) << "  (log: " << log_name << ")\n" << std::flush;
+  const fs::path log = dir / log_name;
+  const int rc = wait_for(spawn(argv, dir, log, false));
+  if (rc != 0) {
+    throw OpenFoamError(argv.front() + " failed (it " + describe_exit(rc) + ") in " + dir.string() +
+                        "; last lines of " + log_name + ":\n" + tail_file(log));
+  }
+}
+
+std::optional<double> parse_time_name(const std::string& name) {
+  if (name.empty() || !(std::isdigit(static_cast<unsigned char>(name[0])) || name[0] == '.')) return std::nullopt;
+  char* end = nullptr;
+  const double t = std::strtod(name.c_str(), &end);
+  if (end == name.c_str() || *end != '\0' || !std::isfinite(t)) return std::nullopt;
+  return t;
+}
+
+std::vector<std::pair<double, fs::path>> time_directories(const fs::path& dir) {
+  std::vector<std::pair<double, fs::path>> out;
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) return out;
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    if (!entry.is_directory()) continue;
+    const auto t = parse_time_name(entry.path().filename().string());
+    if (t && *t > 0.0) out.emplace_back(*t, entry.path());
+  }
+  std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  return out;
+}
+
+// A time directory is complete when its main fields are present and readable to the end
+// (compressed files are tested with `gzip -t`, plain ones must end with OpenFOAM's closing rule).
+bool time_directory_complete(const fs::path& time_dir) {
+  for (const char* field : {"alpha.water", "U", "p_rgh"}) {
+    const fs::path plain = time_dir / field;
+    const fs::path gz = time_dir / (std::string(field) + ".gz");
+    std::error_code ec;
+    if (fs::exists(gz, ec)) {
+      if (fs::file_size(gz, ec) == 0) return false;
+      const int rc = wait_for(spawn({"gzip", "-t", gz.string()}, time_dir, "/dev/null", true));
+      if (rc != 0) return false;
+    } else if (fs::exists(plain, ec)) {
+      std::ifstream in(plain);
+      std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      if (content.find("// ****") == std::string::npos) return false;
+    } else {
+      return false;
+    }
+  }
+  return true;
+}
+
+std::string format_seconds(double t) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.4g", t);
+  return buffer;
+}
+
+// ---------------------------------------------------------------------------- self-test case
+
+void write_self_test_case(const fs::path& dir, double shear_m) {
+  using foam::Dictionary;
+  const double L = 0.1, t = 0.01;
+  auto write = [&](const std::string& path, const std::string& cls, const Dictionary& d) {
+    const auto slash = path.find('/');
+    cases::write_file_atomically(dir / path, foam::format_file({cls, path.substr(0, slash), path.substr(slash + 1)}, d));
+  };
+  Dictionary bm;
+  std::vector<foam::Value> v;
+  for (double z : {-0.5 * t, 0.5 * t}) {
+    v.push_back(foam::vector(0, 0, z));
+    v.push_back(foam::vector(L, 0, z));
+    v.push_back(foam::vector(L + shear_m, L, z));
+    v.push_back(foam::vector(shear_m, L, z));
+  }
+  bm.set("scale", 1);
+  bm.set("vertices", foam::list(v));
+  bm.set("blocks", foam::list({foam::sequence({foam::word("hex"), foam::list({0, 1, 2, 3, 4, 5, 6, 7}),
+                                               foam::list({16, 16, 1}), foam::word("simpleGrading"),
+                                               foam::list({1, 1, 1})})}));
+  auto patch = [](const std::string& type, std::vector<foam::Value> faces) {
+    Dictionary p;
+    p.set("type", foam::word(type));
+    p.set("faces", foam::list(std::move(faces)));
+    return p;
+  };
+  bm.set("boundary",
+         foam::list({foam::named_dict("walls", patch("wall", {foam::list({0, 4, 7, 3}), foam::list({2, 6, 5, 1}),
+                                                               foam::list({1, 5, 4, 0})})),
+                     foam::named_dict("atmosphere", patch("patch", {foam::list({3, 7, 6, 2})})),
+                     foam::named_dict("frontAndBack", patch("empty", {foam::list({0, 3, 2, 1}),
+                                                                      foam::list({4, 5, 6, 7})}))}));
+  write("system/blockMeshDict", "dictionary", bm);
+
+  Dictionary cd;
+  cd.set("application", foam::word("interFoam"));
+  cd.set("startFrom", foam::word("startTime"));
+  cd.set("startTime", 0);
+  cd.set("stopAt", foam::word("endTime"));
+  cd.set("endTime", 0.1);
+  cd.set("deltaT", 0.001);
+  cd.set("writeControl", foam::word("timeStep"));
+  cd.set("writeInterval", 100000);
+  cd.set("runTimeModifiable", foam::word("no"));
+  cd.set("adjustTimeStep", foam::word("no"));
+  cd.set("maxCo", 1);
+  cd.set("maxAlphaCo", 1);
+  write("system/controlDict", "dictionary", cd);
+
+  Dictionary sf;
+  sf.set("defaultFieldValues", foam::list({foam::word("volScalarFieldValue alpha.water 0")}));
+  Dictionary box;
+  box.set("box", foam::sequence({foam::vector(-1, -1, -1), foam::vector(1, 0.5 * L, 1)}));
+  box.set("fieldValues", foam::list({foam::word("volScalarFieldValue alpha.water 1")}));
+  sf.set("regions", foam::list({foam::named_dict("boxToCell", box)}));
+  write("system/setFieldsDict", "dictionary", sf);
+
+  // Schemes and solvers as in the generated cases.
+  Dictionary fs_d;
+  fs_d.subdict("ddtSchemes").set("default", foam::word("Euler"));
+  fs_d.subdict("gradSchemes").set("default", foam::word("Gauss linear"));
+  Dictionary& div = fs_d.subdict("divSchemes");
+  div.set("default", foam::word("none"));
+  div.set("div(rhoPhi,U)", foam::word("Gauss linearUpwind grad(U)"));
+  div.set("div(phi,alpha)", foam::word("Gauss vanLeer"));
+  div.set("div(phirb,alpha)", foam::word("Gauss linear"));
+  div.set("div(((rho*nuEff)*dev2(T(grad(U)))))", foam::word("Gauss linear"));
+  fs_d.subdict("laplacianSchemes").set("default", foam::word("Gauss linear corrected"));
+  fs_d.subdict("interpolationSchemes").set("default", foam::word("linear"));
+  fs_d.subdict("snGradSchemes").set("default", foam::word("corrected"));
+  write("system/fvSchemes", "dictionary", fs_d);
+
+  Dictionary sol;
+  Dictionary& solvers = sol.subdict("solvers");
+  Dictionary alpha;
+  alpha.set("nAlphaCorr", 2);
+  alpha.set("nAlphaSubCycles", 1);
+  alpha.set("cAlpha", 1);
+  alpha.set("MULESCorr", foam::word("yes"));
+  alpha.set("nLimiterIter", 5);
+  alpha.set("solver", foam::word("smoothSolver"));
+  alpha.set("smoother", foam::word("symGaussSeidel"));
+  alpha.set("tolerance", 1e-8);
+  alpha.set("relTol", 0);
+  solvers.set("\"alpha.water.*\"", alpha);
+  Dictionary pcg;
+  pcg.set("solver", foam::word("PCG"));
+  pcg.set("preconditioner", foam::word("DIC"));
+  pcg.set("tolerance", 1e-8);
+  pcg.set("relTol", 0);
+  solvers.set("\"(pcorr|p_rgh).*\"", pcg);
+  Dictionary u;
+  u.set("solver", foam::word("smoothSolver"));
+  u.set("smoother", foam::word("symGaussSeidel"));
+  u.set("tolerance", 1e-8);
+  u.set("relTol", 0);
+  solvers.set("\"U.*\"", u);
+  Dictionary& pimple = sol.subdict("PIMPLE");
+  pimple.set("momentumPredictor", foam::word("no"));
+  pimple.set("nOuterCorrectors", 1);
+  pimple.set("nCorrectors", 3);
+  pimple.set("nNonOrthogonalCorrectors", 1);
+  write("system/fvSolution", "dictionary", sol);
+
+  Dictionary g;
+  g.set("dimensions", foam::dimensions({0, 1, -2, 0, 0, 0, 0}));
+  g.set("value", foam::vector(0, -9.81, 0));
+  write("constant/g", "uniformDimensionedVectorField", g);
+  Dictionary tp;
+  tp.set("phases", foam::list({foam::word("water"), foam::word("air")}));
+  Dictionary water, air;
+  water.set("transportModel", foam::word("Newtonian"));
+  water.set("nu", 1e-6);
+  water.set("rho", 1000);
+  air.set("transportModel", foam::word("Newtonian"));
+  air.set("nu", 1.48e-5);
+  air.set("rho", 1);
+  tp.set("water", water);
+  tp.set("air", air);
+  tp.set("sigma", 0.07);
+  write("constant/transportProperties", "dictionary", tp);
+  Dictionary tu;
+  tu.set("simulationType", foam::word("laminar"));
+  write("constant/turbulenceProperties", "dictionary", tu);
+
+  auto field = [&](const std::string& name, const std::string& cls, const std::array<int, 7>& dims,
+                   const foam::Value& internal, const Dictionary& walls, const Dictionary& atmosphere) {
+    Dictionary f;
+    f.set("dimensions", foam::dimensions(dims));
+    f.set("internalField", internal);
+    Dictionary& bf = f.subdict("boundaryField");
+    bf.set("walls", walls);
+    bf.set("atmosphere", atmosphere);
+    Dictionary empty;
+    empty.set("type", foam::word("empty"));
+    bf.set("frontAndBack", empty);
+    write("0/" + name, cls, f);
+  };
+  Dictionary no_slip, zero_grad, ffp, piov, io, tot;
+  no_slip.set("type", foam::word("noSlip"));
+  zero_grad.set("type", foam::word("zeroGradient"));
+  ffp.set("type", foam::word("fixedFluxPressure"));
+  piov.set("type", foam::word("pressureInletOutletVelocity"));
+  piov.set("value", foam::uniform(foam::vector(0, 0, 0)));
+  io.set("type", foam::word("inletOutlet"));
+  io.set("inletValue", foam::uniform(0));
+  io.set("value", foam::uniform(0));
+  tot.set("type", foam::word("totalPressure"));
+  tot.set("p0", foam::uniform(0));
+  field("U", "volVectorField", {0, 1, -1, 0, 0, 0, 0}, foam::uniform(foam::vector(0, 0, 0)), no_slip, piov);
+  field("alpha.water", "volScalarField", {0, 0, 0, 0, 0, 0, 0}, foam::uniform(0), zero_grad, io);
+  field("p_rgh", "volScalarField", {1, -1, -2, 0, 0, 0, 0}, foam::uniform(0), ffp, tot);
+}
+
+// Runs one self-test box; returns the largest Courant number (inf when the solver crashed).
+double run_self_test_box(const fs::path& dir, double shear_m) {
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  write_self_test_case(dir, shear_m);
+  for (const char* app : {"blockMesh", "setFields"}) {
+    const int rc = wait_for(spawn({app}, dir, dir / (std::string("log.") + app), false));
+    if (rc != 0) {
+      throw OpenFoamError(std::string("self-test: ") + app + " failed in " + dir.string() + ":\n" +
+                          tail_file(dir / (std::string("log.") + app)));
+    }
+  }
+  const int rc = wait_for(spawn({"interFoam"}, dir, dir / "log.interFoam", false));
+  SolverLog log(DivergenceLimits{1.0, 1e300, 0.0});
+  std::ifstream in(dir / "log.interFoam");
+  std::string line;
+  double worst = 0.0;
+  while (std::getline(in, line)) {
+    log.add_line(line);
+    if (line.rfind("Courant Number mean:", 0) == 0 && log.courant_max()) {
+      worst = std::isfinite(*log.courant_max()) ? std::max(worst, *log.courant_max())
+                                                : std::numeric_limits<double>::infinity();
+    }
+  }
+  if (rc != 0) return std::numeric_limits<double>::infinity();
+  return worst;
+}
+
+}  // namespace
+
+// ------------------------------------------------------------------------------------ public
+
+std::string SelfTestResult::summary() const {
+  auto co = [](double c) { return std::isfinite(c) ? format_seconds(c) : std::string("inf (crashed)"); };
+  return "still water for 100 steps: axis-aligned box max Courant " + co(axis_aligned_courant) +
+         (axis_aligned_ok ? " (ok)" : " (FAILED)") + "; box sheared by 2 degrees max Courant " +
+         co(sheared_courant) + (sheared_ok ? " (ok)" : " (FAILED)");
+}
+
+SelfTestResult self_test_non_orthogonal(const fs::path& work_dir) {
+  const fs::path root = work_dir / (".hydrojump-selftest-" + std::to_string(::getpid()));
+  SelfTestResult r;
+  const double healthy = 1e-2;  // a resting fluid stays far below this Courant number
+  try {
+    r.axis_aligned_courant = run_self_test_box(root / "aligned", 0.0);
+    r.sheared_courant = run_self_test_box(root / "sheared", 0.1 * std::tan(2.0 * M_PI / 180.0));
+  } catch (...) {
+    std::error_code ec;
+    fs::remove_all(root, ec);
+    throw;
+  }
+  std::error_code ec;
+  fs::remove_all(root, ec);
+  r.axis_aligned_ok = r.axis_aligned_courant < healthy;
+  r.sheared_ok = r.sheared_courant < healthy;
+  return r;
+}
+
+OpenFoamInstallation check_openfoam(bool need_mpi) {
+  OpenFoamInstallation inst;
+  const char* env = std::getenv("WM_PROJECT_DIR");
+  if (env && *env) {
+    inst.project_dir = env;
+  } else if (fs::is_directory(default_project_dir)) {
+    inst.project_dir = default_project_dir;
+    ::setenv("WM_PROJECT_DIR", default_project_dir, 1);
+  } else {
+    throw OpenFoamError(
+        "OpenFOAM not found: WM_PROJECT_DIR is not set and /usr/share/openfoam does not exist. Install "
+        "the Debian package `openfoam` (apt-get install openfoam) or set WM_PROJECT_DIR.");
+  }
+  if (!fs::is_directory(inst.project_dir / "etc")) {
+    throw OpenFoamError("OpenFOAM not usable: WM_PROJECT_DIR = " + inst.project_dir.string() +
+                        " has no etc/ directory (OpenFOAM's binaries need it)");
+  }
+  std::vector<std::string> apps = {"blockMesh", "topoSet",      "subsetMesh",     "checkMesh", "setFields",
+                                   "interFoam", "decomposePar", "reconstructPar", "foamDictionary"};
+  if (need_mpi) apps.push_back("mpirun");
+  for (const std::string& app : apps) {
+    if (!find_on_path(app)) {
+      throw OpenFoamError("OpenFOAM not found: `" + app + "` is not on PATH. Install the Debian packages " +
+                          (app == "mpirun" ? std::string("`openmpi-bin`") : std::string("`openfoam`")) +
+                          " (or add OpenFOAM's bin directory to PATH).");
+    }
+  }
+  // interFoam must start: its help text names the version.
+  char tmpl[] = "/tmp/hydrojump-foam-XXXXXX";
+  const int fd = ::mkstemp(tmpl);
+  if (fd >= 0) ::close(fd);
+  const fs::path log = tmpl;
+  const int rc = wait_for(spawn({"interFoam", "-help"}, fs::temp_directory_path(), log, false));
+  std::ifstream in(log);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::error_code ec;
+  fs::remove(log, ec);
+  if (rc != 0) {
+    throw OpenFoamError("OpenFOAM not usable: `interFoam -help` failed (exit code " + std::to_string(rc) +
+                        "):\n" + text.substr(0, 2000));
+  }
+  const auto pos = text.find("OpenFOAM-");
+  if (pos != std::string::npos) {
+    const auto open = text.find('(', pos), close = text.find(')', pos);
+    if (open != std::string::npos && close != std::string::npos && close > open) {
+      inst.version = text.substr(open + 1, close - open - 1);
+    }
+  }
+  return inst;
+}
+
+std::optional<double> latest_time(const fs::path& case_dir) {
+  const auto times = time_directories(case_dir);
+  if (times.empty()) return std::nullopt;
+  return times.back().first;
+}
+
+void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostream& out) {
+  const fs::path dir = fs::absolute(dir_in);
+  if (options.np < 1) throw OpenFoamError("--np must be >= 1");
+  const fs::path spec_file = dir / "case.toml";
+  if (!fs::exists(spec_file)) {
+    throw OpenFoamError(dir.string() + " is not a generated OpenFOAM case: " + spec_file.string() +
+                        " is missing (write it with `hydrojump generate SPEC --out DIR`)");
+  }
+  for (const char* f : {"system/controlDict", "system/blockMeshDict", "system/setFieldsDict", "0.orig/U"}) {
+    if (!fs::exists(dir / f)) {
+      throw OpenFoamError(dir.string() + " is not a complete OpenFOAM case: " + f +
+                          " is missing (regenerate it with `hydrojump generate`)");
+    }
+  }
+  const cases::Study study = cases::load_study(spec_file);
+  if (study.cases.size() != 1 || study.cases.front().resolutions.size() != 1) {
+    throw OpenFoamError(spec_file.string() + " must hold exactly one case with one resolution table "
+                        "(the resolved case written by `hydrojump generate`)");
+  }
+  const cases::Case& c = study.cases.front();
+  const std::string resolution = c.resolutions.begin()->first;
+  const VofCase vof = build_vof_case(study, c, resolution);
+
+  const OpenFoamInstallation inst = check_openfoam(options.np > 1);
+  out << "OpenFOAM " << (inst.version.empty() ? "?" : inst.version) << " (WM_PROJECT_DIR="
+      << inst.project_dir.string() << "), case \"" << c.id << "\", resolution \"" << resolution << "\", "
+      << vof.mesh.strategy << " mesh of " << vof.mesh.cell_count() << " cells, "
+      << (options.np > 1 ? std::to_string(options.np) + " MPI ranks" : std::string("serial")) << "\n";
+
+  if (vof.mesh.strategy == "body_fitted") {
+    out << "Self-test of interFoam on faces not aligned with the axes (body_fitted mesh)...\n" << std::flush;
+    const SelfTestResult st = self_test_non_orthogonal(dir);
+    if (!st.axis_aligned_ok) {
+      throw OpenFoamError("interFoam does not keep still water at rest even on an axis-aligned mesh: " +
+                          st.summary() + ". This OpenFOAM installation is not usable.");
+    }
+    if (!st.sheared_ok && options.force_body_fitted) {
+      out << "  WARNING: " << st.summary() << "; running the body_fitted mesh anyway (--force-body-fitted): "
+          << "expect divergence on this build\n";
+    } else if (!st.sheared_ok) {
+      throw OpenFoamError(
+          "vof.mesh_strategy = \"body_fitted\" refused: this OpenFOAM build has the known defect of "
+          "interFoam on faces not aligned with the coordinate axes (fvc::reconstruct returns wrong "
+          "vertical velocities and the run diverges within a few steps); self-test: " + st.summary() +
+          ". Use mesh_strategy = \"cartesian_cut\" (a staircase bed, every face axis-aligned), which runs "
+          "correctly on this build.");
+    }
+    if (st.sheared_ok) out << "  " << st.summary() << "\n";
+  }
+
+  // Processor directories from an earlier parallel run.
+  int existing_ranks = 0;
+  while (fs::is_directory(dir / ("processor" + std::to_string(existing_ranks)))) ++existing_ranks;
+  const bool parallel = options.np > 1;
+
+  // Where to start.
+  std::optional<double> start;
+  if (parallel && existing_ranks > 0) {
+    start = latest_time(dir / "processor0");
+  } else {
+    start = latest_time(dir);
+  }
+  const bool mesh_exists = fs::exists(dir / "constant/polyMesh/owner") || fs::exists(dir / "constant/polyMesh/owner.gz");
+  if (start && !options.resume) {
+    throw OpenFoamError(dir.string() + " already holds results up to t = " + format_seconds(*start) +
+                        " s: use --resume to continue from there, or delete the time directories to "
+                        "start again");
+  }
+  if (options.resume && start) {
+    if (existing_ranks > 0 && existing_ranks != options.np && options.np > 1) {
+      throw OpenFoamError(dir.string() + " was decomposed for " + std::to_string(existing_ranks) +
+                          " MPI ranks: resume with --np " + std::to_string(existing_ranks));
+    }
+    if (!parallel && existing_ranks > 0 && latest_time(dir / "processor0").value_or(0.0) > *start + 1e-12) {
+      throw OpenFoamError(dir.string() + " holds newer parallel results in processor*/: resume with --np " +
+                          std::to_string(existing_ranks));
+    }
+    // A time directory left half-written by a killed run is moved aside.
+    const fs::path time_root = (parallel && existing_ranks > 0) ? dir / "processor0" : dir;
+    auto times = time_directories(time_root);
+    while (!times.empty() && !time_directory_complete(times.back().second)) {
+      const fs::path aside = times.back().second.string() + ".incomplete";
+      out << "  time directory " << times.back().second.filename().string()
+          << " is incomplete (killed while writing): moved to " << aside.filename().string() << "\n";
+      if (parallel && existing_ranks > 0) {
+        for (int r = 0; r < existing_ranks; ++r) {
+          const fs::path p = dir / ("processor" + std::to_string(r)) / times.back().second.filename();
+          std::error_code ec;
+          fs::rename(p, p.string() + ".incomplete", ec);
+        }
+      } else {
+        fs::rename(times.back().second, aside);
+      }
+      times.pop_back();
+    }
+    start = times.empty() ? std::nullopt : std::optional<double>(times.back().first);
+  }
+
+  const auto wall_begin = std::chrono::steady_clock::now();
+  if (!start) {
+    // ---- mesh, check, initial fields
+    out << "Meshing (" << vof.mesh.strategy << ")\n";
+    std::map<std::string, int> used;
+    for (const FoamStep& step : vof.mesh_steps) {
+      std::vector<std::string> argv = {step.application};
+      argv.insert(argv.end(), step.arguments.begin(), step.arguments.end());
+      const int k = used[step.application]++;
+      run_step(dir, argv, "log." + step.application + (k > 0 ? "." + std::to_string(k + 1) : ""), out);
+    }
+    out << "Checking the mesh\n";
+    run_step(dir, {"checkMesh"}, "log.checkMesh", out);
+    {
+      std::ifstream in(dir / "log.checkMesh");
+      std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      if (text.find("Mesh OK.") == std::string::npos) {
+        std::string report;
+        std::istringstream lines(text);
+        std::string line;
+        while (std::getline(lines, line)) {
+          if (line.find("***") != std::string::npos || line.find("Failed") != std::string::npos) {
+            report += "    " + line + "\n";
+          }
+        }
+        throw OpenFoamError("checkMesh found a bad mesh in " + dir.string() + " (full report in log.checkMesh):\n" +
+                            report);
+      }
+    }
+    out << "Initial fields\n";
+    std::error_code ec;
+    fs::remove_all(dir / "0", ec);
+    fs::copy(dir / "0.orig", dir / "0", fs::copy_options::recursive);
+    run_step(dir, {"setFields"}, "log.setFields", out);
+  } else {
+    out << "Resuming from t = " << format_seconds(*start) << " s"
+        << (mesh_exists ? "" : " (no mesh found: run without --resume)") << "\n";
+    if (!mesh_exists) throw OpenFoamError("cannot resume " + dir.string() + ": constant/polyMesh is missing");
+  }
+
+  // ---- solver
+  std::vector<std::string> solver = {"interFoam"};
+  if (parallel) {
+    const bool decomposed_current = start && existing_ranks == options.np;
+    if (!decomposed_current) {
+      cases::write_file_atomically(
+          dir / "system/decomposeParDict",
+          foam::format_file({"dictionary", "system", "decomposeParDict"}, decompose_par_dict(options.np)));
+      std::vector<std::string> argv = {"decomposePar", "-force"};
+      if (start) argv.push_back("-latestTime");
+      run_step(dir, argv, "log.decomposePar", out);
+    }
+    solver = {"mpirun"};
+    if (::geteuid() == 0) solver.push_back("--allow-run-as-root");
+    if (static_cast<unsigned>(options.np) > std::thread::hardware_concurrency()) solver.push_back("--oversubscribe");
+    for (const std::string& a : {std::string("-np"), std::to_string(options.np), std::string("-x"),
+                                 std::string("WM_PROJECT_DIR"), std::string("interFoam"), std::string("-parallel")}) {
+      solver.push_back(a);
+    }
+  }
+  const fs::path log_file = dir / "log.interFoam";
+  std::uintmax_t offset = 0;
+  if (start) {
+    std::ofstream mark(log_file, std::ios::app);
+    mark << "\n// ---- resumed by hydrojump from t = " << format_seconds(*start) << " s ----\n";
+    mark.close();
+    std::error_code ec;
+    offset = fs::file_size(log_file, ec);
+    if (ec) offset = 0;
+  }
+  out << "Running " << command_text(solver) << " to t = " << format_seconds(vof.end_time_s)
+      << " s (log: log.interFoam)\n" << std::flush;
+  const pid_t pid = spawn(solver, dir, log_file, start.has_value());
+  SolverLog log(DivergenceLimits{c.vof.max_courant, 25.0, 1e-9});
+  const bool interactive = (&out == &std::cout) && ::isatty(STDOUT_FILENO);
+  const double t_begin = start.value_or(0.0);
+  const auto solver_begin = std::chrono::steady_clock::now();
+  auto last_report = solver_begin;
+  int status = 0;
+  bool finished = false;
+  auto read_new = [&]() {
+    std::ifstream in(log_file, std::ios::binary);
+    if (!in) return;
+    in.seekg(static_cast<std::streamoff>(offset));
+    std::string chunk((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    offset += chunk.size();
+    log.add_text(chunk);
+  };
+  auto progress = [&](bool final_line) {
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - solver_begin).count();
+    const double t = log.time_s().value_or(t_begin);
+    const double done = t - t_begin;
+    const double eta = done > 0 ? (vof.end_time_s - t) * wall / done : std::nan("");
+    char buffer[256];
+    std::snprintf(buffer, sizeof buffer, "  t = %.4g / %.4g s (%.1f %%), dt = %.3g s, Co max %.3g, wall %s, ETA %s",
+                  t, vof.end_time_s, 100.0 * t / vof.end_time_s, log.time_step_s().value_or(0.0),
+                  log.courant_max().value_or(0.0), format_duration(wall).c_str(),
+                  format_duration(eta).c_str());
+    if (interactive) {
+      out << "\r" << buffer << "    " << (final_line ? "\n" : "") << std::flush;
+    } else {
+      out << buffer << "\n" << std::flush;
+    }
+  };
+  StopRequestGuard stop_guard;
+  bool stop_sent = false;
+  std::chrono::steady_clock::time_point stop_time;
+  while (!finished) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    const pid_t r = ::waitpid(pid, &status, WNOHANG);
+    if (r == pid) finished = true;
+    if (stop_requested && !finished && !stop_sent) {
+      out << (interactive ? "\n" : "") << "Stop requested: interFoam writes the current time and stops...\n"
+          << std::flush;
+      ::kill(pid, write_and_stop_signal);
+      stop_sent = true;
+      stop_time = std::chrono::steady_clock::now();
+    }
+    if (stop_sent && !finished &&
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - stop_time).count() > 120.0) {
+      stop_child(pid);
+      finished = true;
+      status = -1;
+    }
+    read_new();
+    if (log.failed() && !finished) {
+      stop_child(pid);
+      read_new();
+      finished = true;
+      status = -1;
+    }
+    const auto now = std::chrono::steady_clock::now();
+    const double since = std::chrono::duration<double>(now - last_report).count();
+    if (!finished && (interactive ? since >= 1.0 : since >= options.progress_interval_s)) {
+      progress(false);
+      last_report = now;
+    }
+  }
+  progress(true);
+  const int rc = status == -1 ? -1 : exit_code(status);
+  if (stop_sent) {
+    const auto written = latest_time(parallel ? dir / "processor0" : dir);
+    throw OpenFoamError("interrupted: interFoam stopped at t = " + format_seconds(log.time_s().value_or(t_begin)) +
+                        " s; latest time directory " + (written ? format_seconds(*written) + " s" : std::string("none")) +
+                        ". Continue with `hydrojump vof " + dir.string() + " --resume" +
+                        (parallel ? " --np " + std::to_string(options.np) : std::string()) + "`.");
+  }
+  const auto last_written = latest_time(parallel ? dir / "processor0" : dir);
+  const std::string resume_hint =
+      last_written ? " The last time directory written is t = " + format_seconds(*last_written) +
+                         " s (inspect it; a run that diverged may have written non-physical fields just "
+                         "before stopping). To retry, lower maxCo/maxAlphaCo in system/controlDict, delete the "
+                         "bad time directories and run `hydrojump vof DIR --resume`."
+                   : std::string();
+  if (log.failed() || rc != 0) {
+    const std::string why = log.failed() ? log.failure() : "the solver " + describe_exit(rc);
+    throw OpenFoamError("interFoam stopped in " + dir.string() + ": " + why + "." + resume_hint +
+                        "\nLast lines of log.interFoam" + (log.failed() ? " up to the failure" : "") + ":\n" +
+                        (log.failed() ? log.failure_context() : log.tail()));
+  }
+  const double reached = log.time_s().value_or(t_begin);
+  if (reached < vof.end_time_s * (1.0 - 1e-6) - 1e-12) {
+    throw OpenFoamError("interFoam ended at t = " + format_seconds(reached) + " s before the end time " +
+                        format_seconds(vof.end_time_s) + " s." + resume_hint + "\nLast lines of log.interFoam:\n" +
+                        log.tail());
+  }
+  if (parallel) {
+    std::vector<std::string> argv = {"reconstructPar"};
+    if (start) argv.push_back("-newTimes");
+    run_step(dir, argv, "log.reconstructPar", out);
+  }
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_begin).count();
+  out << "Done: case \"" << c.id << "\" reached t = " << format_seconds(reached) << " s in "
+      << format_duration(wall) << " of wall time; fields in the time directories, section samples in "
+      << (dir / "postProcessing").string() << "\n";
+}
+
+}  // namespace hydrojump::reference

@@ -1,0 +1,67 @@
+// Running a generated OpenFOAM case: `hydrojump vof DIR [--np N] [--resume]`.
+//
+//   1. OpenFOAM present and usable (the binaries on PATH, WM_PROJECT_DIR set or /usr/share/openfoam);
+//   2. mesh_strategy "body_fitted" only after a self-test shows interFoam handles faces that are not
+//      aligned with the axes (the Debian v1912 build does not: see self_test_non_orthogonal);
+//   3. mesh steps (blockMesh [topoSet subsetMesh] [topoSet sections]), checkMesh (a failed check stops
+//      with its report), 0.orig -> 0, setFields;
+//   4. interFoam, serial or `--np N` (decomposePar, mpirun -np N ... -parallel, reconstructPar), with a
+//      progress line (simulated time, time step, Courant number, ETA) and divergence detection
+//      (Courant blow-up, time-step collapse, NaN, crash) that stops the solver and prints the last
+//      lines of the log;
+//   5. `--resume` continues from the latest complete time directory (an incomplete one, left by a
+//      killed run, is moved aside to <time>.incomplete).
+// Every step logs to DIR/log.<application>.
+#pragma once
+
+#include <filesystem>
+#include <iosfwd>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace hydrojump::reference {
+
+// A failed OpenFOAM step or run, with a message meant for the user (what failed, why, what to do).
+class OpenFoamError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct RunOptions {
+  int np = 1;                          // MPI ranks; 1 = serial
+  bool resume = false;                 // continue from the latest time directory
+  double progress_interval_s = 30.0;   // wall seconds between progress lines when not on a terminal
+  bool force_body_fitted = false;      // run a body_fitted mesh even if the self-test fails (experts)
+};
+
+// What the runner needs from the machine. Throws OpenFoamError naming what is missing.
+struct OpenFoamInstallation {
+  std::filesystem::path project_dir;   // WM_PROJECT_DIR
+  std::string version;                 // from interFoam's banner, e.g. "1912"
+};
+OpenFoamInstallation check_openfoam(bool need_mpi);
+
+// Result of the non-orthogonal-face self-test: still water (16 x 16 cells, half full) run for 100
+// fixed steps of 1 ms in an axis-aligned box and in the same box sheared by 2 degrees. A healthy
+// interFoam keeps the flow at rest in both (Courant number ~1e-5); the defective build blows up in
+// the sheared box.
+struct SelfTestResult {
+  double axis_aligned_courant = 0.0;   // largest Courant number seen (inf if the run crashed)
+  double sheared_courant = 0.0;
+  bool axis_aligned_ok = false;
+  bool sheared_ok = false;
+  std::string summary() const;
+};
+// Runs the self-test in a fresh directory under `work_dir` (removed afterwards).
+SelfTestResult self_test_non_orthogonal(const std::filesystem::path& work_dir);
+
+// The latest time directory of `case_dir` (> 0), or nothing.
+std::optional<double> latest_time(const std::filesystem::path& case_dir);
+
+// Meshes and runs the case in `dir` (written by `hydrojump generate`, holding case.toml).
+// Throws OpenFoamError (or cases::SpecError for a bad case.toml).
+void run_vof_case(const std::filesystem::path& dir, const RunOptions& options, std::ostream& out);
+
+}  // namespace hydrojump::reference

@@ -1,0 +1,105 @@
+#include "sph/bench.hpp"
+
+#include <chrono>
+#include <ctime>
+#include <sstream>
+
+#include <omp.h>
+#include <sys/resource.h>
+
+#include "cases/geometry.hpp"
+#include "cases/spec_reader.hpp"
+#include "sph/particle_generator.hpp"
+#include "sph/settings.hpp"
+#include "sph/solver.hpp"
+
+namespace hydrojump::sph {
+
+namespace {
+
+// The benchmark case, as a study file (parsed and validated like any other spec).
+constexpr const char* kBenchmarkStudy = R"(
+[study]
+name = "benchmark"
+description = "hydrojump bench: dam break, DualSPHysics-comparable settings"
+
+[fluid]
+density_kg_m3 = 1000.0
+kinematic_viscosity_m2_s = 1.0e-6
+gravity_m_s2 = 9.81
+
+[sph]
+kernel = "wendland_c2"
+viscosity = "artificial"
+artificial_viscosity_alpha = 0.02
+boundary = "dbc"
+density_diffusion = "fourtakas"
+density_diffusion_coefficient = 0.1
+sound_speed_coefficient = 20.0
+cfl_number = 0.2
+coef_h = 1.0
+time_integrator = "verlet"
+
+[resolution.bench]
+particle_spacing_m = 0.01
+vof_cell_size_bed_m = 0.01
+vof_cell_size_bulk_m = 0.01
+
+[[case]]
+id = "dam_break_bench"
+kind = "dam_break"
+description = "Water column 1 m x 2 m in a tank 4 m long"
+[case.run]
+end_time_s = 0.3
+output_interval_s = 0.1
+[case.column]
+width_m = 1.0
+height_m = 2.0
+[case.tank]
+length_m = 4.0
+height_m = 3.0
+[case.gate]
+type = "instant"
+)";
+
+}  // namespace
+
+BenchmarkResult run_benchmark(const BenchmarkOptions& options) {
+  if (options.threads > 0) omp_set_num_threads(options.threads);
+  const cases::Study study = cases::parse_study(kBenchmarkStudy, "<hydrojump bench>", ".");
+  const cases::Case& c = study.cases.front();
+  const cases::CaseGeometry geometry = cases::make_geometry(c, study.fluid);
+  const SolverSettings settings = make_settings(c, study.fluid, geometry, options.particle_spacing_m);
+  Solver solver(settings, generate_particles(geometry, settings, c.sph.boundary_layers));
+
+  BenchmarkResult r;
+  r.particles = solver.particles().size();
+  r.fluid_particles = solver.particles().fluid_count();
+  r.threads = omp_get_max_threads();
+  timespec cpu0{}, cpu1{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &cpu0);
+  const auto t0 = std::chrono::steady_clock::now();
+  while (solver.time() < options.end_time_s && (options.max_steps < 0 || r.steps < options.max_steps)) {
+    solver.step();
+    ++r.steps;
+  }
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &cpu1);
+  r.cpu_seconds = static_cast<double>(cpu1.tv_sec - cpu0.tv_sec) + 1e-9 * static_cast<double>(cpu1.tv_nsec - cpu0.tv_nsec);
+  r.simulated_time_s = solver.time();
+  r.particle_steps_per_second = static_cast<double>(r.particles) * static_cast<double>(r.steps) / r.seconds;
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  r.peak_memory_bytes = static_cast<std::int64_t>(usage.ru_maxrss) * 1024;
+  return r;
+}
+
+std::string to_json(const BenchmarkResult& r) {
+  std::ostringstream o;
+  o << "{\"particles\": " << r.particles << ", \"steps\": " << r.steps << ", \"threads\": " << r.threads
+    << ", \"particle_steps_per_second\": " << static_cast<std::int64_t>(r.particle_steps_per_second)
+    << ", \"peak_memory_bytes\": " << r.peak_memory_bytes << "}";
+  return o.str();
+}
+
+}  // namespace hydrojump::sph

@@ -1,0 +1,90 @@
+#include "sph/boundary_mdbc.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Dense>
+
+#include "sph/kernel.hpp"
+#include "sph/parallel.hpp"
+
+namespace hydrojump::sph {
+
+namespace {
+
+// Shepard sum sum_j V_j W_gj above which the ghost node counts as inside the fluid.
+constexpr double kFullSupport = 0.5;
+// Below this Shepard sum the ghost node lies mostly outside the fluid (e.g. the wall above the free
+// surface) and the boundary particle keeps rho0 (zero pressure).
+constexpr double kSomeSupport = 0.5;
+// The matrix is dimensionless (its length and inverse-length entries pair up) and close to
+// diag(1, -1, -1) inside the fluid; below this |det| it is treated as singular.
+constexpr double kMinDeterminant = 1e-3;
+
+template <class K>
+void mdbc_with(ParticleSet& ps, const CellList& cells, const SolverSettings& s, const K& kernel) {
+  const Eigen::Index n = ps.size();
+  const double support2 = s.support() * s.support();
+  const double rho0 = s.eos.rho0;
+  const double period = s.x_max - s.x_min;
+#pragma omp parallel for schedule(dynamic, 64) if (use_threads(n))
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (ps.is_fluid(i)) continue;
+    double gx = ps.x[i] + ps.ghost_dx[i];
+    const double gz = ps.z[i] + ps.ghost_dz[i];
+    if (s.periodic_x) gx = s.x_min + std::fmod(std::fmod(gx - s.x_min, period) + period, period);
+    Eigen::Matrix3d a = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d rhs = Eigen::Vector3d::Zero(), rhs_u = Eigen::Vector3d::Zero(), rhs_w = Eigen::Vector3d::Zero();
+    cells.for_each_neighbour_range(cells.cell_of_point(gx, gz), [&](int begin, int end, double shift) {
+      for (int j = begin; j < end; ++j) {
+        if (!ps.is_fluid(j)) continue;
+        const double rx = ps.x[j] + shift - gx, rz = ps.z[j] - gz;  // r_j - r_g
+        const double r2 = rx * rx + rz * rz;
+        if (r2 >= support2) continue;
+        const double r = std::sqrt(r2);
+        const double wv = kernel.value(r);
+        const double f = kernel.gradient_factor(r);
+        const double dwdx = -f * rx, dwdz = -f * rz;  // grad_g W = F (r_g - r_j)
+        const double v = ps.mass[j] / ps.rho[j];
+        a(0, 0) += v * wv;        a(0, 1) += v * rx * wv;    a(0, 2) += v * rz * wv;
+        a(1, 0) += v * dwdx;      a(1, 1) += v * rx * dwdx;  a(1, 2) += v * rz * dwdx;
+        a(2, 0) += v * dwdz;      a(2, 1) += v * rx * dwdz;  a(2, 2) += v * rz * dwdz;
+        rhs(0) += ps.mass[j] * wv;
+        rhs(1) += ps.mass[j] * dwdx;
+        rhs(2) += ps.mass[j] * dwdz;
+        const Eigen::Vector3d basis(v * wv, v * dwdx, v * dwdz);
+        rhs_u += ps.u[j] * basis;
+        rhs_w += ps.w[j] * basis;
+      }
+    });
+    double rho_b = rho0, u_g = 0.0, w_g = 0.0;
+    if (a(0, 0) >= kSomeSupport) {  // the ghost node lies in the fluid (not mostly in air)
+      const double det = a.determinant();
+      // First order only where the ghost node is surrounded by fluid; near the free surface the
+      // one-sided gradient would extrapolate spurious pressure into the wall above the water.
+      if (a(0, 0) > kFullSupport && std::abs(det) > kMinDeterminant) {
+        const auto lu = a.partialPivLu();
+        const Eigen::Vector3d sol = lu.solve(rhs);
+        rho_b = sol(0) - (ps.ghost_dx[i] * sol(1) + ps.ghost_dz[i] * sol(2));
+        u_g = lu.solve(rhs_u)(0);
+        w_g = lu.solve(rhs_w)(0);
+      } else {
+        rho_b = rhs(0) / a(0, 0);
+        u_g = rhs_u(0) / a(0, 0);
+        w_g = rhs_w(0) / a(0, 0);
+      }
+    }
+    ps.rho[i] = std::max(rho_b, rho0);
+    ps.wall_u[i] = -u_g;
+    ps.wall_w[i] = -w_g;
+  }
+}
+
+}  // namespace
+
+void mdbc_boundary_density(ParticleSet& ps, const CellList& cells, const SolverSettings& s) {
+  if (s.kernel == KernelType::wendland_c2) mdbc_with(ps, cells, s, WendlandC2(s.h));
+  else mdbc_with(ps, cells, s, CubicSpline(s.h));
+}
+
+}  // namespace hydrojump::sph

@@ -1,0 +1,123 @@
+#include "sph/checkpoint.hpp"
+
+#include <cstring>
+#include <fstream>
+#include <istream>
+#include <ostream>
+#include <stdexcept>
+
+#include "cases/atomic_file.hpp"
+
+namespace hydrojump::sph {
+
+namespace {
+
+constexpr char kMagic[8] = {'H', 'J', 'S', 'P', 'H', 'C', 'K', '1'};
+
+template <class T>
+void put(std::ostream& out, const T& v) {
+  out.write(reinterpret_cast<const char*>(&v), sizeof(T));
+}
+void put_string(std::ostream& out, const std::string& s) {
+  put<std::uint64_t>(out, s.size());
+  out.write(s.data(), static_cast<std::streamsize>(s.size()));
+}
+template <class V>
+void put_array(std::ostream& out, const V& v) {
+  out.write(reinterpret_cast<const char*>(v.data()), static_cast<std::streamsize>(v.size() * sizeof(v[0])));
+}
+
+class Reader {
+ public:
+  Reader(std::istream& in, std::filesystem::path file) : in_(in), file_(std::move(file)) {}
+  template <class T>
+  T get() {
+    T v{};
+    read(&v, sizeof(T));
+    return v;
+  }
+  std::string get_string() {
+    const auto n = get<std::uint64_t>();
+    if (n > (1ull << 32)) fail();
+    std::string s(n, '\0');
+    read(s.data(), n);
+    return s;
+  }
+  void read(void* p, std::size_t n) {
+    in_.read(static_cast<char*>(p), static_cast<std::streamsize>(n));
+    if (!in_) fail();
+  }
+  [[noreturn]] void fail() const {
+    throw std::runtime_error("checkpoint '" + file_.string() + "' is truncated or corrupt");
+  }
+
+ private:
+  std::istream& in_;
+  std::filesystem::path file_;
+};
+
+}  // namespace
+
+void write_checkpoint(const Checkpoint& c, const std::filesystem::path& file) {
+  cases::write_file_atomically(file, [&](std::ostream& out) {
+    out.write(kMagic, sizeof kMagic);
+    put_string(out, c.fingerprint);
+    put(out, c.clock.time);
+    put(out, c.clock.last_dt);
+    put(out, c.clock.steps);
+    const std::int64_t n = c.particles.size();
+    put(out, n);
+    c.particles.for_each_real_array([&](const Vector& v) { put_array(out, v); });
+    put_array(out, c.particles.id);
+    put_array(out, c.particles.type);
+    put(out, c.next_output_time);
+    put<std::uint64_t>(out, c.series.size());
+    for (const auto& [t, f] : c.series) {
+      put(out, t);
+      put_string(out, f);
+    }
+    for (const auto* rows : {&c.log_rows, &c.gauge_rows}) {
+      put<std::uint64_t>(out, rows->size());
+      for (const auto& r : *rows) put_string(out, r);
+    }
+    out.write(kMagic, sizeof kMagic);  // trailer: a complete file ends with the magic again
+  });
+}
+
+Checkpoint read_checkpoint(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot open checkpoint '" + file.string() + "'");
+  Reader r(in, file);
+  char magic[8];
+  r.read(magic, sizeof magic);
+  if (std::memcmp(magic, kMagic, sizeof magic) != 0)
+    throw std::runtime_error("'" + file.string() + "' is not a hydrojump SPH checkpoint");
+  Checkpoint c;
+  c.fingerprint = r.get_string();
+  c.clock.time = r.get<double>();
+  c.clock.last_dt = r.get<double>();
+  c.clock.steps = r.get<std::int64_t>();
+  const auto n = r.get<std::int64_t>();
+  if (n < 0 || n > (1ll << 34)) r.fail();
+  c.particles.resize(n);
+  c.particles.for_each_real_array([&](Vector& v) { r.read(v.data(), static_cast<std::size_t>(n) * sizeof(double)); });
+  r.read(c.particles.id.data(), static_cast<std::size_t>(n) * sizeof(std::int64_t));
+  r.read(c.particles.type.data(), static_cast<std::size_t>(n));
+  c.next_output_time = r.get<double>();
+  const auto n_series = r.get<std::uint64_t>();
+  if (n_series > (1ull << 32)) r.fail();
+  for (std::uint64_t k = 0; k < n_series; ++k) {
+    const double t = r.get<double>();
+    c.series.emplace_back(t, r.get_string());
+  }
+  for (auto* rows : {&c.log_rows, &c.gauge_rows}) {
+    const auto m = r.get<std::uint64_t>();
+    if (m > (1ull << 32)) r.fail();
+    for (std::uint64_t k = 0; k < m; ++k) rows->push_back(r.get_string());
+  }
+  r.read(magic, sizeof magic);
+  if (std::memcmp(magic, kMagic, sizeof magic) != 0) r.fail();
+  return c;
+}
+
+}  // namespace hydrojump::sph

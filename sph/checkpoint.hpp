@@ -1,0 +1,36 @@
+// Binary checkpoints of a run: the solver clock, every particle array, and the state of the run's
+// outputs (output series, log and gauge rows), so `hydrojump sph DIR --resume` continues exactly
+// where the run stopped: a resumed run reproduces the uninterrupted one bit for bit on the same
+// number of threads. Written atomically (temporary file, then rename), so a run killed while writing
+// keeps the previous checkpoint.
+//
+// Format (little endian, host doubles): "HJSPHCK1", the case fingerprint, the clock, the particle
+// count and arrays, then the run state. Readers reject other magic strings and truncated files.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "sph/particles.hpp"
+#include "sph/solver.hpp"
+
+namespace hydrojump::sph {
+
+struct Checkpoint {
+  std::string fingerprint;                               // identifies the resolved case
+  SolverClock clock;
+  ParticleSet particles;
+  double next_output_time = 0.0;
+  std::vector<std::pair<double, std::string>> series;    // .pvd entries
+  std::vector<std::string> log_rows;                     // run_log.csv rows (without header)
+  std::vector<std::string> gauge_rows;                   // gauges.csv rows (without header)
+};
+
+void write_checkpoint(const Checkpoint& c, const std::filesystem::path& file);
+// Throws std::runtime_error naming the file if it is missing, truncated or not a checkpoint.
+Checkpoint read_checkpoint(const std::filesystem::path& file);
+
+}  // namespace hydrojump::sph

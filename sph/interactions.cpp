@@ -1,0 +1,219 @@
+#include "sph/interactions.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "sph/density_diffusion.hpp"
+#include "sph/kernel.hpp"
+#include "sph/parallel.hpp"
+#include "sph/viscosity.hpp"
+
+namespace hydrojump::sph {
+
+namespace {
+
+constexpr std::uint8_t kFluid = static_cast<std::uint8_t>(ParticleType::fluid);
+
+struct Range {
+  int begin, end;
+  double shift;
+};
+
+// The (at most 9) runs of neighbour candidates of cell c.
+int neighbour_ranges(const CellList& cells, int c, Range (&out)[9]) {
+  int n = 0;
+  cells.for_each_neighbour_range(c, [&](int b, int e, double shift) { out[n++] = Range{b, e, shift}; });
+  return n;
+}
+
+template <class K>
+InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, const SolverSettings& s, const K& kernel) {
+  const int n_cells = cells.cell_count();
+  const double* x = ps.x.data();
+  const double* z = ps.z.data();
+  const double* u = ps.u.data();
+  const double* w = ps.w.data();
+  const double* rho = ps.rho.data();
+  const double* p = ps.p.data();
+  const double* m = ps.mass.data();
+  const double* txx = ps.tau_xx.data();
+  const double* txz = ps.tau_xz.data();
+  const double* tzz = ps.tau_zz.data();
+  const double* wall_u = ps.wall_u.data();
+  const double* wall_w = ps.wall_w.data();
+  const std::uint8_t* type = ps.type.data();
+  double* ax = ps.ax.data();
+  double* az = ps.az.data();
+  double* drho = ps.drho.data();
+
+  const double support2 = s.support() * s.support();
+  const double eta2 = s.eta2();
+  const double h = s.h;
+  const double alpha_c0_h = s.artificial_alpha * s.eos.c0 * h;
+  const double delta_h_c0 = s.diffusion_delta * h * s.eos.c0;
+  const double rho0 = s.eos.rho0, b = s.eos.b;
+  const double gz = s.body_force_z;
+  const bool artificial = s.viscosity == Viscosity::artificial;
+  const bool sps = s.viscosity == Viscosity::laminar_sps;
+  const bool diffusion = s.density_diffusion != DensityDiffusion::none && delta_h_c0 > 0.0;
+  const bool fourtakas = s.density_diffusion == DensityDiffusion::fourtakas;
+  const bool dbc = s.boundary == BoundaryMethod::dbc;
+  const double nu0 = s.kinematic_viscosity;
+
+  // V_j = m_j / rho_j, once per particle instead of once per pair.
+  const Eigen::Index n = ps.size();
+  const bool threads = use_threads(n);
+  std::vector<double> volume_store(static_cast<std::size_t>(n));
+  double* volume = volume_store.data();
+#pragma omp parallel for schedule(static) if (threads)
+  for (Eigen::Index i = 0; i < n; ++i) volume[i] = m[i] / rho[i];
+
+  double max_acc2 = 0.0, max_visc = 0.0;
+#pragma omp parallel for schedule(dynamic, 16) reduction(max : max_acc2, max_visc) if (threads)
+  for (int c = 0; c < n_cells; ++c) {
+    const int first = cells.cell_start(c), last = cells.cell_start(c + 1);
+    if (first == last) continue;
+    Range ranges[9];
+    const int n_ranges = neighbour_ranges(cells, c, ranges);
+    for (int i = first; i < last; ++i) {
+      const double xi = x[i], zi = z[i], ui = u[i], wi = w[i], rhoi = rho[i];
+      if (type[i] != kFluid) {
+        // Boundary particle (DBC, Crespo et al. 2007): continuity with the fluid neighbours only;
+        // it does not move. With mDBC its density comes from the ghost node instead.
+        double d = 0.0;
+        if (dbc) {
+          for (int k = 0; k < n_ranges; ++k) {
+            const Range rg = ranges[k];
+            for (int j = rg.begin; j < rg.end; ++j) {
+              if (type[j] != kFluid) continue;
+              const double dx = xi - (x[j] + rg.shift), dz = zi - z[j];
+              const double r2 = dx * dx + dz * dz;
+              if (r2 >= support2) continue;
+              const double f = kernel.gradient_factor(std::sqrt(r2));
+              // m_j v_ij . grad_i W_ij with v_i = 0
+              d += m[j] * f * (-u[j] * dx - w[j] * dz);
+            }
+          }
+        }
+        drho[i] = d;
+        ax[i] = 0.0;
+        az[i] = 0.0;
+        continue;
+      }
+      const double pi = p[i], inv_rhoi = 1.0 / rhoi;
+      double d = 0.0, fx = 0.0, fz = 0.0, visc_rate = 0.0;
+      for (int k = 0; k < n_ranges; ++k) {
+        const Range rg = ranges[k];
+        for (int j = rg.begin; j < rg.end; ++j) {
+          const double dx = xi - (x[j] + rg.shift), dz = zi - z[j];
+          const double r2 = dx * dx + dz * dz;
+          if (r2 >= support2 || j == i) continue;
+          const double f = kernel.gradient_factor(std::sqrt(r2));
+          const double gx = f * dx, gzw = f * dz;  // grad_i W_ij
+          const double du = ui - u[j], dw = wi - w[j];
+          const double v_dot_r = du * dx + dw * dz;
+          const double mj = m[j], vj = volume[j];
+          // Continuity: m_j v_ij . grad_i W_ij
+          d += mj * (du * gx + dw * gzw);
+          const bool fluid_j = type[j] == kFluid;
+          if (diffusion && fluid_j) {
+            double jump = rho[j] - rhoi;
+            if (fourtakas) jump -= hydrostatic_density_difference(rho0, b, gz, -dz);
+            d += density_diffusion_pair(delta_h_c0, f, jump, vj);
+          }
+          // Pressure: -m_j (p_i + p_j)/(rho_i rho_j) grad_i W_ij
+          double scalar = -vj * (pi + p[j]) * inv_rhoi;
+          if (v_dot_r < 0.0) {
+            // Approaching pair: the viscous time-step condition, and the artificial viscosity.
+            const double dot_rr2 = v_dot_r / (r2 + eta2);
+            visc_rate = std::max(visc_rate, -h * dot_rr2);
+            if (artificial) scalar -= mj * artificial_viscosity_pair(alpha_c0_h, v_dot_r, r2, eta2, rhoi, rho[j]);
+          }
+          if (!artificial) {
+            // Boundary neighbours enter with their no-slip wall velocity (zero with DBC).
+            const double lam = mj * laminar_viscosity_pair(nu0, f, r2, eta2, rhoi, rho[j]);
+            fx += lam * (fluid_j ? du : ui - wall_u[j]);
+            fz += lam * (fluid_j ? dw : wi - wall_w[j]);
+            if (sps) {
+              // m_j (tau_i/rho_i^2 + tau_j/rho_j^2) . grad_i W (tau stored divided by rho)
+              const double inv_rhoj = vj / mj;
+              const double sxx = txx[i] * inv_rhoi + txx[j] * inv_rhoj;
+              const double sxz = txz[i] * inv_rhoi + txz[j] * inv_rhoj;
+              const double szz = tzz[i] * inv_rhoi + tzz[j] * inv_rhoj;
+              fx += mj * (sxx * gx + sxz * gzw);
+              fz += mj * (sxz * gx + szz * gzw);
+            }
+          }
+          fx += scalar * gx;
+          fz += scalar * gzw;
+        }
+      }
+      drho[i] = d;
+      ax[i] = fx + s.body_force_x;
+      az[i] = fz + s.body_force_z;
+      max_acc2 = std::max(max_acc2, ax[i] * ax[i] + az[i] * az[i]);
+      max_visc = std::max(max_visc, visc_rate);
+    }
+  }
+  return InteractionSummary{std::sqrt(max_acc2), max_visc};
+}
+
+template <class K>
+void sps_with(ParticleSet& ps, const CellList& cells, const SolverSettings& s, const K& kernel) {
+  const int n_cells = cells.cell_count();
+  const double support2 = s.support() * s.support();
+#pragma omp parallel for schedule(dynamic, 16) if (use_threads(ps.size()))
+  for (int c = 0; c < n_cells; ++c) {
+    const int first = cells.cell_start(c), last = cells.cell_start(c + 1);
+    if (first == last) continue;
+    Range ranges[9];
+    const int n_ranges = neighbour_ranges(cells, c, ranges);
+    for (int i = first; i < last; ++i) {
+      if (ps.type[i] != kFluid) {
+        ps.tau_xx[i] = ps.tau_xz[i] = ps.tau_zz[i] = 0.0;
+        continue;
+      }
+      // grad v_i = sum_j V_j (v_j - v_i) (x) grad_i W_ij
+      double dudx = 0.0, dudz = 0.0, dwdx = 0.0, dwdz = 0.0;
+      for (int k = 0; k < n_ranges; ++k) {
+        const Range rg = ranges[k];
+        for (int j = rg.begin; j < rg.end; ++j) {
+          const double dx = ps.x[i] - (ps.x[j] + rg.shift), dz = ps.z[i] - ps.z[j];
+          const double r2 = dx * dx + dz * dz;
+          if (r2 >= support2 || j == i) continue;
+          const double f = kernel.gradient_factor(std::sqrt(r2)) * ps.mass[j] / ps.rho[j];
+          const double du = ps.u[j] - ps.u[i], dw = ps.w[j] - ps.w[i];
+          dudx += du * f * dx;
+          dudz += du * f * dz;
+          dwdx += dw * f * dx;
+          dwdz += dw * f * dz;
+        }
+      }
+      const SpsStress t = sps_stress(dudx, dudz, dwdx, dwdz, s.smagorinsky, s.blin, s.dx);
+      ps.tau_xx[i] = t.xx;
+      ps.tau_xz[i] = t.xz;
+      ps.tau_zz[i] = t.zz;
+    }
+  }
+}
+
+}  // namespace
+
+void compute_pressure(ParticleSet& ps, const SolverSettings& s) {
+  const Eigen::Index n = ps.size();
+#pragma omp parallel for schedule(static) if (use_threads(n))
+  for (Eigen::Index i = 0; i < n; ++i) ps.p[i] = s.eos.pressure(ps.rho[i]);
+}
+
+void compute_sps_stress(ParticleSet& ps, const CellList& cells, const SolverSettings& s) {
+  if (s.kernel == KernelType::wendland_c2) sps_with(ps, cells, s, WendlandC2(s.h));
+  else sps_with(ps, cells, s, CubicSpline(s.h));
+}
+
+InteractionSummary compute_interactions(ParticleSet& ps, const CellList& cells, const SolverSettings& s) {
+  if (s.kernel == KernelType::wendland_c2) return interactions_with(ps, cells, s, WendlandC2(s.h));
+  return interactions_with(ps, cells, s, CubicSpline(s.h));
+}
+
+}  // namespace hydrojump::sph

@@ -1,0 +1,31 @@
+// Particle interactions of one evaluation of the right-hand side: pressure from the equation of
+// state, the continuity equation with density diffusion, the momentum equation with the chosen
+// viscosity, and the boundary treatment. Every quantity of particle i is gathered over its
+// neighbours j by particle i itself (no scatter), so results do not depend on the thread count.
+//
+// The particle arrays must be in the order of `cells` (ParticleSet::permute(cells.order())).
+#pragma once
+
+#include "sph/cell_list.hpp"
+#include "sph/particles.hpp"
+#include "sph/settings.hpp"
+
+namespace hydrojump::sph {
+
+// What the time-step conditions need from an interaction.
+struct InteractionSummary {
+  double max_acceleration = 0.0;   // max |a_i| over fluid particles (m/s^2)
+  double max_viscous_rate = 0.0;   // max_ij |h v_ij.r_ij / (r_ij^2 + eta^2)| (m/s)
+};
+
+// p_i = Tait(rho_i) for every particle.
+void compute_pressure(ParticleSet& ps, const SolverSettings& s);
+
+// tau/rho of every fluid particle from its SPH velocity gradient (laminar_sps only).
+void compute_sps_stress(ParticleSet& ps, const CellList& cells, const SolverSettings& s);
+
+// Fills ax, az, drho of every particle (boundary particles: drho only, DBC) and returns the
+// quantities of the time-step conditions.
+InteractionSummary compute_interactions(ParticleSet& ps, const CellList& cells, const SolverSettings& s);
+
+}  // namespace hydrojump::sph

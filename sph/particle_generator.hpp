@@ -1,0 +1,33 @@
+// Initial particles of a case from its CaseGeometry (the one geometry source, cases/geometry.hpp).
+//
+// Fluid: a square lattice of spacing dx, offset dx/2 from the domain box corner (x_min, z_min), filling
+// the initial water region  bed(x) < z < surface(x),  x_begin <= x <= x_end, at rest or with the
+// initial horizontal velocity q / depth, with hydrostatic density  rho = rho0 (1 + rho0 g d / B)^(1/7).
+// Boundary: the same lattice, every point on the solid side of a wall (the right of the polyline's
+// direction of travel) closer to it than `layers` dx, so the walls lie halfway between the outer
+// fluid row and the first boundary row. Each boundary particle gets its mDBC ghost offset 2 (q - r),
+// q the nearest wall point (corners mirror through the corner point).
+// Particle mass is the initial density times dx^2 (per metre of width), so each particle starts with
+// the volume of its lattice cell.
+//
+// Usage: `ParticleSet ps = generate_particles(geometry, settings, case_.sph.boundary_layers);`
+//   | argument | meaning                                                           |
+//   |----------|-------------------------------------------------------------------|
+//   | layers   | boundary layers; 0 = enough for the kernel support, ceil(2h/dx)   |
+#pragma once
+
+#include "sph/particles.hpp"
+#include "sph/settings.hpp"
+
+namespace hydrojump::cases {
+struct CaseGeometry;
+}
+
+namespace hydrojump::sph {
+
+ParticleSet generate_particles(const cases::CaseGeometry& geometry, const SolverSettings& settings, int layers = 0);
+
+// Number of boundary layers used for `layers` (0 = from the kernel support).
+int boundary_layer_count(const SolverSettings& settings, int layers);
+
+}  // namespace hydrojump::sph

@@ -1,0 +1,246 @@
+#include "sph/run.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <ostream>
+#include <sstream>
+
+#include "cases/atomic_file.hpp"
+#include "sph/vtk_output.hpp"
+
+namespace hydrojump::sph {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+std::string format_duration(double s) {
+  if (!std::isfinite(s) || s < 0) return "--:--:--";
+  const long t = static_cast<long>(s + 0.5);
+  std::ostringstream o;
+  o << std::setfill('0') << std::setw(2) << t / 3600 << ':' << std::setw(2) << (t / 60) % 60 << ':' << std::setw(2)
+    << t % 60;
+  return o.str();
+}
+
+std::string describe(const ParticleSet& ps, Eigen::Index i) {
+  std::ostringstream o;
+  o << (ps.is_fluid(i) ? "fluid" : "boundary") << " particle id " << ps.id[i] << " at (x, z) = (" << ps.x[i] << ", "
+    << ps.z[i] << ") m, velocity (" << ps.u[i] << ", " << ps.w[i] << ") m/s, density " << ps.rho[i] << " kg/m^3";
+  return o.str();
+}
+
+class RunState {
+ public:
+  RunState(Solver& solver, const RunOptions& o) : solver_(solver), o_(o), series_(o.dir, "particles") {}
+
+  void restore(const Checkpoint& c) {
+    next_output_ = c.next_output_time;
+    series_.restore(c.series);
+    log_rows_ = c.log_rows;
+    gauge_rows_ = c.gauge_rows;
+  }
+
+  void write_output() {
+    solver_.update_pressure();
+    const ParticleSet& ps = solver_.particles();
+    const double t = solver_.time();
+    series_.write(ps, t);
+    // Run log.
+    const auto& s = solver_.settings();
+    double mass = 0.0, kinetic = 0.0, potential = 0.0, max_var = 0.0;
+    for (Eigen::Index i = 0; i < ps.size(); ++i) {
+      if (!ps.is_fluid(i)) continue;
+      mass += ps.mass[i];
+      kinetic += 0.5 * ps.mass[i] * (ps.u[i] * ps.u[i] + ps.w[i] * ps.w[i]);
+      potential += -ps.mass[i] * s.body_force_z * ps.z[i];
+      max_var = std::max(max_var, std::abs(ps.rho[i] / s.eos.rho0 - 1.0));
+    }
+    std::ostringstream row;
+    row << std::setprecision(10) << t << ',' << solver_.clock().steps << ',' << solver_.clock().last_dt << ',' << mass
+        << ',' << kinetic << ',' << potential << ',' << max_var << ',' << ps.fluid_count();
+    log_rows_.push_back(row.str());
+    cases::write_file_atomically(
+        o_.dir / "run_log.csv",
+        join("t_s,step,dt_s,fluid_mass_kg_per_m,kinetic_energy_J_per_m,potential_energy_J_per_m,max_density_variation,"
+             "fluid_particles",
+             log_rows_));
+    // Gauges.
+    std::ostringstream g;
+    g << std::setprecision(10) << t;
+    for (const auto& gauge : o_.gauges) g << ',' << surface_elevation_at(ps, gauge.x_m, s.dx);
+    if (o_.record_front) {
+      double front = -std::numeric_limits<double>::infinity();
+      for (Eigen::Index i = 0; i < ps.size(); ++i)
+        if (ps.is_fluid(i) && ps.z[i] < o_.front_layer_m) front = std::max(front, ps.x[i] + 0.5 * s.dx);
+      g << ',' << front;
+    }
+    gauge_rows_.push_back(g.str());
+    std::string header = "t_s";
+    for (const auto& gauge : o_.gauges) header += ",surface_z_" + gauge.name + "_m";
+    if (o_.record_front) header += ",front_x_m";
+    cases::write_file_atomically(o_.dir / "gauges.csv", join(header, gauge_rows_));
+  }
+
+  void write_checkpoint_now() {
+    Checkpoint c;
+    c.fingerprint = o_.fingerprint;
+    c.clock = solver_.clock();
+    c.particles = solver_.particles();
+    c.next_output_time = next_output_;
+    c.series = series_.entries();
+    c.log_rows = log_rows_;
+    c.gauge_rows = gauge_rows_;
+    write_checkpoint(c, checkpoint_path(o_.dir));
+  }
+
+  double next_output_ = 0.0;
+
+ private:
+  static std::string join(const std::string& header, const std::vector<std::string>& rows) {
+    std::string out = header + "\n";
+    for (const auto& r : rows) out += r + "\n";
+    return out;
+  }
+  Solver& solver_;
+  const RunOptions& o_;
+  ParticleSeries series_;
+  std::vector<std::string> log_rows_, gauge_rows_;
+};
+
+}  // namespace
+
+std::filesystem::path checkpoint_path(const std::filesystem::path& dir) { return dir / "checkpoint.bin"; }
+
+double surface_elevation_at(const ParticleSet& ps, double x, double dx) {
+  double top = std::numeric_limits<double>::quiet_NaN();
+  for (Eigen::Index i = 0; i < ps.size(); ++i)
+    if (ps.is_fluid(i) && std::abs(ps.x[i] - x) < dx && !(ps.z[i] + 0.5 * dx <= top)) top = ps.z[i] + 0.5 * dx;
+  return top;
+}
+
+std::string diagnose(const Solver& solver) {
+  const ParticleSet& ps = solver.particles();
+  const SolverSettings& s = solver.settings();
+  const double t = solver.time();
+  std::ostringstream out;
+  int reported = 0;
+  auto report = [&](const std::string& what, Eigen::Index i) {
+    if (reported < 5) out << "  " << what << ": " << describe(ps, i) << "\n";
+    ++reported;
+  };
+  const double m = s.domain_margin;
+  for (Eigen::Index i = 0; i < ps.size(); ++i) {
+    if (!ps.is_fluid(i)) {
+      if (!std::isfinite(ps.rho[i])) report("non-finite density", i);
+      continue;
+    }
+    if (!std::isfinite(ps.x[i]) || !std::isfinite(ps.z[i]) || !std::isfinite(ps.u[i]) || !std::isfinite(ps.w[i]) ||
+        !std::isfinite(ps.rho[i])) {
+      report("non-finite state (NaN/Inf)", i);
+    } else if (ps.x[i] < s.x_min - m || ps.x[i] > s.x_max + m || ps.z[i] < s.z_min - m || ps.z[i] > s.z_max + m) {
+      report("left the domain", i);
+    } else if (std::abs(ps.rho[i] / s.eos.rho0 - 1.0) > s.max_density_variation) {
+      std::ostringstream w;
+      w << "|rho/rho0 - 1| = " << std::abs(ps.rho[i] / s.eos.rho0 - 1.0) << " above the limit "
+        << s.max_density_variation << " (sph.max_density_variation)";
+      report(w.str(), i);
+    }
+  }
+  const double dt = solver.clock().last_dt;
+  if (solver.clock().steps > 0 && !(dt >= 1e-3 * solver.acoustic_time_step())) {
+    out << "  time step collapsed: dt = " << dt << " s, below 1e-3 of the acoustic step CFL h/c0 = "
+        << solver.acoustic_time_step() << " s (a particle is being accelerated without bound)\n";
+    ++reported;
+  }
+  if (reported == 0) return {};
+  std::ostringstream head;
+  head << "the SPH run went unstable at t = " << t << " s (step " << solver.clock().steps << "); " << reported
+       << " problem(s)" << (reported > 5 ? ", the first 5:" : ":") << "\n"
+       << out.str();
+  head << "  domain box [" << s.x_min << ", " << s.x_max << "] x [" << s.z_min << ", " << s.z_max << "] m (margin " << m
+       << " m). Try a smaller sph.cfl_number, a finer resolution, or check the geometry.";
+  return head.str();
+}
+
+RunStatus run_case(Solver& solver, const RunOptions& o, const std::optional<Checkpoint>& resume) {
+  std::filesystem::create_directories(o.dir);
+  RunState state(solver, o);
+  if (resume) {
+    state.restore(*resume);
+  } else {
+    state.write_output();
+    state.next_output_ = o.output_interval_s;
+  }
+  const auto t_start = Clock::now();
+  auto last_checkpoint = t_start, last_progress = t_start;
+  const double t0 = solver.time();
+  std::int64_t steps_here = 0;
+  auto progress = [&](bool final_line) {
+    if (o.progress == nullptr) return;
+    const double wall = seconds_since(t_start);
+    const double rate = static_cast<double>(steps_here) / std::max(wall, 1e-9);
+    const double done = solver.time() - t0;
+    const double eta = done > 0 ? wall * (o.end_time_s - solver.time()) / done : -1.0;
+    std::ostringstream line;
+    line << std::fixed << std::setprecision(4) << "t = " << solver.time() << " / " << o.end_time_s << " s  step "
+         << solver.clock().steps << "  dt " << std::scientific << std::setprecision(2) << solver.clock().last_dt
+         << " s  " << std::fixed << std::setprecision(1) << rate << " steps/s  ETA " << format_duration(eta);
+    if (o.progress_is_terminal) *o.progress << '\r' << line.str() << "   " << (final_line ? "\n" : "") << std::flush;
+    else *o.progress << line.str() << "\n" << std::flush;
+  };
+
+  while (solver.time() < o.end_time_s - 1e-12) {
+    if (o.stop_requested != nullptr && o.stop_requested->load()) {
+      state.write_checkpoint_now();
+      progress(true);
+      return RunStatus::interrupted;
+    }
+    if (o.max_steps >= 0 && steps_here >= o.max_steps) {
+      state.write_checkpoint_now();
+      return RunStatus::step_limit;
+    }
+    solver.step();
+    ++steps_here;
+    const std::string problem = diagnose(solver);
+    if (!problem.empty()) {
+      std::string kept = std::filesystem::exists(checkpoint_path(o.dir))
+                             ? "the last good checkpoint " + checkpoint_path(o.dir).string() + " is kept"
+                             : "no checkpoint had been written yet";
+      const std::string message = problem + "\n  The failing state is in " + (o.dir / "failure_state.vtp").string() +
+                                  "; " + kept + ", with the outputs written before.";
+      try {
+        Solver copy = solver;
+        copy.update_pressure();
+        write_particles_vtp(copy.particles(), o.dir / "failure_state.vtp");
+        cases::write_file_atomically(o.dir / "failure.txt", message + "\n");
+      } catch (const std::exception&) {
+        // The diagnosis itself is what matters.
+      }
+      if (o.progress && o.progress_is_terminal) *o.progress << "\n";
+      throw SimulationFailure(message);
+    }
+    if (solver.time() >= state.next_output_ - 1e-12) {
+      state.write_output();
+      while (state.next_output_ <= solver.time() + 1e-12) state.next_output_ += o.output_interval_s;
+    }
+    if (seconds_since(last_checkpoint) >= o.checkpoint_interval_wall_s) {
+      state.write_checkpoint_now();
+      last_checkpoint = Clock::now();
+    }
+    const double since = seconds_since(last_progress);
+    if (since >= (o.progress_is_terminal ? 1.0 : 10.0)) {
+      progress(false);
+      last_progress = Clock::now();
+    }
+  }
+  state.write_checkpoint_now();
+  progress(true);
+  return RunStatus::finished;
+}
+
+}  // namespace hydrojump::sph

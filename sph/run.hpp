@@ -1,0 +1,67 @@
+// Running a case to its end time with outputs, checks, checkpoints and progress:
+//
+//   DIR/particles.pvd, DIR/particles_NNNN.vtp   particle snapshots every output interval (ParaView)
+//   DIR/run_log.csv    t, step, dt, fluid mass, kinetic and potential energy, max |rho/rho0 - 1|
+//   DIR/gauges.csv     free-surface elevation at the gauges (and the surge front for dam breaks)
+//   DIR/checkpoint.bin restart file, every checkpoint interval of wall-clock time and at exit
+//   DIR/failure.txt, DIR/failure_state.vtp   only when the run goes unstable
+//
+// The run stops with a SimulationFailure (a diagnosis naming particles, positions and the time) on
+// NaN/Inf, a particle leaving the domain, |rho/rho0 - 1| above sph.max_density_variation, or a time
+// step collapsing below 1e-3 of the acoustic step CFL h / c0; the last good checkpoint and outputs
+// are kept. A stop request (SIGINT/SIGTERM: the flag) writes a checkpoint and returns.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <filesystem>
+#include <iosfwd>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "sph/checkpoint.hpp"
+#include "sph/solver.hpp"
+
+namespace hydrojump::sph {
+
+class SimulationFailure : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct Gauge {
+  std::string name;
+  double x_m = 0.0;
+};
+
+struct RunOptions {
+  std::filesystem::path dir;
+  double end_time_s = 1.0;
+  double output_interval_s = 0.05;
+  double checkpoint_interval_wall_s = 300.0;
+  std::int64_t max_steps = -1;             // stop after this many steps of this invocation (-1: no limit)
+  std::vector<Gauge> gauges;               // free-surface gauges
+  bool record_front = false;               // dam break: surge front x in gauges.csv
+  double front_layer_m = 0.0;              // front: fluid within this height of the floor
+  std::string fingerprint;                 // of the resolved case, stored in checkpoints
+  std::ostream* progress = nullptr;        // progress lines (nullptr: silent)
+  bool progress_is_terminal = false;       // \r-updated line instead of periodic lines
+  const std::atomic<bool>* stop_requested = nullptr;
+};
+
+enum class RunStatus { finished, interrupted, step_limit };
+
+// Runs from `solver`'s state (fresh) or from `resume` (a checkpoint of the same case).
+RunStatus run_case(Solver& solver, const RunOptions& options, const std::optional<Checkpoint>& resume = std::nullopt);
+
+// The diagnosis of the current state, or an empty string if it is healthy.
+std::string diagnose(const Solver& solver);
+
+// Surface elevation at x: highest fluid particle within dx of x, plus dx/2 (NaN if none).
+double surface_elevation_at(const ParticleSet& ps, double x, double dx);
+
+std::filesystem::path checkpoint_path(const std::filesystem::path& dir);
+
+}  // namespace hydrojump::sph

@@ -1,0 +1,92 @@
+#include "sph/settings.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "cases/geometry.hpp"
+#include "cases/spec.hpp"
+#include "sph/kernel.hpp"
+
+namespace hydrojump::sph {
+
+KernelType parse_kernel(const std::string& name) {
+  if (name == "wendland_c2") return KernelType::wendland_c2;
+  if (name == "cubic_spline") return KernelType::cubic_spline;
+  throw std::invalid_argument("sph.kernel = \"" + name + "\" is not allowed: use \"wendland_c2\" or \"cubic_spline\"");
+}
+
+BoundaryMethod parse_boundary(const std::string& name) {
+  if (name == "dbc") return BoundaryMethod::dbc;
+  if (name == "mdbc") return BoundaryMethod::mdbc;
+  throw std::invalid_argument("sph.boundary = \"" + name + "\" is not allowed: use \"dbc\" or \"mdbc\"");
+}
+
+TimeIntegrator parse_time_integrator(const std::string& name) {
+  if (name == "symplectic") return TimeIntegrator::symplectic;
+  if (name == "verlet") return TimeIntegrator::verlet;
+  throw std::invalid_argument("sph.time_integrator = \"" + name + "\" is not allowed: use \"symplectic\" or \"verlet\"");
+}
+
+const char* to_string(KernelType k) { return k == KernelType::wendland_c2 ? "wendland_c2" : "cubic_spline"; }
+
+namespace {
+void require(bool ok, const std::string& key, double value, const std::string& range) {
+  if (ok) return;
+  std::ostringstream s;
+  s << "sph setting " << key << " = " << value << " is out of range: " << range;
+  throw std::invalid_argument(s.str());
+}
+}  // namespace
+
+void SolverSettings::validate() const {
+  require(dx > 0.0 && std::isfinite(dx), "particle_spacing_m", dx, "must be > 0");
+  require(h > 0.0, "h", h, "must be > 0 (coef_h > 0)");
+  require(eos.rho0 > 0.0, "fluid.density_kg_m3", eos.rho0, "must be > 0");
+  require(eos.c0 > 0.0 && std::isfinite(eos.c0), "sound speed c0 (m/s)", eos.c0, "must be > 0");
+  require(artificial_alpha >= 0.0 && artificial_alpha <= 1.0, "artificial_viscosity_alpha", artificial_alpha, "[0, 1]");
+  require(kinematic_viscosity >= 0.0, "fluid.kinematic_viscosity_m2_s", kinematic_viscosity, ">= 0");
+  require(diffusion_delta >= 0.0 && diffusion_delta <= 1.0, "density_diffusion_coefficient", diffusion_delta, "[0, 1]");
+  require(cfl > 0.0 && cfl <= 1.0, "cfl_number", cfl, "(0, 1]");
+  require(verlet_euler_interval >= 1, "verlet_euler_interval", verlet_euler_interval, ">= 1");
+  require(max_density_variation > 0.0, "max_density_variation", max_density_variation, "> 0");
+  require(x_max > x_min && z_max > z_min, "domain box", x_max - x_min, "must have positive size");
+}
+
+SolverSettings make_settings(const cases::Case& c, const cases::FluidProperties& fluid, const cases::CaseGeometry& g,
+                             double dx) {
+  const cases::SphSettings& s = c.sph;
+  SolverSettings out;
+  out.kernel = parse_kernel(s.kernel);
+  out.viscosity = parse_viscosity(s.viscosity);
+  out.boundary = parse_boundary(s.boundary);
+  out.density_diffusion = parse_density_diffusion(s.density_diffusion);
+  out.time_integrator = parse_time_integrator(s.time_integrator);
+  out.dx = dx;
+  out.h = smoothing_length(s.coef_h, dx);
+  const double g_abs = std::hypot(g.body_force_m_s2.x(), g.body_force_m_s2.y());
+  const double gravity = fluid.gravity_m_s2 > 0.0 ? fluid.gravity_m_s2 : g_abs;
+  const double c0 = s.sound_speed_m_s > 0.0 ? s.sound_speed_m_s
+                                            : s.sound_speed_coefficient * std::sqrt(gravity * g.max_water_height_m);
+  out.eos = TaitEquationOfState(fluid.density_kg_m3, c0);
+  out.artificial_alpha = s.artificial_viscosity_alpha;
+  out.kinematic_viscosity = fluid.kinematic_viscosity_m2_s;
+  out.smagorinsky = s.sps_smagorinsky_constant;
+  out.blin = s.sps_blin_constant;
+  out.diffusion_delta = s.density_diffusion_coefficient;
+  out.cfl = s.cfl_number;
+  out.verlet_euler_interval = s.verlet_euler_interval;
+  out.body_force_x = g.body_force_m_s2.x();
+  out.body_force_z = g.body_force_m_s2.y();
+  out.x_min = g.x_min_m;
+  out.x_max = g.x_max_m;
+  out.z_min = g.z_min_m;
+  out.z_max = g.z_max_m;
+  out.periodic_x = g.periodic_x;
+  out.max_density_variation = s.max_density_variation;
+  out.domain_margin = 4.0 * out.h;
+  out.validate();
+  return out;
+}
+
+}  // namespace hydrojump::sph

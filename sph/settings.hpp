@@ -1,0 +1,64 @@
+// Resolved numerical settings of one SPH run: the case's [sph] table, the fluid, the resolution's
+// particle spacing and the geometry's body force and domain, turned into the numbers the solver uses.
+// String options are checked here; unknown values are rejected with the key and the allowed values.
+#pragma once
+
+#include <string>
+
+#include "sph/density_diffusion.hpp"
+#include "sph/equation_of_state.hpp"
+#include "sph/viscosity.hpp"
+
+namespace hydrojump::cases {
+struct Case;
+struct FluidProperties;
+struct CaseGeometry;
+}  // namespace hydrojump::cases
+
+namespace hydrojump::sph {
+
+enum class BoundaryMethod { dbc, mdbc };
+enum class TimeIntegrator { symplectic, verlet };
+enum class KernelType { wendland_c2, cubic_spline };
+
+struct SolverSettings {
+  // Options (the strings of the spec, parsed).
+  KernelType kernel = KernelType::wendland_c2;
+  Viscosity viscosity = Viscosity::artificial;
+  BoundaryMethod boundary = BoundaryMethod::dbc;
+  DensityDiffusion density_diffusion = DensityDiffusion::fourtakas;
+  TimeIntegrator time_integrator = TimeIntegrator::symplectic;
+  // Numbers.
+  double dx = 0.01;                  // particle spacing (m)
+  double h = 0.0;                    // smoothing length (m)
+  TaitEquationOfState eos;           // rho0, c0, B
+  double artificial_alpha = 0.01;
+  double kinematic_viscosity = 1e-6; // nu0 (m^2/s)
+  double smagorinsky = 0.12;
+  double blin = 0.0066;
+  double diffusion_delta = 0.1;
+  double cfl = 0.2;
+  int verlet_euler_interval = 40;
+  double body_force_x = 0.0, body_force_z = -9.81;   // m/s^2
+  // Domain: fluid outside [x_min, x_max] x [z_min, z_max] (plus a margin) stops the run.
+  double x_min = 0.0, x_max = 1.0, z_min = 0.0, z_max = 1.0;
+  bool periodic_x = false;           // period x_max - x_min
+  double max_density_variation = 0.05;
+  double domain_margin = 0.0;        // tolerated excursion beyond the box (m)
+
+  double support() const { return 2.0 * h; }
+  double eta2() const { return 0.01 * h * h; }
+  // Throws std::invalid_argument naming the offending setting.
+  void validate() const;
+};
+
+KernelType parse_kernel(const std::string& name);
+BoundaryMethod parse_boundary(const std::string& name);
+TimeIntegrator parse_time_integrator(const std::string& name);
+const char* to_string(KernelType k);
+
+// Settings of case `c` at particle spacing `dx` with the geometry `g` (domain, body force, H_max).
+SolverSettings make_settings(const cases::Case& c, const cases::FluidProperties& fluid,
+                             const cases::CaseGeometry& g, double dx);
+
+}  // namespace hydrojump::sph

@@ -1,0 +1,56 @@
+#include "sph/solver.hpp"
+
+#include <utility>
+
+#include "sph/boundary_mdbc.hpp"
+#include "sph/time_integration.hpp"
+
+namespace hydrojump::sph {
+
+Solver::Solver(SolverSettings settings, ParticleSet particles, SolverClock clock)
+    : settings_(std::move(settings)), particles_(std::move(particles)), clock_(clock) {
+  settings_.validate();
+  update_pressure();
+}
+
+void Solver::sort_by_cell() {
+  const CellGrid grid = settings_.periodic_x
+                            ? CellGrid::periodic_x(settings_.x_min, settings_.x_max, particles_.z, settings_.support())
+                            : CellGrid::enclosing(particles_.x, particles_.z, settings_.support());
+  cells_.build(particles_.x, particles_.z, grid);
+  bool identity = true;
+  const auto& order = cells_.order();
+  for (std::size_t k = 0; k < order.size() && identity; ++k) identity = order[k] == static_cast<int>(k);
+  if (!identity) {
+    particles_.permute(order);
+    cells_.mark_sorted();
+  }
+}
+
+InteractionSummary Solver::interactions() {
+  sort_by_cell();
+  if (settings_.boundary == BoundaryMethod::mdbc) mdbc_boundary_density(particles_, cells_, settings_);
+  compute_pressure(particles_, settings_);
+  if (settings_.viscosity == Viscosity::laminar_sps) compute_sps_stress(particles_, cells_, settings_);
+  return compute_interactions(particles_, cells_, settings_);
+}
+
+void Solver::step() {
+  const InteractionSummary start = interactions();
+  const double dt = variable_time_step(start, settings_);
+  if (settings_.time_integrator == TimeIntegrator::symplectic) {
+    symplectic_predictor(particles_, settings_, dt);
+    interactions();
+    symplectic_corrector(particles_, settings_, dt);
+  } else {
+    const bool euler = clock_.steps % settings_.verlet_euler_interval == 0;
+    verlet_update(particles_, settings_, dt, euler);
+  }
+  clock_.time += dt;
+  clock_.last_dt = dt;
+  ++clock_.steps;
+}
+
+void Solver::update_pressure() { compute_pressure(particles_, settings_); }
+
+}  // namespace hydrojump::sph

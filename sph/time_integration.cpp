@@ -1,0 +1,111 @@
+#include "sph/time_integration.hpp"
+
+#include "sph/parallel.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace hydrojump::sph {
+
+double variable_time_step(const InteractionSummary& summary, const SolverSettings& s) {
+  const double dt_f = summary.max_acceleration > 0.0 ? std::sqrt(s.h / summary.max_acceleration)
+                                                     : std::numeric_limits<double>::infinity();
+  const double dt_cv = s.h / (s.eos.c0 + summary.max_viscous_rate);
+  double dt = s.cfl * std::min(dt_f, dt_cv);
+  if (s.viscosity == Viscosity::laminar_sps && s.kinematic_viscosity > 0.0)
+    dt = std::min(dt, 0.125 * s.h * s.h / s.kinematic_viscosity);
+  return dt;
+}
+
+void symplectic_predictor(ParticleSet& ps, const SolverSettings& s, double dt) {
+  const Eigen::Index n = ps.size();
+  const bool dbc = s.boundary == BoundaryMethod::dbc;
+  const double half = 0.5 * dt, rho0 = s.eos.rho0;
+#pragma omp parallel for schedule(static) if (use_threads(n))
+  for (Eigen::Index i = 0; i < n; ++i) {
+    ps.x_old[i] = ps.x[i];
+    ps.z_old[i] = ps.z[i];
+    ps.u_old[i] = ps.u[i];
+    ps.w_old[i] = ps.w[i];
+    ps.rho_old[i] = ps.rho[i];
+    if (ps.is_fluid(i)) {
+      ps.rho[i] += half * ps.drho[i];
+      ps.x[i] += half * ps.u[i];
+      ps.z[i] += half * ps.w[i];
+      ps.u[i] += half * ps.ax[i];
+      ps.w[i] += half * ps.az[i];
+    } else if (dbc) {
+      ps.rho[i] = std::max(rho0, ps.rho[i] + half * ps.drho[i]);
+    }
+  }
+  wrap_periodic(ps, s);
+}
+
+void symplectic_corrector(ParticleSet& ps, const SolverSettings& s, double dt) {
+  const Eigen::Index n = ps.size();
+  const bool dbc = s.boundary == BoundaryMethod::dbc;
+  const double rho0 = s.eos.rho0;
+#pragma omp parallel for schedule(static) if (use_threads(n))
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const bool fluid = ps.is_fluid(i);
+    if (!fluid && !dbc) continue;
+    const double eps = -(ps.drho[i] / ps.rho[i]) * dt;
+    double rho_new = ps.rho_old[i] * (2.0 - eps) / (2.0 + eps);
+    if (!fluid) {
+      ps.rho[i] = std::max(rho0, rho_new);
+      continue;
+    }
+    ps.rho[i] = rho_new;
+    const double u_new = ps.u_old[i] + dt * ps.ax[i];
+    const double w_new = ps.w_old[i] + dt * ps.az[i];
+    ps.x[i] = ps.x_old[i] + dt * 0.5 * (u_new + ps.u_old[i]);
+    ps.z[i] = ps.z_old[i] + dt * 0.5 * (w_new + ps.w_old[i]);
+    ps.u[i] = u_new;
+    ps.w[i] = w_new;
+  }
+  wrap_periodic(ps, s);
+}
+
+void verlet_update(ParticleSet& ps, const SolverSettings& s, double dt, bool euler_step) {
+  const Eigen::Index n = ps.size();
+  const bool dbc = s.boundary == BoundaryMethod::dbc;
+  const double rho0 = s.eos.rho0;
+  const double dt2 = 2.0 * dt, half_dt2 = 0.5 * dt * dt;
+#pragma omp parallel for schedule(static) if (use_threads(n))
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const bool fluid = ps.is_fluid(i);
+    if (!fluid && !dbc) continue;
+    const double rho_new = euler_step ? ps.rho[i] + dt * ps.drho[i] : ps.rho_old[i] + dt2 * ps.drho[i];
+    ps.rho_old[i] = ps.rho[i];
+    if (!fluid) {
+      ps.rho[i] = std::max(rho0, rho_new);
+      continue;
+    }
+    ps.rho[i] = rho_new;
+    const double u_new = euler_step ? ps.u[i] + dt * ps.ax[i] : ps.u_old[i] + dt2 * ps.ax[i];
+    const double w_new = euler_step ? ps.w[i] + dt * ps.az[i] : ps.w_old[i] + dt2 * ps.az[i];
+    ps.x[i] += dt * ps.u[i] + half_dt2 * ps.ax[i];
+    ps.z[i] += dt * ps.w[i] + half_dt2 * ps.az[i];
+    ps.u_old[i] = ps.u[i];
+    ps.w_old[i] = ps.w[i];
+    ps.u[i] = u_new;
+    ps.w[i] = w_new;
+  }
+  wrap_periodic(ps, s);
+}
+
+void wrap_periodic(ParticleSet& ps, const SolverSettings& s) {
+  if (!s.periodic_x) return;
+  const double period = s.x_max - s.x_min;
+  for (Eigen::Index i = 0; i < ps.size(); ++i) {
+    if (!ps.is_fluid(i) || !std::isfinite(ps.x[i])) continue;
+    if (ps.x[i] >= s.x_min && ps.x[i] < s.x_max) continue;
+    const double shift = period * std::floor((ps.x[i] - s.x_min) / period);
+    ps.x[i] -= shift;
+    ps.x_old[i] -= shift;
+    if (ps.x[i] >= s.x_max) ps.x[i] = s.x_min;  // round-off at the seam
+  }
+}
+
+}  // namespace hydrojump::sph

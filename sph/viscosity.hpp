@@ -1,0 +1,67 @@
+// Viscous terms of the momentum equation.
+//
+// Artificial viscosity (Monaghan 1992, Annu. Rev. Astron. Astrophys. 30:543-574):
+//   dv_i/dt += - sum_j m_j Pi_ij grad_i W_ij,
+//   Pi_ij = -alpha c0 mu_ij / rho_ij   if v_ij . r_ij < 0, else 0,
+//   mu_ij = h v_ij . r_ij / (r_ij^2 + eta^2),  rho_ij = (rho_i + rho_j)/2,  eta^2 = 0.01 h^2.
+//
+// Laminar viscosity (Lo & Shao 2002, Appl. Ocean Res. 24:275-286) plus sub-particle-scale (SPS)
+// eddy viscosity (Dalrymple & Rogers 2006, Coast. Eng. 53:141-147):
+//   dv_i/dt += sum_j m_j 4 nu0 (r_ij . grad_i W_ij) / ((rho_i + rho_j)(r_ij^2 + eta^2)) v_ij
+//            + sum_j m_j (tau_i/rho_i^2 + tau_j/rho_j^2) . grad_i W_ij
+//   tau_ab/rho = 2 nu_t S_ab - 2/3 nu_t S_kk delta_ab - 2/3 C_I Delta^2 |S|^2 delta_ab,
+//   nu_t = (C_s Delta)^2 |S|,  |S| = sqrt(2 S_ab S_ab),  Delta = dx.
+//
+// Usage:
+//   | sph.viscosity  | parameters                                                        |
+//   |----------------|-------------------------------------------------------------------|
+//   | "artificial"   | sph.artificial_viscosity_alpha (default 0.01)                     |
+//   | "laminar_sps"  | fluid.kinematic_viscosity_m2_s, sph.sps_smagorinsky_constant 0.12,|
+//   |                | sph.sps_blin_constant 0.0066                                      |
+#pragma once
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace hydrojump::sph {
+
+enum class Viscosity { artificial, laminar_sps };
+
+inline Viscosity parse_viscosity(const std::string& name) {
+  if (name == "artificial") return Viscosity::artificial;
+  if (name == "laminar_sps") return Viscosity::laminar_sps;
+  throw std::invalid_argument("sph.viscosity = \"" + name + "\" is not allowed: use \"artificial\" or \"laminar_sps\"");
+}
+
+// Pi_ij (m^2/s^2 per kg/m^3 scaled): returns the factor P with  dv_i/dt += -m_j P grad_i W_ij.
+//   P = -alpha c0 mu_ij / rho_ij  for approaching particles.
+inline double artificial_viscosity_pair(double alpha_c0_h, double v_dot_r, double r2, double eta2, double rho_i,
+                                        double rho_j) {
+  if (v_dot_r >= 0.0) return 0.0;
+  const double mu_over_h = v_dot_r / (r2 + eta2);
+  return -alpha_c0_h * mu_over_h * 2.0 / (rho_i + rho_j);
+}
+
+// Laminar factor L with  dv_i/dt += m_j L v_ij:
+//   L = 4 nu0 (r_ij . grad_i W_ij) / ((rho_i + rho_j)(r_ij^2 + eta^2)),  r.gradW = F r^2.
+inline double laminar_viscosity_pair(double nu0, double gradient_factor, double r2, double eta2, double rho_i,
+                                     double rho_j) {
+  return 4.0 * nu0 * gradient_factor * r2 / ((rho_i + rho_j) * (r2 + eta2));
+}
+
+struct SpsStress {
+  double xx = 0.0, xz = 0.0, zz = 0.0;  // tau/rho (m^2/s^2)
+};
+
+// tau/rho from the velocity gradient (du/dx, du/dz, dw/dx, dw/dz), Dalrymple & Rogers (2006).
+inline SpsStress sps_stress(double dudx, double dudz, double dwdx, double dwdz, double smagorinsky, double blin,
+                            double dx) {
+  const double sxx = dudx, szz = dwdz, sxz = 0.5 * (dudz + dwdx);
+  const double s2 = 2.0 * (sxx * sxx + szz * szz + 2.0 * sxz * sxz);  // |S|^2
+  const double nu_t = (smagorinsky * dx) * (smagorinsky * dx) * std::sqrt(s2);
+  const double iso = -(2.0 / 3.0) * nu_t * (sxx + szz) - (2.0 / 3.0) * blin * dx * dx * s2;
+  return {2.0 * nu_t * sxx + iso, 2.0 * nu_t * sxz, 2.0 * nu_t * szz + iso};
+}
+
+}  // namespace hydrojump::sph

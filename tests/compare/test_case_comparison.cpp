@@ -1,0 +1,276 @@
+// End to end: a run directory with a synthetic hydraulic jump written as an SPH .pvd series and as an
+// OpenFOAM case (by the test), compared with compare_case_directory; and the "missing result" paths.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "cases/geometry.hpp"
+#include "cases/hydraulics.hpp"
+#include "cases/spec_reader.hpp"
+#include "compare/case_comparison.hpp"
+#include "compare/plots.hpp"
+#include "compare/report.hpp"
+#include "compare/study_summary.hpp"
+#include "foam_case_writer.hpp"
+#include "temp_dir.hpp"
+#include "vtp_writer.hpp"
+
+using namespace hydrojump;
+using namespace hydrojump::compare;
+using namespace hydrojump::compare::testing;
+namespace fs = std::filesystem;
+
+namespace {
+
+// Synthetic mean jump of a stilling basin: depth y1 up to the toe x_t, a linear rise to y2 over
+// 4 y2, then y2; uniform discharge q = y1 U1; velocity u = q/h + A(x) cos(pi s/h) (s above the bed),
+// whose cosine part integrates to zero over the depth (q unchanged) and, with A = 1.5 q/h over
+// (x_t, x_t + Lr), reverses the near-surface flow there: a roller of length Lr.
+struct SyntheticJump {
+  double y1, u1, y2, x_t, rise, lr;
+  const cases::BedProfile* bed;
+  double surface(double x) const {
+    const double depth = x < x_t ? y1 : (x < x_t + rise ? y1 + (y2 - y1) * (x - x_t) / rise : y2);
+    return depth;  // above the floor z = 0 (the crest level)
+  }
+  double depth(double x) const { return surface(x) - bed->elevation(x); }
+  double u(double x, double z) const {
+    const double h = depth(x), q = y1 * u1;
+    const double a = (x > x_t && x < x_t + lr) ? 1.5 * q / h : 0.0;
+    return q / h + a * std::cos(M_PI * (z - bed->elevation(x)) / h);
+  }
+};
+
+struct RunFixture {
+  TempDir tmp{"run"};
+  cases::Study study;
+  const cases::Case* c = nullptr;
+  cases::CaseGeometry geo;
+  SyntheticJump jump{};
+
+  RunFixture() {
+    study = cases::load_embedded_default_study();
+    c = study.find_case("A");
+    REQUIRE(c != nullptr);
+    geo = cases::make_geometry(*c, study.fluid);
+    const auto* b = c->stilling_basin();
+    jump = {b->inflow_depth_m, b->inflow_velocity_m_s, b->tailwater_depth_m, geo.expected_toe_x_m,
+            4.0 * b->tailwater_depth_m, 2.0 * b->tailwater_depth_m, &geo.bed};
+  }
+  fs::path run() const { return tmp.path() / "A"; }
+
+  // Particles in columns dx apart: fluid from the bed to the surface (n = round(h/dx) layers, so the
+  // continuum surface is exactly the synthetic one; density rho0 dx/d keeps V = dx d), and 3 layers of
+  // boundary particles below the bed.
+  void write_sph(double dx, const std::vector<double>& times) {
+    const fs::path dir = run() / "sph";
+    fs::create_directories(dir / "output");
+    cases::write_resolved_case(study, *c, "quick", dir / "case.toml");
+    ParticleFrame f;
+    for (double x = geo.x_min_m + 0.5 * dx; x < geo.x_max_m; x += dx) {
+      const double zb = geo.bed.elevation(x), h = jump.depth(x);
+      const int n = std::max(1, static_cast<int>(std::lround(h / dx)));
+      const double d = h / n;
+      for (int k = -3; k < n; ++k) {
+        const double z = k < 0 ? zb + (k + 0.5) * dx : zb + (k + 0.5) * d;
+        f.x.push_back(x); f.z.push_back(z);
+        f.type.push_back(k < 0 ? 1 : 0);
+        f.u.push_back(k < 0 ? 0.0 : jump.u(x, z));
+        f.w.push_back(0.0);
+        f.density.push_back(k < 0 ? 1000.0 : 1000.0 * dx / d);
+        f.pressure.push_back(0.0);
+      }
+    }
+    std::vector<std::pair<double, std::string>> entries;
+    for (std::size_t i = 0; i < times.size(); ++i) {
+      const std::string name = "output/particles_" + std::to_string(i) + ".vtp";
+      write_vtp(dir / name, f);
+      entries.push_back({times[i], name});
+    }
+    write_pvd(dir / "particles.pvd", entries);
+  }
+
+  // A Cartesian OpenFOAM mesh from the trough level up, cells dx x dz; alpha = water fraction of the
+  // cell between bed and surface (by sub-sampling), U at the cell centre (0 in cells without water).
+  void write_vof(int nx, int nz, const std::vector<std::string>& times) {
+    const fs::path dir = run() / "vof";
+    FoamBox box;
+    box.x0 = geo.x_min_m;
+    box.z0 = geo.bed.lowest_elevation();
+    box.length = geo.x_max_m - geo.x_min_m;
+    box.height = 0.2 - box.z0;
+    box.nx = nx;
+    box.nz = nz;
+    write_foam_mesh(dir, box);
+    cases::write_resolved_case(study, *c, "quick", dir / "case.toml");
+    const double dx = box.length / nx, dz = box.height / nz;
+    auto alpha = [&](double x, double y) {
+      int wet = 0;
+      for (int i = 0; i < 8; ++i)
+        for (int k = 0; k < 8; ++k) {
+          const double xs = x + (i + 0.5 - 4) * dx / 8, ys = y + (k + 0.5 - 4) * dz / 8;
+          if (ys > geo.bed.elevation(xs) && ys < jump.surface(xs)) ++wet;
+        }
+      return wet / 64.0;
+    };
+    auto u = [&](double x, double y) { return alpha(x, y) > 0 ? jump.u(x, std::max(y, geo.bed.elevation(x))) : 0.0; };
+    auto zero = [](double, double) { return 0.0; };
+    for (const auto& t : times) write_foam_fields(dir, t, box, alpha, u, zero);
+  }
+};
+
+const MetricRow& row(const CaseComparison& c, const std::string& q) {
+  for (const auto& r : c.metrics)
+    if (r.quantity == q) return r;
+  FAIL("no metric " << q);
+  return c.metrics.front();
+}
+
+}  // namespace
+
+TEST_CASE("compare_case_directory on a synthetic jump gives both methods with metrics and report and plots",
+          "[compare][case]") {
+  RunFixture fx;
+  const double dx = 0.005;
+  fx.write_sph(dx, {5.0, 6.5, 8.0, 9.5});
+  fx.write_vof(352, 60, {"5", "7", "9"});
+  CompareOptions options;
+  options.station_spacing_m = 0.005;
+  std::ostringstream log;
+  const CaseComparison c = compare_case_directory(fx.run(), options, log);
+  INFO(log.str());
+  REQUIRE(c.sph.available);
+  REQUIRE(c.vof.available);
+  CHECK(c.sph.stats.times.size() == 3u);  // 6.5, 8, 9.5 in the window [6, 10]
+  CHECK(c.vof.stats.times.size() == 2u);
+
+  const auto& j = fx.jump;
+  const double q = j.y1 * j.u1, g = fx.study.fluid.gravity_m_s2;
+  const double e1 = cases::specific_energy(j.y1, q, g), e2 = cases::specific_energy(j.y2, q, g);
+  const double x_toe = j.x_t + 0.5 * j.y1 * j.rise / (j.y2 - j.y1);  // where the rise passes 1.5 y1
+  for (const MethodOutcome* m : {&c.sph, &c.vof}) {
+    INFO(m->method);
+    const JumpMetrics& r = m->metrics;
+    for (const auto& n : r.notes) INFO("note: " << n);
+    CHECK(r.sequent_depth_m == Approx(j.y2).margin(0.001));
+    CHECK(r.upstream_depth_m == Approx(j.y1).margin(0.001));
+    CHECK(r.toe_x_m == Approx(x_toe).margin(0.01));
+    CHECK(r.roller_end_x_m == Approx(j.x_t + j.lr).margin(0.015));
+    CHECK(r.jump_end_x_m == Approx(j.x_t + 0.95 * j.rise).margin(0.015));
+    // eta from the section energies E = z_b + h + alpha U^2/(2g): the downstream section of run A
+    // (x_toe + 8 y2) lies over the corrugations, where the local depth exceeds y2, so it differs from
+    // the crest-depth value by about half a point; the lab convention reproduces the formula.
+    CHECK(100 * r.eta == Approx(100 * (e1 - e2) / e1).margin(1.0));
+    CHECK(100 * r.eta_crest_depth == Approx(100 * (e1 - e2) / e1).margin(0.3));
+    // Discharge at every section equals q (the synthetic field conserves it).
+    for (const auto& s : m->stats.sections) {
+      INFO(s.spec.name);
+      CHECK(s.discharge.mean == Approx(q).epsilon(0.03));
+      // The fraction-integral check agrees with the 0.5-level surface.
+      CHECK(s.surface_from_fraction.mean == Approx(s.surface.mean).margin(0.002));
+    }
+  }
+  // The two renderings of the same jump agree closely.
+  CHECK(c.surface.n_stations > 100);
+  CHECK(c.surface.rms_m < 0.002);
+  CHECK(std::abs(row(c, "eta").sph - row(c, "eta").vof) < 1.0);
+  CHECK(row(c, "eta").experiment == Approx(48.43));
+
+  // Outputs.
+  for (const char* f : {"comparison.json", "report.md", "report.html", "csv/sections.csv", "csv/profiles.csv",
+                        "csv/longitudinal.csv", "csv/metrics.csv", "csv/eta.csv", "csv/section_timeseries.csv", "csv/snapshot_sph.csv",
+                        "csv/snapshot_vof.csv"})
+    CHECK(fs::exists(fx.run() / f));
+  std::ifstream md(fx.run() / "report.md");
+  std::stringstream mds;
+  mds << md.rdbuf();
+  CHECK_THAT(mds.str(), Catch::Contains("Energy dissipation rate"));
+  // The figures need /usr/bin/python3 with matplotlib (installed by the README's commands).
+  if (std::system("/usr/bin/python3 -c 'import matplotlib' > /dev/null 2>&1") == 0) {
+    // comparison.json is valid JSON (NaN written as null)
+    const std::string cmd = "/usr/bin/python3 -c \"import json,sys; json.load(open(sys.argv[1]))\" '" +
+                            (fx.run() / "comparison.json").string() + "'";
+    CHECK(std::system(cmd.c_str()) == 0);
+    for (const char* f : {"surface.png", "profiles.png", "velocity_decay.png", "eta.png", "snapshot_sph.png",
+                          "snapshot_vof.png"})
+      CHECK(fs::exists(fx.run() / "figures" / f));
+    // study summary across case directories: a finished case and a missing one
+    const StudySummary sum = summarize_study({{"A", fx.run()}, {"B", fx.tmp.path() / "B"}});
+    CHECK(sum.eta_files.size() == 1u);
+    CHECK_THAT(sum.markdown, Catch::Contains("| A | 39.") && Catch::Contains("| 48.43 | 47.08 |") &&
+                                 Catch::Contains("| B | missing"));
+    CHECK_THAT(sum.eta_csv, Catch::StartsWith("case,") && Catch::Contains("\nA,"));
+    // eta bars across runs (the study-level figure) from the case directories
+    CHECK(plot_study_eta_bars({fx.run(), fx.tmp.path() / "no-such-case"}, fx.tmp.path() / "eta_bars.png") == "");
+    CHECK(fs::exists(fx.tmp.path() / "eta_bars.png"));
+    std::ifstream html(fx.run() / "report.html");
+    std::stringstream hs;
+    hs << html.rdbuf();
+    CHECK_THAT(hs.str(), Catch::Contains("data:image/png;base64,"));
+  } else {
+    WARN("/usr/bin/python3 with matplotlib is not available: figures not checked");
+  }
+}
+
+TEST_CASE("A missing VOF result is reported as missing and is not a crash", "[compare][case]") {
+  RunFixture fx;
+  fx.write_sph(0.01, {7.0, 8.0});
+  CompareOptions options;
+  options.plots = false;
+  std::ostringstream log;
+  const CaseComparison c = compare_case_directory(fx.run(), options, log);
+  CHECK(c.sph.available);
+  CHECK_FALSE(c.vof.available);
+  CHECK_THAT(c.vof.status, Catch::StartsWith("missing"));
+  CHECK(std::isnan(c.surface.rms_m));
+  std::ifstream json(fx.run() / "comparison.json");
+  std::stringstream js;
+  js << json.rdbuf();
+  CHECK_THAT(js.str(), Catch::Contains("\"available\": false"));
+}
+
+TEST_CASE("SPH output outside the averaging window is reported as missing", "[compare][case]") {
+  RunFixture fx;
+  fx.write_sph(0.01, {1.0, 2.0});
+  CompareOptions options;
+  options.plots = false;
+  std::ostringstream log;
+  const CaseComparison c = compare_case_directory(fx.run(), options, log);
+  CHECK_FALSE(c.sph.available);
+  CHECK_THAT(c.sph.status, Catch::Contains("averaging window"));
+}
+
+TEST_CASE("A directory without case.toml gives a clear error", "[compare][case]") {
+  TempDir tmp("norun");
+  std::ostringstream log;
+  CHECK_THROWS_WITH(compare_case_directory(tmp.path(), {}, log), Catch::Contains("case.toml"));
+}
+
+TEST_CASE("base64 encoding", "[compare][report]") {
+  CHECK(base64_encode("") == "");
+  CHECK(base64_encode("f") == "Zg==");
+  CHECK(base64_encode("fo") == "Zm8=");
+  CHECK(base64_encode("foobar") == "Zm9vYmFy");
+}
+
+TEST_CASE("The plot scripts are found from the source tree", "[compare][report]") {
+  const fs::path dir = plot_script_dir();
+  CHECK(fs::exists(dir / "plot_case.py"));
+  CHECK(fs::exists(dir / "plot_eta_bars.py"));
+}
+
+TEST_CASE("An unreadable frame is skipped and reported and the other frames are used", "[compare][case]") {
+  RunFixture fx;
+  fx.write_sph(0.01, {7.0, 8.0, 9.0});
+  { std::ofstream broken(fx.run() / "sph" / "output" / "particles_1.vtp"); broken << "not a vtp file"; }
+  CompareOptions options;
+  options.plots = false;
+  std::ostringstream log;
+  const CaseComparison c = compare_case_directory(fx.run(), options, log);
+  REQUIRE(c.sph.available);
+  CHECK(c.sph.stats.times.size() == 2u);
+  CHECK_THAT(c.sph.status, Catch::Contains("1 unreadable frame(s) skipped") && Catch::Contains("particles_1.vtp"));
+}

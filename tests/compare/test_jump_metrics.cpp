@@ -1,0 +1,124 @@
+// Jump metrics on hand-built sections and a synthetic longitudinal profile with known answers.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "compare/jump_metrics.hpp"
+
+using namespace hydrojump::compare;
+
+namespace {
+constexpr double g = 9.81;
+
+// A column with a uniform velocity u over depth h on a bed at z_b.
+ColumnSample uniform_column(double x, double z_b, double h, double u) {
+  ColumnSample c;
+  c.x_m = x;
+  c.z_bed_m = z_b;
+  c.surface_z_m = z_b + h;
+  c.depth_m = h;
+  for (int k = 0; k < 21; ++k) {
+    c.z.push_back(z_b + h * k / 20.0);
+    c.u.push_back(u);
+    c.w.push_back(0.0);
+    c.pressure.push_back(0.0);
+  }
+  integrate_column(c, g);
+  return c;
+}
+
+ColumnStatistics as_statistics(const std::string& name, const std::string& role, const ColumnSample& c) {
+  ColumnSpec spec{name, role, c.x_m, c.z_bed_m, 21};
+  return column_statistics(spec, {c, c}, 21, true);
+}
+}  // namespace
+
+TEST_CASE("eta of a hand-built pair of sections matches (E1 - E2)/E1", "[compare][metrics]") {
+  // Run A of Ead & Rajaratnam: y1 = 25.4 mm, U1 = 2.0 m/s, y2 = 0.104 m, q = y1 U1.
+  const double y1 = 0.0254, u1 = 2.0, y2 = 0.104, q = y1 * u1;
+  MethodStatistics m;
+  m.sections.push_back(as_statistics("upstream", "upstream", uniform_column(0.1, 0.0, y1, u1)));
+  m.sections.push_back(as_statistics("downstream", "downstream", uniform_column(1.5, 0.0, y2, q / y2)));
+  const double e1 = y1 + q * q / (2 * g * y1 * y1);
+  const double e2 = y2 + q * q / (2 * g * y2 * y2);
+  CHECK(m.sections[0].energy_coefficient.mean == Approx(1.0).margin(1e-12));
+  CHECK(m.sections[0].discharge.mean == Approx(q).margin(1e-12));
+  JumpInputs in{y1, u1, 0.0, g, {}};
+  const JumpMetrics r = compute_jump_metrics(m, in);
+  CHECK(r.e1_m == Approx(e1).epsilon(1e-12));
+  CHECK(r.e2_m == Approx(e2).epsilon(1e-12));
+  CHECK(r.eta == Approx((e1 - e2) / e1).epsilon(1e-12));
+  CHECK(r.eta_alpha1 == Approx((e1 - e2) / e1).epsilon(1e-12));
+  CHECK(r.eta_crest_depth == Approx((e1 - e2) / e1).epsilon(1e-12));
+  CHECK(r.sequent_depth_m == Approx(y2).margin(1e-12));
+  // The kinetic-energy coefficient enters E: a linear profile with the same q has alpha > 1.
+  ColumnSample lin = uniform_column(0.1, 0.0, y1, u1);
+  for (std::size_t k = 0; k < lin.u.size(); ++k) lin.u[k] = u1 * (0.5 + lin.z[k] / y1);  // mean u1
+  integrate_column(lin, g);
+  const double alpha = (std::pow(1.5, 4) - std::pow(0.5, 4)) / 4.0;  // int_0^1 (0.5 + s)^3 ds
+  CHECK(lin.energy_coefficient == Approx(alpha).epsilon(1e-12));
+  CHECK(lin.specific_energy_m == Approx(y1 + alpha * u1 * u1 / (2 * g)).epsilon(1e-12));
+}
+
+TEST_CASE("Toe and jump and roller lengths of a synthetic mean surface", "[compare][metrics]") {
+  // Surface: y1 up to x_t, a linear rise to y2 over L, then y2. Reverse near-surface flow over
+  // (x_t, x_t + Lr). Stations every 2 mm.
+  const double y1 = 0.0254, u1 = 2.0, y2 = 0.104, x_t = 0.8, L = 0.4, Lr = 0.3, ds = 0.002;
+  MethodStatistics m;
+  m.sections.push_back(as_statistics("upstream", "upstream", uniform_column(0.3, 0.0, y1, u1)));
+  m.sections.push_back(as_statistics("downstream", "downstream", uniform_column(1.6, 0.0, y2, y1 * u1 / y2)));
+  for (int i = 0; i <= 1000; ++i) {
+    const double x = i * ds;
+    ColumnStatistics s;
+    s.spec = {"", "station", x, 0.0, 21};
+    const double zeta = x < x_t ? y1 : (x < x_t + L ? y1 + (y2 - y1) * (x - x_t) / L : y2);
+    s.surface.mean = zeta;
+    s.near_surface_velocity.mean = (x > x_t && x < x_t + Lr) ? -0.2 : 0.5;
+    s.max_velocity.mean = x < x_t ? u1 : std::max(0.6, u1 - (x - x_t) * 5.0);
+    m.stations.push_back(s);
+  }
+  // Three frames whose jump sits 2 cm upstream, at, and 2 cm downstream of the mean position.
+  for (double shift : {-0.02, 0.0, 0.02}) {
+    std::vector<double> frame;
+    for (const auto& st : m.stations) {
+      const double x = st.spec.x_m - shift;
+      frame.push_back(x < x_t ? y1 : (x < x_t + L ? y1 + (y2 - y1) * (x - x_t) / L : y2));
+    }
+    m.station_surface_series.push_back(frame);
+  }
+  JumpInputs in{y1, u1, 0.0, g, {}};
+  const JumpMetrics r = compute_jump_metrics(m, in);
+  CHECK(r.toe_frames_found == 3);
+  CHECK(r.toe_std_m == Approx(0.02).margin(ds));
+  // Toe: the rise passes 1.5 y1 at x_t + 0.5 y1 L/(y2 - y1) (the running mean of a ramp is the ramp).
+  const double x_toe = x_t + 0.5 * y1 * L / (y2 - y1);
+  CHECK(r.toe_x_m == Approx(x_toe).margin(ds));
+  CHECK(r.toe_mean_of_frames_x_m == Approx(x_toe).margin(ds));
+  // Settled: within 5 % of (y2 - y1) of y2 from x_t + 0.95 L on.
+  CHECK(r.jump_end_x_m == Approx(x_t + 0.95 * L).margin(ds));
+  CHECK(r.jump_length_m == Approx(x_t + 0.95 * L - x_toe).margin(2 * ds));
+  CHECK(r.roller_end_x_m == Approx(x_t + Lr).margin(ds));
+  CHECK(r.roller_length_m == Approx(x_t + Lr - x_toe).margin(2 * ds));
+  // u_max reaches 0.6 m/s at x_t + 0.28; within 10 % (0.66) from x_t + 0.268.
+  CHECK(r.velocity_settling_distance_m == Approx(x_t + (u1 - 0.66) / 5.0 - x_toe).margin(2 * ds));
+  CHECK(r.notes.empty());
+}
+
+TEST_CASE("Missing sections and no jump are reported as notes and are not crashes", "[compare][metrics]") {
+  MethodStatistics m;
+  JumpInputs in{0.0254, 2.0, 0.0, g, {}};
+  JumpMetrics r = compute_jump_metrics(m, in);
+  CHECK(std::isnan(r.eta));
+  CHECK(r.notes.size() >= 2);
+  for (int i = 0; i <= 100; ++i) {
+    ColumnStatistics s;
+    s.spec = {"", "station", i * 0.01, 0.0, 21};
+    s.surface.mean = 0.0254;  // supercritical all the way: no toe
+    m.stations.push_back(s);
+  }
+  r = compute_jump_metrics(m, in);
+  CHECK(std::isnan(r.toe_x_m));
+  bool found = false;
+  for (const auto& n : r.notes) found = found || n.find("no jump toe") != std::string::npos;
+  CHECK(found);
+}

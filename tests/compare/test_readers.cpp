@@ -1,0 +1,122 @@
+// Readers: .pvd/.vtp particle series and OpenFOAM cases written by the test (no OpenFOAM run needed).
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+
+#include "compare/readers.hpp"
+#include "foam_case_writer.hpp"
+#include "synthetic_fields.hpp"
+#include "temp_dir.hpp"
+#include "vtp_writer.hpp"
+
+using namespace hydrojump::compare;
+using namespace hydrojump::compare::testing;
+
+TEST_CASE("PVD and VTP series give the window frames and arrays and exact section values through files",
+          "[compare][readers][sph]") {
+  TempDir tmp("pvd");
+  const double dx = 0.01;
+  auto u = [](double x, double z) { return 1.2 + 0.5 * x + 3.0 * z; };
+  auto w = [](double x, double z) { return 0.1 - 0.2 * x + 0.4 * z; };
+  std::filesystem::create_directories(tmp.path() / "out");
+  std::vector<std::pair<double, std::string>> entries;
+  for (int i = 0; i < 3; ++i) {
+    const double depth = 0.15 + 0.02 * i;
+    const std::string name = "out/particles_" + std::to_string(i) + ".vtp";
+    // frames 0 and 2 as the SPH solver writes them, (x, 0, z); frame 1 in the x-y plane
+    write_vtp(tmp.path() / name, lattice_particles(0.6, depth, dx, 3, u, w), true, i == 1 ? 1 : 2);
+    entries.push_back({0.5 * (i + 1), name});
+  }
+  write_pvd(tmp.path() / "particles.pvd", entries);
+  CHECK(find_pvd(tmp.path()) == tmp.path() / "particles.pvd");
+
+  const auto all = read_pvd(tmp.path() / "particles.pvd");
+  REQUIRE(all.size() == 3);
+  CHECK(all[2].time_s == Approx(1.5));
+  const auto win = entries_in_window(all, 0.9, 2.0);
+  REQUIRE(win.size() == 2);
+  CHECK(win[0].time_s == Approx(1.0));
+
+  const ParticleFrame f1 = read_vtp_particles(win[0].file, win[0].time_s);  // the (x, z, 0) layout
+  CHECK(*std::max_element(f1.z.begin(), f1.z.end()) == Approx(0.17 - 0.005));
+  const ParticleFrame f = read_vtp_particles(win[1].file, win[1].time_s);
+  CHECK(f.time_s == Approx(1.5));
+  CHECK(f.x.size() == 60u * (19u + 3u));
+  CHECK(*std::max_element(f.z.begin(), f.z.end()) == Approx(0.19 - 0.005));
+  SphSamplingSettings s;
+  s.particle_spacing_m = dx;
+  s.smoothing_length_m = std::sqrt(2.0) * dx;
+  const auto sampler = make_sph_sampler(f, s);
+  const ColumnSample c = sampler->sample_column(0.3037, 0.0, 21, 9.81);
+  CHECK(std::abs(c.surface_z_m - 0.19) < 0.1 * dx);
+  for (std::size_t k = 0; k < c.z.size(); ++k) {
+    CHECK(c.u[k] == Approx(u(0.3037, c.z[k])).margin(1e-6));
+    CHECK(c.w[k] == Approx(w(0.3037, c.z[k])).margin(1e-6));
+  }
+}
+
+TEST_CASE("PVD/VTP errors name the file and what is wrong", "[compare][readers][sph]") {
+  TempDir tmp("pvd-bad");
+  {
+    std::ofstream o(tmp.path() / "bad.pvd");
+    o << "<VTKFile type=\"Collection\"><Collection><DataSet timestep=\"abc\" file=\"x.vtp\"/></Collection></VTKFile>";
+  }
+  CHECK_THROWS_WITH(read_pvd(tmp.path() / "bad.pvd"), Catch::Contains("bad.pvd") && Catch::Contains("abc"));
+  CHECK_THROWS_WITH(read_pvd(tmp.path() / "none.pvd"), Catch::Contains("none.pvd"));
+  const ParticleFrame f = lattice_particles(0.1, 0.05, 0.01, 1, [](double, double) { return 0.0; },
+                                            [](double, double) { return 0.0; });
+  write_vtp(tmp.path() / "nodensity.vtp", f, false);
+  CHECK_THROWS_WITH(read_vtp_particles(tmp.path() / "nodensity.vtp", 0.0),
+                    Catch::Contains("nodensity.vtp") && Catch::Contains("\"density\""));
+  CHECK_THROWS_WITH(find_pvd(tmp.path() / "empty"), Catch::Contains("no .pvd"));
+}
+
+TEST_CASE("An OpenFOAM case written by hand gives its times and cells and fields and exact section values",
+          "[compare][readers][vof]") {
+  TempDir tmp("foam");
+  const FoamBox box{0.6, 0.3, 0.01, 60, 40};
+  const double dz = box.height / box.nz;
+  write_foam_mesh(tmp.path(), box);
+  auto cell_alpha = [dz](double surface) {
+    return [surface, dz](double, double y) { return std::clamp((surface - (y - 0.5 * dz)) / dz, 0.0, 1.0); };
+  };
+  auto u = [](double x, double y) { return 0.8 - 0.3 * x + 2.0 * y; };
+  auto v = [](double x, double y) { return 0.05 + 0.1 * x - 0.2 * y; };
+  auto zero = [](double, double) { return 0.0; };
+  write_foam_fields(tmp.path(), "0.5", box, cell_alpha(0.1), zero, zero);
+  write_foam_fields(tmp.path(), "1", box, cell_alpha(0.1234), u, v);
+  CHECK(has_openfoam_results(tmp.path()));
+
+  OpenFoamResults foam(tmp.path());
+  REQUIRE(foam.times().size() == 2);
+  CHECK(foam.times()[0] == Approx(0.5));
+  CHECK(foam.times_in_window(0.8, 5.0).size() == 1);
+
+  const CellFrame f1 = foam.read(1.0);
+  REQUIRE(f1.xc.size() == 2400u);
+  const auto sampler = make_vof_sampler(f1, InterpolationScheme::mls_linear);
+  for (double x : {0.2, 0.3037}) {
+    const ColumnSample c = sampler->sample_column(x, 0.0, 41, 9.81);
+    REQUIRE(c.wet());
+    CHECK(std::abs(c.surface_z_m - 0.1234) <= dz / 12.0 + 1e-9);
+    CHECK(c.surface_from_fraction_m == Approx(0.1234).margin(1e-9));
+    for (std::size_t k = 0; k < c.z.size(); ++k) {
+      CHECK(c.u[k] == Approx(u(x, c.z[k])).margin(1e-6));
+      CHECK(c.w[k] == Approx(v(x, c.z[k])).margin(1e-6));
+    }
+  }
+  // Switching times reads the other directory.
+  const CellFrame f0 = foam.read(0.5);
+  const auto s0 = make_vof_sampler(f0, InterpolationScheme::mls_linear);
+  const ColumnSample c0 = s0->sample_column(0.3, 0.0, 21, 9.81);
+  CHECK(c0.surface_from_fraction_m == Approx(0.1).margin(1e-9));
+  CHECK(std::abs(c0.u[5]) < 1e-12);
+}
+
+TEST_CASE("OpenFOAM reader errors name the directory", "[compare][readers][vof]") {
+  TempDir tmp("foam-bad");
+  CHECK_FALSE(has_openfoam_results(tmp.path()));
+  CHECK_THROWS_WITH(OpenFoamResults(tmp.path()), Catch::Contains("controlDict") && Catch::Contains(tmp.path().string()));
+}

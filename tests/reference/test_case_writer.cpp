@@ -1,0 +1,373 @@
+// The OpenFOAM case writer: mesh plan (checked against brute-force oracles on the spec's bed profile),
+// patches and their types, boundary conditions traced to the spec, sampling sections, initial water,
+// and clear rejections. No OpenFOAM needed (test_openfoam_run.cpp runs the cases).
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <set>
+#include <stdexcept>
+#include <string>
+
+#include <unistd.h>
+
+#include "cases/geometry.hpp"
+#include "cases/spec_reader.hpp"
+#include "reference/case_writer.hpp"
+#include "reference/cli.hpp"
+#include "reference/mesh_plan.hpp"
+#include "reference_test_specs.hpp"
+
+namespace fs = std::filesystem;
+namespace foam = hydrojump::reference::foam;
+using namespace hydrojump;
+using reference::testing::basin_spec;
+using reference::testing::dam_break_spec;
+using reference::testing::parse;
+
+namespace {
+
+std::string text(const foam::Value& v) { return foam::format_value(v); }
+
+// The vertex coordinates of blockMeshDict as (x, y, z) triples.
+std::vector<std::array<double, 3>> vertices_of(const foam::Dictionary& block_mesh) {
+  std::vector<std::array<double, 3>> out;
+  for (const foam::Value& v : block_mesh.at("vertices").items()) {
+    out.push_back({v.items()[0].number(), v.items()[1].number(), v.items()[2].number()});
+  }
+  return out;
+}
+
+struct Patch {
+  std::string type;
+  std::vector<std::array<int, 4>> faces;
+};
+
+std::map<std::string, Patch> patches_of(const foam::Dictionary& block_mesh) {
+  std::map<std::string, Patch> out;
+  for (const foam::Value& p : block_mesh.at("boundary").items()) {
+    Patch patch;
+    patch.type = p.dict().at("type").text();
+    for (const foam::Value& f : p.dict().at("faces").items()) {
+      patch.faces.push_back({static_cast<int>(f.items()[0].number()), static_cast<int>(f.items()[1].number()),
+                             static_cast<int>(f.items()[2].number()), static_cast<int>(f.items()[3].number())});
+    }
+    out[p.text()] = patch;
+  }
+  return out;
+}
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("hydrojump-reference-test-" + name + "-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  return dir;
+}
+
+}  // namespace
+
+TEST_CASE("cartesian_cut plan: grid lines at the floor and the inflow surface, graded air, staircase bed",
+          "[reference][mesh]") {
+  // Air 0.15 m above the tailwater: room for the transition to the bulk cell size.
+  const cases::Study study = parse(basin_spec("", 0.02, 0.01, "sinusoidal", 0.005, 0.01, 0.15));
+  const cases::Case& c = study.cases.front();
+  const cases::CaseGeometry geo = cases::make_geometry(c, study.fluid);
+  const reference::MeshPlan plan = reference::plan_mesh(c, geo, c.resolution("quick"));
+  const double h = 0.005, h_bulk = 0.01, y1 = 0.0254, T = 0.013;
+
+  const std::vector<double> x = reference::band_faces(plan.x_bands);
+  const std::vector<double> z = reference::band_faces(plan.z_bands);
+  CHECK(plan.columns() == static_cast<int>(std::lround(geo.x_max_m / h)));
+  CHECK(x.front() == Approx(0.0).margin(1e-12));
+  CHECK(x.back() == Approx(geo.x_max_m).epsilon(1e-12));
+  CHECK(z.front() == Approx(-T).epsilon(1e-12));
+  CHECK(z.back() == Approx(geo.z_max_m).epsilon(1e-12));
+  auto has_line = [&](double value) {
+    for (double f : z) if (std::abs(f - value) < 1e-12) return true;
+    return false;
+  };
+  CHECK(has_line(0.0));  // the upstream floor
+  CHECK(has_line(y1));   // the inflow surface
+  // Cells: fine (about h) up to the top of the refinement band, at most 20 % growth, bulk at the top.
+  double previous = 0.0;
+  for (std::size_t j = 0; j + 1 < z.size(); ++j) {
+    const double dz = z[j + 1] - z[j];
+    CHECK(dz > 0.0);
+    if (z[j + 1] <= plan.z_fine_top_m + 1e-12) CHECK(dz <= h * 1.34);  // T = 13 mm in 3 cells
+    if (previous > 0.0 && z[j] >= plan.z_fine_top_m - 1e-12) CHECK(dz / previous <= 1.2 + 1e-9);
+    previous = dz;
+  }
+  CHECK(z[z.size() - 1] - z[z.size() - 2] == Approx(h_bulk).epsilon(0.2));
+  CHECK(plan.z_fine_top_m >= 0.06 + 0.25 * 0.06 - 1e-12);  // tailwater + default band 0.25 y2
+
+  // Oracle: a cell is removed exactly when its centre lies below the bed z_b(x_centre).
+  long removed = 0;
+  for (std::size_t i = 0; i + 1 < x.size(); ++i) {
+    const double xc = 0.5 * (x[i] + x[i + 1]);
+    for (std::size_t j = 0; j + 1 < z.size(); ++j) {
+      if (0.5 * (z[j] + z[j + 1]) < geo.bed.elevation(xc)) ++removed;
+    }
+  }
+  CHECK(removed > 0);
+  CHECK(plan.removed_cell_count() == removed);
+  CHECK(plan.cell_count() == plan.background_cells() - removed);
+  for (const reference::RemovedColumns& r : plan.removed) {
+    CHECK(r.z_top_m == Approx(z[static_cast<std::size_t>(r.removed_cells)]).margin(1e-15));
+  }
+}
+
+TEST_CASE("a smooth bed is not cut", "[reference][mesh]") {
+  const cases::Study study = parse(basin_spec("", 0.02, 0.01, "smooth"));
+  const cases::Case& c = study.cases.front();
+  const reference::MeshPlan plan = reference::plan_mesh(c, cases::make_geometry(c, study.fluid), c.resolution("quick"));
+  CHECK(plan.removed.empty());
+  CHECK(reference::band_faces(plan.z_bands).front() == 0.0);
+  const reference::VofCase vof = reference::build_vof_case(study, c, "quick");
+  CHECK(vof.files.count("system/topoSetDict") == 0);
+  CHECK(vof.mesh_steps.front().application == "blockMesh");
+  CHECK(vof.mesh_steps.size() == 2);  // blockMesh, topoSet for the section zones
+}
+
+TEST_CASE("stilling basin: patches, their types and faces on the right boundaries", "[reference][case]") {
+  const cases::Study study = parse(basin_spec());
+  const cases::Case& c = study.cases.front();
+  const reference::VofCase vof = reference::build_vof_case(study, c, "quick");
+  const foam::Dictionary& bmd = vof.files.at("system/blockMeshDict");
+  const auto patches = patches_of(bmd);
+  const auto v = vertices_of(bmd);
+  const double y1 = 0.0254, L = 0.472, top = 0.1;
+
+  CHECK(vof.patches == std::vector<std::string>{"inlet", "outlet", "walls", "bed", "atmosphere", "frontAndBack"});
+  CHECK(patches.at("inlet").type == "patch");
+  CHECK(patches.at("outlet").type == "patch");
+  CHECK(patches.at("walls").type == "wall");
+  CHECK(patches.at("bed").type == "wall");
+  CHECK(patches.at("atmosphere").type == "patch");
+  CHECK(patches.at("frontAndBack").type == "empty");
+  auto all_vertices = [&](const std::string& patch, auto predicate) {
+    for (const auto& f : patches.at(patch).faces)
+      for (int id : f)
+        if (!predicate(v.at(static_cast<std::size_t>(id)))) return false;
+    return true;
+  };
+  CHECK(all_vertices("inlet", [&](auto p) { return p[0] == 0.0 && p[1] >= -1e-12 && p[1] <= y1 + 1e-12; }));
+  CHECK(all_vertices("walls", [&](auto p) { return p[0] == 0.0 && p[1] >= y1 - 1e-12; }));
+  CHECK(all_vertices("outlet", [&](auto p) { return std::abs(p[0] - L) < 1e-12; }));
+  CHECK(all_vertices("atmosphere", [&](auto p) { return std::abs(p[1] - top) < 1e-12; }));
+  CHECK(all_vertices("bed", [&](auto p) { return std::abs(p[1] + 0.013) < 1e-12 || (p[0] == 0.0 && p[1] <= 1e-12); }));
+  // The blocks hold the whole background grid.
+  long cells = 0;
+  for (const foam::Value& b : bmd.at("blocks").items()) {
+    const auto& n = b.items()[2].items();
+    cells += static_cast<long>(n[0].number() * n[1].number() * n[2].number());
+    CHECK(n[2].number() == 1.0);
+  }
+  CHECK(cells == vof.mesh.background_cells());
+  // One cell thick, centred on z = 0.
+  for (const auto& p : v) CHECK(std::abs(std::abs(p[2]) - 0.5 * vof.mesh.thickness_m) < 1e-15);
+  // Mesh steps: cut below the bed, then the section face zones.
+  REQUIRE(vof.mesh_steps.size() == 4);
+  CHECK(vof.mesh_steps[1].application == "topoSet");
+  CHECK(vof.mesh_steps[2].application == "subsetMesh");
+  CHECK(vof.mesh_steps[2].arguments == std::vector<std::string>{"fluidCells", "-patch", "bed", "-overwrite"});
+}
+
+TEST_CASE("stilling basin: boundary conditions follow the spec", "[reference][case]") {
+  const cases::Study study = parse(basin_spec());
+  const cases::Case& c = study.cases.front();
+  const reference::VofCase vof = reference::build_vof_case(study, c, "quick");
+  const double y1 = 0.0254, u1 = 2.0, y2 = 0.06, q = y1 * u1;
+  for (const char* field : {"0.orig/U", "0.orig/alpha.water", "0.orig/p_rgh", "0.orig/k", "0.orig/omega", "0.orig/nut"}) {
+    INFO(field);
+    REQUIRE(vof.files.count(field) == 1);
+    CHECK(vof.files.at(field).subdict_at("boundaryField").keys() == vof.patches);
+  }
+  const auto& u = vof.files.at("0.orig/U").subdict_at("boundaryField");
+  CHECK(u.subdict_at("inlet").at("type").text() == "fixedValue");
+  CHECK(text(u.subdict_at("inlet").at("value")) == "uniform (2 0 0)");
+  CHECK(u.subdict_at("outlet").at("type").text() == "outletPhaseMeanVelocity");
+  CHECK(u.subdict_at("outlet").at("Umean").number() == Approx(q / y2).epsilon(1e-14));
+  CHECK(u.subdict_at("bed").at("type").text() == "noSlip");
+  CHECK(u.subdict_at("atmosphere").at("type").text() == "pressureInletOutletVelocity");
+  const auto& a = vof.files.at("0.orig/alpha.water").subdict_at("boundaryField");
+  CHECK(text(a.subdict_at("inlet").at("value")) == "uniform 1");
+  CHECK(a.subdict_at("outlet").at("type").text() == "variableHeightFlowRate");
+  CHECK(a.subdict_at("atmosphere").at("type").text() == "inletOutlet");
+  const auto& p = vof.files.at("0.orig/p_rgh").subdict_at("boundaryField");
+  CHECK(p.subdict_at("atmosphere").at("type").text() == "totalPressure");
+  CHECK(p.subdict_at("bed").at("type").text() == "fixedFluxPressure");
+  // k-omega SST: inlet k = 3/2 (0.05 U1)^2, omega = sqrt(k) / (0.09^0.25 * 0.07 * 4 y1), wall functions.
+  const double k = 1.5 * std::pow(0.05 * u1, 2);
+  const double omega = std::sqrt(k) / (std::pow(0.09, 0.25) * 0.07 * 4.0 * y1);
+  const auto& kb = vof.files.at("0.orig/k").subdict_at("boundaryField");
+  CHECK(kb.subdict_at("inlet").at("value").items()[1].number() == Approx(k).epsilon(1e-12));
+  CHECK(kb.subdict_at("bed").at("type").text() == "kqRWallFunction");
+  const auto& ob = vof.files.at("0.orig/omega").subdict_at("boundaryField");
+  CHECK(ob.subdict_at("inlet").at("value").items()[1].number() == Approx(omega).epsilon(1e-12));
+  CHECK(ob.subdict_at("walls").at("type").text() == "omegaWallFunction");
+  CHECK(vof.files.at("0.orig/nut").subdict_at("boundaryField").subdict_at("bed").at("type").text() ==
+        "nutkWallFunction");
+  CHECK(vof.files.at("constant/turbulenceProperties").subdict_at("RAS").at("RASModel").text() == "kOmegaSST");
+  CHECK(text(vof.files.at("constant/g").at("value")) == "(0 -9.81 0)");
+  CHECK(vof.files.at("constant/transportProperties").subdict_at("water").at("nu").number() == 1e-6);
+}
+
+TEST_CASE("laminar cases have no turbulence fields", "[reference][case]") {
+  const cases::Study study = parse(basin_spec("turbulence_model = \"laminar\""));
+  const reference::VofCase vof = reference::build_vof_case(study, study.cases.front(), "quick");
+  CHECK(vof.files.count("0.orig/k") == 0);
+  CHECK(vof.files.count("0.orig/omega") == 0);
+  CHECK(vof.files.at("constant/turbulenceProperties").at("simulationType").text() == "laminar");
+}
+
+TEST_CASE("controlDict: run settings and sampling of every section", "[reference][case]") {
+  const cases::Study study = parse(basin_spec("", 3.5, 0.05));
+  const cases::Case& c = study.cases.front();
+  const reference::VofCase vof = reference::build_vof_case(study, c, "quick");
+  const foam::Dictionary& cd = vof.files.at("system/controlDict");
+  CHECK(cd.at("endTime").number() == 3.5);
+  CHECK(cd.at("writeInterval").number() == 0.05);
+  CHECK(cd.at("maxCo").number() == 0.7);
+  CHECK(cd.at("maxAlphaCo").number() == 0.6);
+  CHECK(cd.at("maxDeltaT").number() == 0.002);
+  CHECK(cd.at("startFrom").text() == "latestTime");
+  const foam::Dictionary& fo = cd.subdict_at("functions");
+  const auto& sets = fo.subdict_at("sections").at("sets").items();
+  REQUIRE(sets.size() == c.sections.size());
+  const cases::CaseGeometry geo = cases::make_geometry(c, study.fluid);
+  for (std::size_t i = 0; i < sets.size(); ++i) {
+    INFO(c.sections[i].name);
+    CHECK(sets[i].text() == c.sections[i].name);
+    const auto& start = sets[i].dict().at("start").items();
+    const auto& end = sets[i].dict().at("end").items();
+    CHECK(start[0].number() == c.sections[i].x_m);
+    CHECK(end[0].number() == c.sections[i].x_m);
+    CHECK(start[1].number() >= geo.bed.elevation(c.sections[i].x_m));
+    CHECK(start[1].number() <= geo.bed.elevation(c.sections[i].x_m) + 0.005);
+    CHECK(end[1].number() == Approx(geo.z_max_m).margin(1e-4));
+    CHECK(fo.contains("discharge_" + c.sections[i].name));
+    CHECK(fo.subdict_at("discharge_" + c.sections[i].name).at("name").text() == "section_" + c.sections[i].name);
+  }
+  CHECK(fo.contains("discharge_inlet"));
+  CHECK(fo.contains("discharge_outlet"));
+  CHECK(fo.subdict_at("freeSurface").at("surfaces").items()[0].dict().at("isoValue").number() == 0.5);
+  CHECK(fo.subdict_at("average").at("timeEnd").number() == 3.5);
+  // The discharge face zones sit on the grid faces nearest to each section.
+  const auto& actions = vof.files.at("system/topoSetDict.sections").at("actions").items();
+  REQUIRE(actions.size() == 2 * c.sections.size());
+  const std::vector<double> x = reference::band_faces(vof.mesh.x_bands);
+  for (std::size_t i = 0; i < c.sections.size(); ++i) {
+    const auto& box = actions[2 * i].dict().at("box").items();
+    const double xf = 0.5 * (box[0].items()[0].number() + box[1].items()[0].number());
+    double nearest = 1e9;
+    for (double f : x) nearest = std::min(nearest, std::abs(f - c.sections[i].x_m));
+    CHECK(std::abs(xf - c.sections[i].x_m) == Approx(nearest).margin(1e-12));
+    CHECK(nearest <= 0.5 * 0.005 + 1e-12);
+  }
+}
+
+TEST_CASE("setFields: the initial water follows the spec's surface and carries q", "[reference][case]") {
+  const cases::Study study = parse(basin_spec());
+  const cases::Case& c = study.cases.front();
+  const cases::CaseGeometry geo = cases::make_geometry(c, study.fluid);
+  const reference::VofCase vof = reference::build_vof_case(study, c, "quick");
+  const auto& regions = vof.files.at("system/setFieldsDict").at("regions").items();
+  REQUIRE(!regions.empty());
+  const std::vector<double> z = reference::band_faces(vof.mesh.z_bands);
+  double covered = 0.0;
+  for (const foam::Value& r : regions) {
+    const auto& box = r.dict().at("box").items();
+    const double x0 = box[0].items()[0].number(), x1 = box[1].items()[0].number();
+    const double z_top = box[1].items()[1].number();
+    covered += x1 - x0;
+    for (double xc = x0 + 0.0025; xc < x1; xc += 0.005) {
+      // The box top is the face between the last water cell (centre below the surface) and the next.
+      const double surface = geo.initial_water.surface_at(xc);
+      CHECK(std::abs(z_top - surface) <= 0.5 * 0.005 + 1e-9);
+    }
+    const auto& values = r.dict().at("fieldValues").items();
+    REQUIRE(values.size() == 2);
+    const double u = values[1].items()[1].items()[0].number();
+    const double xm = 0.5 * (x0 + x1);
+    CHECK(u == Approx(0.0254 * 2.0 / (geo.initial_water.surface_at(xm) - geo.bed.elevation(xm))).epsilon(0.05));
+  }
+  CHECK(covered == Approx(geo.x_max_m).epsilon(1e-9));
+}
+
+TEST_CASE("dam break: closed tank, grid line at the gate, water column and floor line", "[reference][case]") {
+  const cases::Study study = parse(dam_break_spec());
+  const cases::Case& c = study.cases.front();
+  const reference::VofCase vof = reference::build_vof_case(study, c, "quick");
+  CHECK(vof.patches == std::vector<std::string>{"walls", "bed", "atmosphere", "frontAndBack"});
+  const std::vector<double> x = reference::band_faces(vof.mesh.x_bands);
+  CHECK(std::count_if(x.begin(), x.end(), [](double f) { return std::abs(f - 0.1) < 1e-12; }) == 1);
+  CHECK(vof.mesh.cell_count() == 40L * vof.mesh.rows());
+  const auto& regions = vof.files.at("system/setFieldsDict").at("regions").items();
+  REQUIRE(regions.size() == 1);
+  const auto& box = regions[0].dict().at("box").items();
+  CHECK(box[1].items()[0].number() == Approx(0.1).margin(1e-12));
+  CHECK(box[1].items()[1].number() == Approx(0.2).margin(1e-12));
+  CHECK(regions[0].dict().at("fieldValues").items().size() == 1);  // at rest: alpha only
+  const auto& sets = vof.files.at("system/controlDict").subdict_at("functions").subdict_at("sections").at("sets").items();
+  std::set<std::string> names;
+  for (const auto& s : sets) names.insert(s.text());
+  CHECK(names == std::set<std::string>{"H1", "H2", "floor"});
+  CHECK(vof.files.count("system/topoSetDict") == 0);
+  CHECK(vof.files.at("constant/turbulenceProperties").at("simulationType").text() == "laminar");
+}
+
+TEST_CASE("body_fitted plan follows the bed and removes nothing", "[reference][mesh]") {
+  const cases::Study study = parse(basin_spec("mesh_strategy = \"body_fitted\""));
+  const cases::Case& c = study.cases.front();
+  const cases::CaseGeometry geo = cases::make_geometry(c, study.fluid);
+  const reference::VofCase vof = reference::build_vof_case(study, c, "quick");
+  CHECK(vof.mesh.strategy == "body_fitted");
+  CHECK(vof.mesh.removed.empty());
+  CHECK(vof.mesh.cell_count() == vof.mesh.background_cells());
+  REQUIRE(vof.mesh.bed_vertices.size() == vof.mesh.x_bands.size() + 1);
+  for (const auto& p : vof.mesh.bed_vertices) CHECK(p.y() == Approx(geo.bed.elevation(p.x())).margin(1e-12));
+  // The bottom row of blockMesh vertices lies on the bed.
+  const auto v = vertices_of(vof.files.at("system/blockMeshDict"));
+  for (std::size_t i = 0; i < vof.mesh.bed_vertices.size(); ++i) {
+    CHECK(v[i][0] == vof.mesh.bed_vertices[i].x());
+    CHECK(v[i][1] == vof.mesh.bed_vertices[i].y());
+  }
+  CHECK(vof.files.at("system/fvSolution").subdict_at("PIMPLE").at("nNonOrthogonalCorrectors").number() == 1);
+}
+
+TEST_CASE("cases the VOF reference cannot run are rejected with a clear message", "[reference][case]") {
+  {
+    const cases::Study study = parse(basin_spec("", 0.02, 0.01, "sinusoidal", 0.02, 0.02));
+    CHECK_THROWS_WITH(reference::build_vof_case(study, study.cases.front(), "quick"),
+                      Catch::Contains("vof_cell_size_bed_m") && Catch::Contains("inflow depth"));
+  }
+  {
+    const cases::Study study = parse(dam_break_spec("type = \"lifted\"\nlift_speed_m_s = 1.0"));
+    CHECK_THROWS_WITH(reference::build_vof_case(study, study.cases.front(), "quick"),
+                      Catch::Contains("gate") && Catch::Contains("instant"));
+  }
+  {
+    const cases::Study study = parse(basin_spec());
+    CHECK_THROWS_AS(reference::build_vof_case(study, study.cases.front(), "fine"), std::exception);
+  }
+}
+
+TEST_CASE("write_vof_case writes a complete case directory with its resolved spec", "[reference][case]") {
+  const cases::Study study = parse(basin_spec());
+  const fs::path dir = fresh_dir("write");
+  reference::write_vof_case(study, study.cases.front(), "quick", dir);
+  const reference::VofCase vof = reference::build_vof_case(study, study.cases.front(), "quick");
+  for (const auto& [path, dict] : vof.files) {
+    INFO(path);
+    REQUIRE(fs::exists(dir / path));
+  }
+  CHECK((fs::status(dir / "Allrun").permissions() & fs::perms::owner_exec) != fs::perms::none);
+  const cases::Study again = cases::load_study(dir / "case.toml");
+  REQUIRE(again.cases.size() == 1);
+  CHECK(again.cases.front().id == "basin");
+  // Regenerating from the resolved spec gives the same case.
+  const reference::VofCase vof2 = reference::build_vof_case(again, again.cases.front(), "quick");
+  CHECK(vof2.mesh.cell_count() == vof.mesh.cell_count());
+  CHECK(foam::format_file(vof2.headers.at("system/controlDict"), vof2.files.at("system/controlDict")) ==
+        foam::format_file(vof.headers.at("system/controlDict"), vof.files.at("system/controlDict")));
+  fs::remove_all(dir);
+}

@@ -1,0 +1,249 @@
+// Generated cases run by OpenFOAM v1912 itself (installed here and in CI): every dictionary parses,
+// meshing and checkMesh pass, tiny cases run a few time steps serially and with MPI, results are
+// consistent with the spec (inflow discharge, upstream depth), resume works, and body_fitted is
+// refused exactly when the self-test shows the known defect.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <unistd.h>
+
+#include "cases/spec_reader.hpp"
+#include "reference/case_writer.hpp"
+#include "reference/cli.hpp"
+#include "reference/line_samples.hpp"
+#include "reference/runner.hpp"
+#include "reference_test_specs.hpp"
+
+namespace fs = std::filesystem;
+using namespace hydrojump;
+using reference::testing::basin_spec;
+using reference::testing::dam_break_spec;
+using reference::testing::parse;
+
+namespace {
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path dir =
+      fs::temp_directory_path() / ("hydrojump-openfoam-test-" + name + "-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  return dir;
+}
+
+void require_openfoam() {
+  try {
+    reference::check_openfoam(false);
+  } catch (const std::exception& e) {
+    FAIL("OpenFOAM v1912 is required by these tests (apt-get install openfoam): " << e.what());
+  }
+}
+
+fs::path generate(const std::string& spec_text, const std::string& name) {
+  const cases::Study study = parse(spec_text);
+  const fs::path dir = fresh_dir(name);
+  reference::write_vof_case(study, study.cases.front(), "quick", dir);
+  return dir;
+}
+
+std::string read(const fs::path& file) {
+  std::ifstream in(file);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+// Rows of a whitespace-separated numeric file (comment lines starting with '#' skipped).
+std::vector<std::vector<double>> rows_of(const fs::path& file) {
+  std::vector<std::vector<double>> rows;
+  std::ifstream in(file);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream ss(line);
+    std::vector<double> row;
+    double v;
+    while (ss >> v) row.push_back(v);
+    if (!row.empty()) rows.push_back(row);
+  }
+  return rows;
+}
+
+// Water depth along a sampled vertical line: the integral of alpha.water over the line.
+double water_depth(const fs::path& alpha_xy) {
+  return reference::water_depth(reference::read_line_sample(alpha_xy));
+}
+
+long checkmesh_cells(const fs::path& dir) {
+  const std::string log = read(dir / "log.checkMesh");
+  const auto pos = log.find("    cells:");
+  if (pos == std::string::npos) return -1;
+  return std::stol(log.substr(pos + 10));
+}
+
+}  // namespace
+
+TEST_CASE("every generated dictionary is read by OpenFOAM's foamDictionary", "[reference][openfoam]") {
+  require_openfoam();
+  for (const std::string& spec : {basin_spec(), dam_break_spec()}) {
+    const cases::Study study = parse(spec);
+    const fs::path dir = generate(spec, "parse");
+    const reference::VofCase vof = reference::build_vof_case(study, study.cases.front(), "quick");
+    for (const auto& [path, dict] : vof.files) {
+      INFO(path);
+      const std::string command = "foamDictionary -keywords '" + (dir / path).string() + "' > /dev/null 2>&1";
+      CHECK(std::system(command.c_str()) == 0);
+    }
+    fs::remove_all(dir);
+  }
+}
+
+TEST_CASE("a tiny corrugated basin meshes, passes checkMesh, runs and resumes", "[reference][openfoam]") {
+  require_openfoam();
+  const std::string spec = basin_spec("", 0.02, 0.01);
+  const cases::Study study = parse(spec);
+  const reference::VofCase vof = reference::build_vof_case(study, study.cases.front(), "quick");
+  const fs::path dir = generate(spec, "basin");
+  std::ostringstream out;
+  reference::run_vof_case(dir, reference::RunOptions{}, out);
+  INFO(out.str());
+  CHECK_THAT(read(dir / "log.checkMesh"), Catch::Contains("Mesh OK."));
+  CHECK(checkmesh_cells(dir) == vof.mesh.cell_count());
+  CHECK(fs::exists(dir / "0.02"));
+  CHECK_THAT(out.str(), Catch::Contains("reached t = 0.02"));
+
+  // The inlet carries q = y1 U1 per unit width (sum of the water flux / spanwise thickness).
+  const auto inlet = rows_of(dir / "postProcessing/discharge_inlet/0/surfaceFieldValue.dat");
+  REQUIRE(!inlet.empty());
+  CHECK(std::abs(inlet.back()[1]) / vof.mesh.thickness_m == Approx(0.0254 * 2.0).epsilon(1e-5));
+  // Upstream of the basin the supercritical layer keeps its depth y1 (within half a cell).
+  const double depth_up = water_depth(dir / "postProcessing/sections/0.02/up_alpha.water.xy");
+  CHECK(depth_up == Approx(0.0254).margin(0.0025));
+  CHECK(fs::exists(dir / "postProcessing/freeSurface/0.02/alpha_0.5.vtp"));
+
+  // Without --resume existing results are not overwritten.
+  CHECK_THROWS_WITH(reference::run_vof_case(dir, reference::RunOptions{}, out),
+                    Catch::Contains("already holds results") && Catch::Contains("--resume"));
+
+  // A time directory half-written by a killed run is moved aside; the run continues before it.
+  {
+    std::ofstream truncate(dir / "0.02/alpha.water.gz", std::ios::trunc | std::ios::binary);
+    truncate << "\x1f\x8b";
+  }
+  reference::RunOptions resume;
+  resume.resume = true;
+  std::ostringstream out2;
+  reference::run_vof_case(dir, resume, out2);
+  CHECK_THAT(out2.str(), Catch::Contains("Resuming from t = 0.01"));
+  CHECK(fs::exists(dir / "0.02.incomplete"));
+  CHECK(fs::file_size(dir / "0.02/alpha.water.gz") > 100);
+  CHECK_THAT(read(dir / "log.interFoam"), Catch::Contains("resumed by hydrojump"));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("an MPI run (--np 2) gives the same result as the serial run", "[reference][openfoam]") {
+  require_openfoam();
+  const std::string spec = basin_spec("", 0.03, 0.01);
+  const fs::path serial = generate(spec, "serial");
+  const fs::path parallel = generate(spec, "parallel");
+  std::ostringstream out;
+  reference::run_vof_case(serial, reference::RunOptions{}, out);
+  reference::RunOptions np2;
+  np2.np = 2;
+  reference::run_vof_case(parallel, np2, out);
+  INFO(out.str());
+  CHECK(fs::exists(parallel / "processor1"));
+  CHECK(fs::exists(parallel / "0.03/U.gz"));  // reconstructed
+  for (const char* section : {"up", "mid", "down"}) {
+    INFO(section);
+    const std::string file = std::string("postProcessing/sections/0.03/") + section + "_alpha.water.xy";
+    const double d_serial = water_depth(serial / file);
+    const double d_parallel = water_depth(parallel / file);
+    CHECK(d_serial > 0.02);
+    CHECK(d_parallel == Approx(d_serial).epsilon(0.01));
+  }
+  fs::remove_all(serial);
+  fs::remove_all(parallel);
+}
+
+TEST_CASE("body_fitted is refused exactly when the self-test shows the non-orthogonal defect",
+          "[reference][openfoam]") {
+  require_openfoam();
+  const reference::SelfTestResult st = reference::self_test_non_orthogonal(fs::temp_directory_path());
+  INFO(st.summary());
+  REQUIRE(st.axis_aligned_ok);
+  const std::string spec = basin_spec("mesh_strategy = \"body_fitted\"\nturbulence_model = \"laminar\"", 0.05, 0.01);
+  const fs::path dir = generate(spec, "body-fitted");
+  std::ostringstream out;
+  if (!st.sheared_ok) {
+    CHECK_THROWS_WITH(reference::run_vof_case(dir, reference::RunOptions{}, out),
+                      Catch::Contains("body_fitted\" refused") && Catch::Contains("cartesian_cut"));
+    CHECK_FALSE(fs::exists(dir / "constant/polyMesh"));  // refused before meshing
+    // Forced, the mesh passes checkMesh but the solver diverges; the runner stops it with a diagnosis.
+    reference::RunOptions force;
+    force.force_body_fitted = true;
+    try {
+      reference::run_vof_case(dir, force, out);
+      FAIL("the body_fitted run was expected to diverge on this build");
+    } catch (const reference::OpenFoamError& e) {
+      const std::string message = e.what();
+      INFO(message);
+      CHECK_THAT(read(dir / "log.checkMesh"), Catch::Contains("Mesh OK."));
+      CHECK((message.find("blew up") != std::string::npos || message.find("crashed") != std::string::npos ||
+             message.find("not a number") != std::string::npos || message.find("collapsed") != std::string::npos));
+      CHECK_THAT(message, Catch::Contains("Last lines of log.interFoam"));
+    }
+  } else {
+    reference::run_vof_case(dir, reference::RunOptions{}, out);
+    CHECK(fs::exists(dir / "0.05"));
+  }
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a tiny dam break runs and samples its gauges and the floor line", "[reference][openfoam]") {
+  require_openfoam();
+  const fs::path dir = generate(dam_break_spec(), "dam");
+  std::ostringstream out;
+  reference::run_vof_case(dir, reference::RunOptions{}, out);
+  INFO(out.str());
+  CHECK(fs::exists(dir / "0.02"));
+  CHECK(fs::exists(dir / "postProcessing/sections/0.02/floor_alpha.water.xy"));
+  // The column is still about 0.2 m deep at gauge H1 (x = 0.05 m) after 0.02 s.
+  CHECK(water_depth(dir / "postProcessing/sections/0.02/H1_alpha.water.xy") == Approx(0.2).margin(0.01));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a failing mesh step stops the run with its log", "[reference][openfoam]") {
+  require_openfoam();
+  const fs::path dir = generate(basin_spec(), "bad-mesh");
+  {
+    std::ofstream broken(dir / "system/blockMeshDict", std::ios::app);
+    broken << "\nblocks ( hex (0 1 2) (1 1 1) simpleGrading (1 1 1) );\n";
+  }
+  std::ostringstream out;
+  CHECK_THROWS_WITH(reference::run_vof_case(dir, reference::RunOptions{}, out),
+                    Catch::Contains("blockMesh failed") && Catch::Contains("log.blockMesh"));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a missing OpenFOAM installation is reported clearly", "[reference][openfoam]") {
+  const char* old = std::getenv("PATH");
+  const std::string saved = old ? old : "";
+  ::setenv("PATH", "/nonexistent-hydrojump", 1);
+  CHECK_THROWS_WITH(reference::check_openfoam(false), Catch::Contains("not on PATH") && Catch::Contains("openfoam"));
+  ::setenv("PATH", saved.c_str(), 1);
+}
+
+TEST_CASE("the generated Allrun runs the case by hand, as an OpenFOAM user would", "[reference][openfoam]") {
+  require_openfoam();
+  const fs::path dir = generate(basin_spec("", 0.02, 0.01), "allrun");
+  const std::string command = "sh '" + (dir / "Allrun").string() + "' > '" + (dir / "allrun.out").string() + "' 2>&1";
+  CHECK(std::system(command.c_str()) == 0);
+  INFO(read(dir / "allrun.out"));
+  CHECK(fs::exists(dir / "0.02"));
+  CHECK_THAT(read(dir / "log.checkMesh"), Catch::Contains("Mesh OK."));
+  CHECK(fs::exists(dir / "log.topoSet.2"));  // the section zones, after the cut
+  fs::remove_all(dir);
+}

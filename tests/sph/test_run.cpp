@@ -1,0 +1,225 @@
+// Running cases end to end: restart equivalence (issue 3, verification case 6), the ParaView output
+// read back with VTK's XML reader, the run directory written by write_sph_input and run by
+// `hydrojump sph`, and the stop-with-diagnosis behaviour of unstable runs.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+#include <vtkXMLPolyDataReader.h>
+
+#include "sph/checkpoint.hpp"
+#include "sph/cli.hpp"
+#include "sph/run.hpp"
+#include "sph/vtk_output.hpp"
+#include "sph_test_support.hpp"
+
+namespace fs = std::filesystem;
+using namespace hydrojump::sph;
+
+namespace {
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("hydrojump_sph_test_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+// Particle positions ordered by id.
+std::vector<std::pair<double, double>> positions_by_id(const ParticleSet& ps) {
+  std::vector<std::pair<double, double>> out(static_cast<std::size_t>(ps.size()));
+  for (Eigen::Index i = 0; i < ps.size(); ++i) out[static_cast<std::size_t>(ps.id[i])] = {ps.x[i], ps.z[i]};
+  return out;
+}
+
+std::vector<std::string> pvd_files(const fs::path& pvd) {
+  std::ifstream in(pvd);
+  std::stringstream s;
+  s << in.rdbuf();
+  const std::string text = s.str();
+  std::vector<std::string> files;
+  const std::regex re("file=\"([^\"]+)\"");
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), re); it != std::sregex_iterator(); ++it)
+    files.push_back((*it)[1]);
+  return files;
+}
+
+RunOptions options_for(const fs::path& dir, const std::string& integrator_label) {
+  RunOptions o;
+  o.dir = dir;
+  o.end_time_s = 0.06;
+  o.output_interval_s = 0.02;
+  o.gauges = {{"middle", 0.5}};
+  o.fingerprint = "test-" + integrator_label;
+  return o;
+}
+
+}  // namespace
+
+TEST_CASE("a run interrupted and resumed ends as the uninterrupted run", "[sph][restart]") {
+  for (const std::string integrator : {"symplectic", "verlet"}) {
+    auto loaded = sph_test::load_case("dam_break.toml", 0.04, [&](hydrojump::cases::Case& c) { c.sph.time_integrator = integrator; });
+    // Uninterrupted.
+    const fs::path a = fresh_dir("restart_a_" + integrator);
+    Solver whole(loaded.settings, loaded.particles);
+    REQUIRE(run_case(whole, options_for(a, integrator)) == RunStatus::finished);
+    // Interrupted after 57 steps (not at an output time, and not at a Verlet Euler step), then resumed
+    // from the checkpoint by a new solver, as `hydrojump sph DIR --resume` does.
+    const fs::path b = fresh_dir("restart_b_" + integrator);
+    {
+      Solver first(loaded.settings, loaded.particles);
+      RunOptions o = options_for(b, integrator);
+      o.max_steps = 57;
+      REQUIRE(run_case(first, o) == RunStatus::step_limit);
+    }
+    Checkpoint ck = read_checkpoint(checkpoint_path(b));
+    REQUIRE(ck.clock.steps == 57);
+    Solver resumed(loaded.settings, ck.particles, ck.clock);
+    REQUIRE(run_case(resumed, options_for(b, integrator), ck) == RunStatus::finished);
+
+    INFO(integrator);
+    REQUIRE(resumed.clock().steps == whole.clock().steps);
+    CHECK(resumed.time() == whole.time());
+    const auto pa = positions_by_id(whole.particles());
+    const auto pb = positions_by_id(resumed.particles());
+    double max_diff = 0.0;
+    for (std::size_t k = 0; k < pa.size(); ++k)
+      max_diff = std::max({max_diff, std::abs(pa[k].first - pb[k].first), std::abs(pa[k].second - pb[k].second)});
+    CHECK(max_diff <= 1e-9);
+    // The resumed run continued the same output series and logs.
+    CHECK(pvd_files(a / "particles.pvd") == pvd_files(b / "particles.pvd"));
+    std::ifstream la(a / "run_log.csv"), lb(b / "run_log.csv");
+    std::stringstream sa, sb;
+    sa << la.rdbuf();
+    sb << lb.rdbuf();
+    CHECK(sa.str() == sb.str());
+    fs::remove_all(a);
+    fs::remove_all(b);
+  }
+}
+
+TEST_CASE("the pvd series loads back with vtkXMLPolyDataReader", "[sph][output]") {
+  auto loaded = sph_test::load_case("dam_break.toml", 0.04);
+  const fs::path dir = fresh_dir("vtk");
+  Solver solver(loaded.settings, loaded.particles);
+  RunOptions o = options_for(dir, "vtk");
+  REQUIRE(run_case(solver, o) == RunStatus::finished);
+  const auto files = pvd_files(dir / "particles.pvd");
+  REQUIRE(files.size() == 4);  // t = 0, 0.02, 0.04, 0.06
+  for (const auto& f : files) {
+    vtkNew<vtkXMLPolyDataReader> reader;
+    reader->SetFileName((dir / f).string().c_str());
+    reader->Update();
+    vtkPolyData* poly = reader->GetOutput();
+    REQUIRE(poly != nullptr);
+    CHECK(poly->GetNumberOfPoints() == solver.particles().size());
+    CHECK(poly->GetNumberOfVerts() == solver.particles().size());
+    for (const char* name : {"velocity", "density", "pressure", "type", "id"})
+      CHECK(poly->GetPointData()->GetArray(name) != nullptr);
+  }
+  // The last file holds the final state exactly (doubles).
+  const ParticleSet last = read_particles_vtp(dir / files.back());
+  const auto expected = positions_by_id(solver.particles());
+  const auto got = positions_by_id(last);
+  REQUIRE(got.size() == expected.size());
+  for (std::size_t k = 0; k < got.size(); ++k) {
+    CHECK(got[k].first == expected[k].first);
+    CHECK(got[k].second == expected[k].second);
+  }
+  fs::remove_all(dir);
+}
+
+TEST_CASE("an unstable run stops with a diagnosis and keeps its last checkpoint", "[sph][robustness]") {
+  auto loaded = sph_test::load_case("dam_break.toml", 0.04);
+  const fs::path dir = fresh_dir("failure");
+  Solver solver(loaded.settings, loaded.particles);
+  RunOptions o = options_for(dir, "failure");
+  o.max_steps = 5;
+  REQUIRE(run_case(solver, o) == RunStatus::step_limit);
+  const auto checkpoint_before = read_checkpoint(checkpoint_path(dir));
+  // Corrupt one fluid particle: its velocity becomes NaN.
+  Checkpoint ck = checkpoint_before;
+  Eigen::Index victim = 0;
+  while (!ck.particles.is_fluid(victim)) ++victim;
+  ck.particles.u[victim] = std::numeric_limits<double>::quiet_NaN();
+  Solver broken(loaded.settings, ck.particles, ck.clock);
+  o.max_steps = -1;
+  try {
+    run_case(broken, o, ck);
+    FAIL("the run did not stop");
+  } catch (const SimulationFailure& e) {
+    const std::string msg = e.what();
+    CHECK_THAT(msg, Catch::Contains("id " + std::to_string(ck.particles.id[victim])));
+    CHECK_THAT(msg, Catch::Contains("NaN"));
+    CHECK_THAT(msg, Catch::Contains("t = "));
+  }
+  CHECK(fs::exists(dir / "failure.txt"));
+  CHECK(fs::exists(dir / "failure_state.vtp"));
+  // The checkpoint on disk is still the last good one.
+  const auto after = read_checkpoint(checkpoint_path(dir));
+  CHECK(after.clock.steps == checkpoint_before.clock.steps);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a particle leaving the domain and a density blow-up are diagnosed", "[sph][robustness]") {
+  auto loaded = sph_test::load_case("dam_break.toml", 0.04);
+  {
+    ParticleSet ps = loaded.particles;
+    Eigen::Index i = 0;
+    while (!ps.is_fluid(i)) ++i;
+    ps.x[i] = 100.0;
+    Solver s(loaded.settings, ps);
+    CHECK_THAT(diagnose(s), Catch::Contains("left the domain"));
+  }
+  {
+    ParticleSet ps = loaded.particles;
+    Eigen::Index i = 0;
+    while (!ps.is_fluid(i)) ++i;
+    ps.rho[i] = 1200.0;
+    Solver s(loaded.settings, ps);
+    CHECK_THAT(diagnose(s), Catch::Contains("max_density_variation"));
+  }
+  Solver healthy(loaded.settings, loaded.particles);
+  CHECK(diagnose(healthy).empty());
+}
+
+TEST_CASE("hydrojump sph runs a generated dam-break directory and resumes it", "[sph][cli]") {
+  const fs::path dir = fresh_dir("cli");
+  const auto study = hydrojump::cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/cases/dam_break.toml");
+  write_sph_input(study, study.cases.front(), "quick", dir);
+  REQUIRE(fs::exists(dir / "case.toml"));
+  REQUIRE(fs::exists(dir / "initial_particles.vtp"));
+  SphOptions opt;
+  opt.dir = dir.string();
+  opt.end_time = 0.02;
+  opt.quiet = true;
+  CHECK(run_sph_directory(opt) == 0);
+  CHECK(fs::exists(dir / "particles.pvd"));
+  CHECK(fs::exists(dir / "gauges.csv"));
+  CHECK(fs::exists(dir / "run_log.csv"));
+  CHECK(fs::exists(dir / "checkpoint.bin"));
+  // A second plain run refuses to overwrite; --resume continues to a later end time.
+  CHECK_THROWS_WITH(run_sph_directory(opt), Catch::Contains("--resume"));
+  opt.resume = true;
+  opt.end_time = 0.04;
+  CHECK(run_sph_directory(opt) == 0);
+  CHECK(pvd_files(dir / "particles.pvd").size() == 3);
+  std::ifstream gauges(dir / "gauges.csv");
+  std::string header;
+  std::getline(gauges, header);
+  CHECK_THAT(header, Catch::Contains("front_x_m"));
+  fs::remove_all(dir);
+}
