@@ -93,49 +93,38 @@ CaseGeometry stilling_basin_geometry(const StillingBasinCase& b, double g) {
   return geo;
 }
 
-CaseGeometry dam_break_geometry(const DamBreakCase& d, double g) {
+// A closed-bottom tank [0, length] x [0, height] with floor and side walls, water up to `depth`
+// over [0, water_end].
+CaseGeometry tank_geometry(double length, double height, double water_end, double depth, double g) {
   CaseGeometry geo;
   geo.bed = BedProfile::flat(0.0);
   geo.x_min_m = 0.0;
-  geo.x_max_m = d.tank_length_m;
+  geo.x_max_m = length;
   geo.z_min_m = 0.0;
-  geo.z_max_m = d.tank_height_m;
-  const Vec2 a(0.0, 0.0), b(d.tank_length_m, 0.0), c(d.tank_length_m, d.tank_height_m),
-      e(0.0, d.tank_height_m);
+  geo.z_max_m = height;
+  const Vec2 a(0.0, 0.0), b(length, 0.0), c(length, height), e(0.0, height);
   geo.walls.push_back(segment_wall("bed", a, b));
   geo.walls.push_back(segment_wall("right_wall", b, c));
   geo.walls.push_back(segment_wall("left_wall", e, a));
   auto& w = geo.initial_water;
   w.x_begin_m = 0.0;
-  w.x_end_m = d.column_width_m;
-  w.surface_x_m = {0.0, d.column_width_m};
-  w.surface_z_m = {d.column_height_m, d.column_height_m};
+  w.x_end_m = water_end;
+  w.surface_x_m = {0.0, water_end};
+  w.surface_z_m = {depth, depth};
   geo.body_force_m_s2 = Vec2(0.0, -g);
-  geo.max_water_height_m = d.column_height_m;
+  geo.max_water_height_m = depth;
+  return geo;
+}
+
+CaseGeometry dam_break_geometry(const DamBreakCase& d, double g) {
+  CaseGeometry geo = tank_geometry(d.tank_length_m, d.tank_height_m, d.column_width_m, d.column_height_m, g);
   geo.max_flow_speed_m_s = std::sqrt(2.0 * g * d.column_height_m);
   geo.dam_gate_x_m = d.column_width_m;
   return geo;
 }
 
 CaseGeometry still_water_geometry(const StillWaterCase& s, double g) {
-  CaseGeometry geo;
-  geo.bed = BedProfile::flat(0.0);
-  geo.x_min_m = 0.0;
-  geo.x_max_m = s.tank_length_m;
-  geo.z_min_m = 0.0;
-  geo.z_max_m = s.tank_height_m;
-  const Vec2 a(0.0, 0.0), b(s.tank_length_m, 0.0), c(s.tank_length_m, s.tank_height_m),
-      e(0.0, s.tank_height_m);
-  geo.walls.push_back(segment_wall("bed", a, b));
-  geo.walls.push_back(segment_wall("right_wall", b, c));
-  geo.walls.push_back(segment_wall("left_wall", e, a));
-  auto& w = geo.initial_water;
-  w.x_begin_m = 0.0;
-  w.x_end_m = s.tank_length_m;
-  w.surface_x_m = {0.0, s.tank_length_m};
-  w.surface_z_m = {s.water_depth_m, s.water_depth_m};
-  geo.body_force_m_s2 = Vec2(0.0, -g);
-  geo.max_water_height_m = s.water_depth_m;
+  CaseGeometry geo = tank_geometry(s.tank_length_m, s.tank_height_m, s.tank_length_m, s.water_depth_m, g);
   geo.max_flow_speed_m_s = std::sqrt(g * s.water_depth_m);
   return geo;
 }
