@@ -34,6 +34,7 @@
 
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -70,6 +71,12 @@ struct VofCase {
   double end_time_s = 0.0;
   double output_interval_s = 0.0;
 };
+
+// Why the OpenFOAM reference cannot model `c` (nothing when it can): the periodic Poiseuille channel
+// is an SPH verification case only, and a dam-break gate lifted at a finite speed would need a moving
+// mesh. `generate` writes this reason into vof/README.txt instead of a case; `hydrojump vof` refuses.
+std::optional<std::string> vof_unsupported_reason(const cases::Case& c);
+inline bool has_vof_reference(const cases::Case& c) { return !vof_unsupported_reason(c).has_value(); }
 
 // Builds the case of `c` at resolution `resolution` (no file is written). Throws
 // std::invalid_argument with a clear message for kinds or settings the VOF reference cannot run.

@@ -3,6 +3,7 @@
 #include <iostream>
 #include <memory>
 
+#include "cases/atomic_file.hpp"
 #include "cases/spec_reader.hpp"
 #include "reference/case_writer.hpp"
 #include "reference/runner.hpp"
@@ -71,6 +72,14 @@ void register_commands(CLI::App& app) {
 
 void write_vof_case(const cases::Study& study, const cases::Case& c, const std::string& resolution,
                     const std::filesystem::path& dir) {
+  if (const auto reason = vof_unsupported_reason(c)) {
+    // Not an error for `generate`: a study may hold cases only the SPH solver runs.
+    std::filesystem::create_directories(dir);
+    cases::write_file_atomically(dir / "README.txt", "No OpenFOAM case was written: " + *reason +
+                                                         ".\n`hydrojump vof` refuses this directory.\n");
+    cases::write_resolved_case(study, c, resolution, dir / "case.toml");
+    return;
+  }
   const VofCase vof = build_vof_case(study, c, resolution);
   std::filesystem::create_directories(dir);
   write_vof_files(vof, dir);

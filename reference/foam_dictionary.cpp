@@ -230,8 +230,13 @@ std::string format_value(const Value& v, int indent) {
   switch (v.kind()) {
     case Value::Kind::Word:
       return v.text();
-    case Value::Kind::String:
-      return "\"" + escape_string(v.text()) + "\"";
+    case Value::Kind::String: {
+      // (built step by step: GCC 12 warns falsely on "literal" + std::string&&)
+      std::string quoted(1, '"');
+      quoted += escape_string(v.text());
+      quoted += '"';
+      return quoted;
+    }
     case Value::Kind::Number:
       return format_number(v.number());
     case Value::Kind::Sequence: {

@@ -498,18 +498,19 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
     throw OpenFoamError(dir.string() + " is not a generated OpenFOAM case: " + spec_file.string() +
                         " is missing (write it with `hydrojump generate SPEC --out DIR`)");
   }
-  for (const char* f : {"system/controlDict", "system/blockMeshDict", "system/setFieldsDict", "0.orig/U"}) {
-    if (!fs::exists(dir / f)) {
-      throw OpenFoamError(dir.string() + " is not a complete OpenFOAM case: " + f +
-                          " is missing (regenerate it with `hydrojump generate`)");
-    }
-  }
   const cases::Study study = cases::load_study(spec_file);
   if (study.cases.size() != 1 || study.cases.front().resolutions.size() != 1) {
     throw OpenFoamError(spec_file.string() + " must hold exactly one case with one resolution table "
                         "(the resolved case written by `hydrojump generate`)");
   }
   const cases::Case& c = study.cases.front();
+  if (const auto reason = vof_unsupported_reason(c)) throw OpenFoamError(*reason);
+  for (const char* f : {"system/controlDict", "system/blockMeshDict", "system/setFieldsDict", "0.orig/U"}) {
+    if (!fs::exists(dir / f)) {
+      throw OpenFoamError(dir.string() + " is not a complete OpenFOAM case: " + f +
+                          " is missing (regenerate it with `hydrojump generate`)");
+    }
+  }
   const std::string resolution = c.resolutions.begin()->first;
   const VofCase vof = build_vof_case(study, c, resolution);
 
@@ -545,13 +546,14 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
   while (fs::is_directory(dir / ("processor" + std::to_string(existing_ranks)))) ++existing_ranks;
   const bool parallel = options.np > 1;
 
-  // Where to start.
-  std::optional<double> start;
-  if (parallel && existing_ranks > 0) {
-    start = latest_time(dir / "processor0");
-  } else {
-    start = latest_time(dir);
-  }
+  // Where to start: the decomposed results when continuing in parallel and they are the newest,
+  // else the reconstructed (or serial) ones.
+  const std::optional<double> start_decomposed =
+      existing_ranks > 0 ? latest_time(dir / "processor0") : std::nullopt;
+  const std::optional<double> start_serial = latest_time(dir);
+  const bool continue_decomposed =
+      parallel && start_decomposed && (!start_serial || *start_decomposed >= *start_serial);
+  std::optional<double> start = continue_decomposed ? start_decomposed : start_serial;
   const bool mesh_exists = fs::exists(dir / "constant/polyMesh/owner") || fs::exists(dir / "constant/polyMesh/owner.gz");
   if (start && !options.resume) {
     throw OpenFoamError(dir.string() + " already holds results up to t = " + format_seconds(*start) +
@@ -559,7 +561,7 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
                         "start again");
   }
   if (options.resume && start) {
-    if (existing_ranks > 0 && existing_ranks != options.np && options.np > 1) {
+    if (continue_decomposed && existing_ranks != options.np) {
       throw OpenFoamError(dir.string() + " was decomposed for " + std::to_string(existing_ranks) +
                           " MPI ranks: resume with --np " + std::to_string(existing_ranks));
     }
@@ -568,13 +570,13 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
                           std::to_string(existing_ranks));
     }
     // A time directory left half-written by a killed run is moved aside.
-    const fs::path time_root = (parallel && existing_ranks > 0) ? dir / "processor0" : dir;
+    const fs::path time_root = continue_decomposed ? dir / "processor0" : dir;
     auto times = time_directories(time_root);
     while (!times.empty() && !time_directory_complete(times.back().second)) {
       const fs::path aside = times.back().second.string() + ".incomplete";
       out << "  time directory " << times.back().second.filename().string()
           << " is incomplete (killed while writing): moved to " << aside.filename().string() << "\n";
-      if (parallel && existing_ranks > 0) {
+      if (continue_decomposed) {
         for (int r = 0; r < existing_ranks; ++r) {
           const fs::path p = dir / ("processor" + std::to_string(r)) / times.back().second.filename();
           std::error_code ec;
@@ -631,7 +633,7 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
   // ---- solver
   std::vector<std::string> solver = {"interFoam"};
   if (parallel) {
-    const bool decomposed_current = start && existing_ranks == options.np;
+    const bool decomposed_current = start && continue_decomposed && existing_ranks == options.np;
     if (!decomposed_current) {
       cases::write_file_atomically(
           dir / "system/decomposeParDict",

@@ -80,6 +80,9 @@ int run_sph_directory(const SphOptions& opt) {
                              "\" is a stilling basin: its inflow and outflow boundaries are not implemented in the SPH "
                              "solver yet (the SPH hydraulic-jump issue); only dam_break, still_water and poiseuille "
                              "cases run");
+  if (const auto* d = c.dam_break(); d != nullptr && d->gate != "instant")
+    throw std::runtime_error("case \"" + c.id + "\": gate.type = \"" + d->gate +
+                             "\" is not modelled by the SPH solver (only \"instant\": the column is released at t = 0)");
   const cases::CaseGeometry geometry = cases::make_geometry(c, study.fluid);
   const SolverSettings settings = make_settings(c, study.fluid, geometry, resolution.particle_spacing_m);
 
@@ -90,6 +93,8 @@ int run_sph_directory(const SphOptions& opt) {
   ro.checkpoint_interval_wall_s = c.sph.checkpoint_interval_wall_s;
   ro.fingerprint = fingerprint_of(read_text(case_file));
   for (const auto& section : geometry.sections) ro.gauges.push_back({section.name, section.x_m});
+  if (ro.gauges.empty()) ro.gauges.push_back({"centre", 0.5 * (geometry.x_min_m + geometry.x_max_m)});
+  ro.bed_elevation = [bed = geometry.bed](double x) { return bed.elevation(x); };
   if (const auto* d = c.dam_break()) {  // its gauges are among the geometry's sections
     ro.record_front = true;
     ro.front_layer_m = 0.1 * d->column_width_m;
@@ -115,6 +120,16 @@ int run_sph_directory(const SphOptions& opt) {
                              "start over (overwriting its outputs)");
   }
 
+  if (!checkpoint) {
+    // A fresh start (possibly --restart): outputs of an earlier run in DIR are removed so the new
+    // series is not mixed with stale snapshots.
+    for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+      const std::string name = entry.path().filename().string();
+      const bool snapshot = name.rfind("particles_", 0) == 0 && entry.path().extension() == ".vtp";
+      if (snapshot || name == "failure.txt" || name == "failure_state.vtp" || name == "checkpoint.bin")
+        std::filesystem::remove(entry.path());
+    }
+  }
   std::unique_ptr<Solver> solver;
   if (checkpoint) {
     solver = std::make_unique<Solver>(settings, checkpoint->particles, checkpoint->clock);

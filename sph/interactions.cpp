@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include "sph/boundary_dbc.hpp"
 #include "sph/density_diffusion.hpp"
 #include "sph/kernel.hpp"
 #include "sph/parallel.hpp"
@@ -79,8 +80,8 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
     for (int i = first; i < last; ++i) {
       const double xi = x[i], zi = z[i], ui = u[i], wi = w[i], rhoi = rho[i];
       if (type[i] != kFluid) {
-        // Boundary particle (DBC, Crespo et al. 2007): continuity with the fluid neighbours only;
-        // it does not move. With mDBC its density comes from the ghost node instead.
+        // Boundary particle (DBC, boundary_dbc.hpp): continuity with the fluid neighbours only; it
+        // does not move. With mDBC its density comes from the ghost node instead.
         double d = 0.0;
         if (dbc) {
           for (int k = 0; k < n_ranges; ++k) {
@@ -90,9 +91,7 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
               const double dx = xi - (x[j] + rg.shift), dz = zi - z[j];
               const double r2 = dx * dx + dz * dz;
               if (r2 >= support2) continue;
-              const double f = kernel.gradient_factor(std::sqrt(r2));
-              // m_j v_ij . grad_i W_ij with v_i = 0
-              d += m[j] * f * (-u[j] * dx - w[j] * dz);
+              d += dbc_density_rate_pair(m[j], kernel.gradient_factor(std::sqrt(r2)), u[j], w[j], dx, dz);
             }
           }
         }

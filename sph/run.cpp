@@ -1,5 +1,6 @@
 #include "sph/run.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <iomanip>
@@ -8,6 +9,7 @@
 #include <sstream>
 
 #include "cases/atomic_file.hpp"
+#include "sph/kernel.hpp"
 #include "sph/vtk_output.hpp"
 
 namespace hydrojump::sph {
@@ -72,16 +74,16 @@ class RunState {
     // Gauges.
     std::ostringstream g;
     g << std::setprecision(10) << t;
-    for (const auto& gauge : o_.gauges) g << ',' << surface_elevation_at(ps, gauge.x_m, s.dx);
-    if (o_.record_front) {
-      double front = -std::numeric_limits<double>::infinity();
-      for (Eigen::Index i = 0; i < ps.size(); ++i)
-        if (ps.is_fluid(i) && ps.z[i] < o_.front_layer_m) front = std::max(front, ps.x[i] + 0.5 * s.dx);
-      g << ',' << front;
+    for (const auto& gauge : o_.gauges) {
+      const double surface = surface_elevation_at(ps, gauge.x_m, s.dx);
+      const auto [u, w] = velocity_at(ps, s, gauge.x_m, 0.5 * (o_.bed_elevation(gauge.x_m) + surface));
+      g << ',' << surface << ',' << u << ',' << w;
     }
+    if (o_.record_front) g << ',' << surge_front_x(ps, s.dx, o_.front_layer_m);
     gauge_rows_.push_back(g.str());
     std::string header = "t_s";
-    for (const auto& gauge : o_.gauges) header += ",surface_z_" + gauge.name + "_m";
+    for (const auto& gauge : o_.gauges)
+      header += ",surface_z_" + gauge.name + "_m,u_" + gauge.name + "_m_s,w_" + gauge.name + "_m_s";
     if (o_.record_front) header += ",front_x_m";
     cases::write_file_atomically(o_.dir / "gauges.csv", join(header, gauge_rows_));
   }
@@ -97,6 +99,8 @@ class RunState {
     c.gauge_rows = gauge_rows_;
     write_checkpoint(c, checkpoint_path(o_.dir));
   }
+
+  double last_output_time() const { return series_.entries().empty() ? -1.0 : series_.entries().back().first; }
 
   double next_output_ = 0.0;
 
@@ -121,6 +125,39 @@ double surface_elevation_at(const ParticleSet& ps, double x, double dx) {
   for (Eigen::Index i = 0; i < ps.size(); ++i)
     if (ps.is_fluid(i) && std::abs(ps.x[i] - x) < dx && !(ps.z[i] + 0.5 * dx <= top)) top = ps.z[i] + 0.5 * dx;
   return top;
+}
+
+double surge_front_x(const ParticleSet& ps, double dx, double layer_m) {
+  std::vector<double> xs;
+  for (Eigen::Index i = 0; i < ps.size(); ++i)
+    if (ps.is_fluid(i) && ps.z[i] < layer_m) xs.push_back(ps.x[i]);
+  if (xs.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::sort(xs.begin(), xs.end());
+  double front = xs.front();
+  for (const double x : xs) {
+    if (x - front > 2.0 * dx) break;
+    front = x;
+  }
+  return front + 0.5 * dx;
+}
+
+std::pair<double, double> velocity_at(const ParticleSet& ps, const SolverSettings& s, double x, double z) {
+  const Kernel kernel = Kernel::make(to_string(s.kernel), s.h);
+  double sum_w = 0.0, sum_u = 0.0, sum_v = 0.0;
+  const double period = s.x_max - s.x_min;
+  for (Eigen::Index i = 0; i < ps.size(); ++i) {
+    if (!ps.is_fluid(i)) continue;
+    double dx = x - ps.x[i];
+    if (s.periodic_x) dx -= period * std::round(dx / period);
+    const double r = std::hypot(dx, z - ps.z[i]);
+    if (r >= 2.0 * s.h) continue;
+    const double vw = ps.mass[i] / ps.rho[i] * kernel.value(r);
+    sum_w += vw;
+    sum_u += vw * ps.u[i];
+    sum_v += vw * ps.w[i];
+  }
+  if (!(sum_w > 0.0) || !std::isfinite(z)) return {std::nan(""), std::nan("")};
+  return {sum_u / sum_w, sum_v / sum_w};
 }
 
 std::string diagnose(const Solver& solver) {
@@ -238,6 +275,7 @@ RunStatus run_case(Solver& solver, const RunOptions& o, const std::optional<Chec
       last_progress = Clock::now();
     }
   }
+  if (state.last_output_time() < solver.time() - 1e-12) state.write_output();  // the final state
   state.write_checkpoint_now();
   progress(true);
   return RunStatus::finished;

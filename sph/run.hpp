@@ -2,7 +2,8 @@
 //
 //   DIR/particles.pvd, DIR/particles_NNNN.vtp   particle snapshots every output interval (ParaView)
 //   DIR/run_log.csv    t, step, dt, fluid mass, kinetic and potential energy, max |rho/rho0 - 1|
-//   DIR/gauges.csv     free-surface elevation at the gauges (and the surge front for dam breaks)
+//   DIR/gauges.csv     at every gauge x: free-surface elevation and the velocity (u, w) at mid-depth
+//                      (Shepard kernel interpolation); for dam breaks also the surge front
 //   DIR/checkpoint.bin restart file, every checkpoint interval of wall-clock time and at exit
 //   DIR/failure.txt, DIR/failure_state.vtp   only when the run goes unstable
 //
@@ -15,10 +16,12 @@
 #include <atomic>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <iosfwd>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sph/checkpoint.hpp"
@@ -42,7 +45,8 @@ struct RunOptions {
   double output_interval_s = 0.05;
   double checkpoint_interval_wall_s = 300.0;
   std::int64_t max_steps = -1;             // stop after this many steps of this invocation (-1: no limit)
-  std::vector<Gauge> gauges;               // free-surface gauges
+  std::vector<Gauge> gauges;               // free-surface and velocity gauges
+  std::function<double(double)> bed_elevation = [](double) { return 0.0; };  // floor z at x (m)
   bool record_front = false;               // dam break: surge front x in gauges.csv
   double front_layer_m = 0.0;              // front: fluid within this height of the floor
   std::string fingerprint;                 // of the resolved case, stored in checkpoints
@@ -61,6 +65,15 @@ std::string diagnose(const Solver& solver);
 
 // Surface elevation at x: highest fluid particle within dx of x, plus dx/2 (NaN if none).
 double surface_elevation_at(const ParticleSet& ps, double x, double dx);
+
+// Dam-break surge front: walking downstream along the fluid particles lower than `layer_m`
+// (measured from the floor at z = 0), the last one before a gap wider than 2 dx (droplets thrown
+// ahead do not count), plus dx/2 for the particle's own extent. NaN without fluid in the layer.
+double surge_front_x(const ParticleSet& ps, double dx, double layer_m);
+
+// Velocity at (x, z) by Shepard-normalised kernel interpolation over the fluid particles,
+//   v(x) = sum_j V_j v_j W(x - x_j) / sum_j V_j W(x - x_j);  (NaN, NaN) with no fluid within 2h.
+std::pair<double, double> velocity_at(const ParticleSet& ps, const SolverSettings& s, double x, double z);
 
 std::filesystem::path checkpoint_path(const std::filesystem::path& dir);
 

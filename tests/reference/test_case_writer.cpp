@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
@@ -16,6 +17,7 @@
 #include "reference/case_writer.hpp"
 #include "reference/cli.hpp"
 #include "reference/mesh_plan.hpp"
+#include "reference/runner.hpp"
 #include "reference_test_specs.hpp"
 
 namespace fs = std::filesystem;
@@ -65,7 +67,7 @@ fs::path fresh_dir(const std::string& name) {
 
 }  // namespace
 
-TEST_CASE("cartesian_cut plan: grid lines at the floor and the inflow surface, graded air, staircase bed",
+TEST_CASE("cartesian_cut plan: grid lines at the floor and the inflow surface; graded air; staircase bed",
           "[reference][mesh]") {
   // Air 0.15 m above the tailwater: room for the transition to the bulk cell size.
   const cases::Study study = parse(basin_spec("", 0.02, 0.01, "sinusoidal", 0.005, 0.01, 0.15));
@@ -127,7 +129,7 @@ TEST_CASE("a smooth bed is not cut", "[reference][mesh]") {
   CHECK(vof.mesh_steps.size() == 2);  // blockMesh, topoSet for the section zones
 }
 
-TEST_CASE("stilling basin: patches, their types and faces on the right boundaries", "[reference][case]") {
+TEST_CASE("stilling basin: patches and their types with faces on the right boundaries", "[reference][case]") {
   const cases::Study study = parse(basin_spec());
   const cases::Case& c = study.cases.front();
   const reference::VofCase vof = reference::build_vof_case(study, c, "quick");
@@ -293,7 +295,7 @@ TEST_CASE("setFields: the initial water follows the spec's surface and carries q
   CHECK(covered == Approx(geo.x_max_m).epsilon(1e-9));
 }
 
-TEST_CASE("dam break: closed tank, grid line at the gate, water column and floor line", "[reference][case]") {
+TEST_CASE("dam break: closed tank; grid line at the gate; water column and floor line", "[reference][case]") {
   const cases::Study study = parse(dam_break_spec());
   const cases::Case& c = study.cases.front();
   const reference::VofCase vof = reference::build_vof_case(study, c, "quick");
@@ -344,6 +346,12 @@ TEST_CASE("cases the VOF reference cannot run are rejected with a clear message"
     const cases::Study study = parse(dam_break_spec("type = \"lifted\"\nlift_speed_m_s = 1.0"));
     CHECK_THROWS_WITH(reference::build_vof_case(study, study.cases.front(), "quick"),
                       Catch::Contains("gate") && Catch::Contains("instant"));
+    // `generate` still succeeds for such a study: the vof/ directory explains why it has no case.
+    const fs::path dir = fresh_dir("lifted");
+    reference::write_vof_case(study, study.cases.front(), "quick", dir);
+    CHECK(fs::exists(dir / "README.txt"));
+    CHECK_FALSE(fs::exists(dir / "system"));
+    fs::remove_all(dir);
   }
   {
     const cases::Study study = parse(basin_spec());
@@ -369,5 +377,28 @@ TEST_CASE("write_vof_case writes a complete case directory with its resolved spe
   CHECK(vof2.mesh.cell_count() == vof.mesh.cell_count());
   CHECK(foam::format_file(vof2.headers.at("system/controlDict"), vof2.files.at("system/controlDict")) ==
         foam::format_file(vof.headers.at("system/controlDict"), vof.files.at("system/controlDict")));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("SPH-only cases get a note instead of an OpenFOAM case and the runner refuses them",
+          "[reference][case]") {
+  const cases::Study study = parse(
+      "[study]\nname = \"p\"\ndescription = \"p\"\n"
+      "[fluid]\ndensity_kg_m3 = 1000.0\nkinematic_viscosity_m2_s = 1.0e-6\ngravity_m_s2 = 9.81\n"
+      "[resolution.quick]\nparticle_spacing_m = 0.001\nvof_cell_size_bed_m = 0.001\nvof_cell_size_bulk_m = 0.001\n"
+      "[[case]]\nid = \"channel\"\nkind = \"poiseuille\"\ndescription = \"p\"\n"
+      "[case.run]\nend_time_s = 1.0\noutput_interval_s = 0.1\naverage_start_s = 0.0\naverage_end_s = 1.0\n"
+      "[case.channel]\nwidth_m = 0.02\nlength_m = 0.01\nbody_force_m_s2 = 0.0001\n");
+  const cases::Case& c = study.cases.front();
+  CHECK_FALSE(reference::has_vof_reference(c));
+  CHECK_THROWS_WITH(reference::build_vof_case(study, c, "quick"), Catch::Contains("poiseuille"));
+  const fs::path dir = fresh_dir("poiseuille");
+  reference::write_vof_case(study, c, "quick", dir);
+  CHECK(fs::exists(dir / "README.txt"));
+  CHECK(fs::exists(dir / "case.toml"));
+  CHECK_FALSE(fs::exists(dir / "system"));
+  std::ostringstream out;
+  CHECK_THROWS_WITH(reference::run_vof_case(dir, reference::RunOptions{}, out),
+                    Catch::Contains("no OpenFOAM reference") && Catch::Contains("poiseuille"));
   fs::remove_all(dir);
 }

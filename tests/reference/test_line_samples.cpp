@@ -38,7 +38,7 @@ TEST_CASE("the surge front ignores detached splashes", "[reference][line_samples
   CHECK_FALSE(hydrojump::reference::surge_front(s, 0.05).has_value());
 }
 
-TEST_CASE("raw .xy files are read, bad ones rejected with the file name", "[reference][line_samples]") {
+TEST_CASE("raw .xy files are read and bad ones rejected with the file name", "[reference][line_samples]") {
   const fs::path dir = fs::temp_directory_path() / ("hydrojump-line-samples-" + std::to_string(::getpid()));
   fs::create_directories(dir / "0.5");
   fs::create_directories(dir / "0.25");

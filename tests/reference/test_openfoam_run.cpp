@@ -100,7 +100,7 @@ TEST_CASE("every generated dictionary is read by OpenFOAM's foamDictionary", "[r
   }
 }
 
-TEST_CASE("a tiny corrugated basin meshes, passes checkMesh, runs and resumes", "[reference][openfoam]") {
+TEST_CASE("a tiny corrugated basin meshes; passes checkMesh; runs and resumes", "[reference][openfoam]") {
   require_openfoam();
   const std::string spec = basin_spec("", 0.02, 0.01);
   const cases::Study study = parse(spec);
@@ -164,6 +164,16 @@ TEST_CASE("an MPI run (--np 2) gives the same result as the serial run", "[refer
     CHECK(d_serial > 0.02);
     CHECK(d_parallel == Approx(d_serial).epsilon(0.01));
   }
+  // Resuming a decomposed run continues in parallel from the processor directories.
+  fs::remove_all(parallel / "0.03");
+  fs::remove_all(parallel / "processor0/0.03");
+  fs::remove_all(parallel / "processor1/0.03");
+  np2.resume = true;
+  std::ostringstream out2;
+  reference::run_vof_case(parallel, np2, out2);
+  CHECK_THAT(out2.str(), Catch::Contains("Resuming from t = 0.02"));
+  CHECK_THAT(out2.str(), !Catch::Contains("decomposePar"));
+  CHECK(fs::exists(parallel / "0.03/U.gz"));
   fs::remove_all(serial);
   fs::remove_all(parallel);
 }
@@ -236,7 +246,7 @@ TEST_CASE("a missing OpenFOAM installation is reported clearly", "[reference][op
   ::setenv("PATH", saved.c_str(), 1);
 }
 
-TEST_CASE("the generated Allrun runs the case by hand, as an OpenFOAM user would", "[reference][openfoam]") {
+TEST_CASE("the generated Allrun runs the case by hand as an OpenFOAM user would", "[reference][openfoam]") {
   require_openfoam();
   const fs::path dir = generate(basin_spec("", 0.02, 0.01), "allrun");
   const std::string command = "sh '" + (dir / "Allrun").string() + "' > '" + (dir / "allrun.out").string() + "' 2>&1";

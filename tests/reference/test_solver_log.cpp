@@ -88,7 +88,7 @@ TEST_CASE("a collapsing time step is a failure", "[reference][solver_log]") {
   CHECK_THAT(log.failure(), Catch::Contains("time step collapsed"));
 }
 
-TEST_CASE("crashes and fatal errors are failures, the FPE banner is not", "[reference][solver_log]") {
+TEST_CASE("crashes and fatal errors are failures but the FPE banner is not", "[reference][solver_log]") {
   {
     SolverLog log;
     log.add_line("trapFpe: Floating point exception trapping enabled (FOAM_SIGFPE).");

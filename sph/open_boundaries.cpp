@@ -1,0 +1,194 @@
+#include "sph/open_boundaries.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace hydrojump::sph {
+namespace {
+
+constexpr auto inflow_code = static_cast<std::uint8_t>(ParticleType::inflow);
+constexpr auto outflow_code = static_cast<std::uint8_t>(ParticleType::outflow);
+constexpr auto fluid_code = static_cast<std::uint8_t>(ParticleType::fluid);
+
+}  // namespace
+
+int buffer_layers(double support, double dx, int requested) {
+  const int needed = static_cast<int>(std::ceil(support / dx - 1e-9)) + 1;
+  if (requested == 0) return needed;
+  if (requested < needed) {
+    throw std::invalid_argument("open-boundary buffer of " + std::to_string(requested) +
+                                " layers is thinner than the kernel support (" + std::to_string(support) +
+                                " m = " + std::to_string(support / dx) + " dx): use at least " +
+                                std::to_string(needed) + " layers");
+  }
+  return requested;
+}
+
+void remove_particles(ParticleSet& particles, const std::vector<char>& remove) {
+  const Eigen::Index n = particles.size();
+  Eigen::Index kept = 0;
+  std::vector<Eigen::Index> keep;
+  keep.reserve(static_cast<std::size_t>(n));
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (!remove[static_cast<std::size_t>(i)]) keep.push_back(i);
+  }
+  kept = static_cast<Eigen::Index>(keep.size());
+  if (kept == n) return;
+  // Gathering forwards is safe in place: keep[k] >= k.
+  particles.for_each_real_array([&](Vector& v) {
+    for (Eigen::Index k = 0; k < kept; ++k) v[k] = v[keep[static_cast<std::size_t>(k)]];
+  });
+  for (Eigen::Index k = 0; k < kept; ++k) {
+    particles.id[k] = particles.id[keep[static_cast<std::size_t>(k)]];
+    particles.type[k] = particles.type[keep[static_cast<std::size_t>(k)]];
+  }
+  particles.resize(kept);
+}
+
+InflowBuffer::InflowBuffer(const cases::InflowBoundary& inflow, double bed_z, const BufferParameters& params)
+    : x_in_(inflow.x_m),
+      bed_z_(bed_z),
+      dx_(params.dx),
+      gravity_(params.gravity),
+      layers_(buffer_layers(params.support, params.dx, params.layers)),
+      eos_(params.eos) {
+  if (!(dx_ > 0.0) || !(inflow.depth_m > 0.0) || !(inflow.velocity_m_s > 0.0)) {
+    throw std::invalid_argument("inflow buffer: depth, velocity and particle spacing must be positive");
+  }
+  rows_ = static_cast<int>(std::lround(inflow.depth_m / dx_));
+  if (rows_ < 2) {
+    throw std::invalid_argument("inflow buffer: the inflow depth " + std::to_string(inflow.depth_m) +
+                                " m is resolved by fewer than 2 particle rows at dx = " + std::to_string(dx_) +
+                                " m");
+  }
+  surface_z_ = bed_z_ + rows_ * dx_;
+  // U_b = q / (N dx): the buffer carries exactly the spec's discharge.
+  velocity_ = inflow.depth_m * inflow.velocity_m_s / (rows_ * dx_);
+  mass_ = eos_.rho0 * dx_ * dx_;
+}
+
+void InflowBuffer::create(ParticleSet& particles, std::int64_t& next_id) const {
+  const Eigen::Index first = particles.size();
+  particles.resize(first + static_cast<Eigen::Index>(rows_) * layers_);
+  Eigen::Index i = first;
+  for (int layer = 0; layer < layers_; ++layer) {
+    for (int row = 0; row < rows_; ++row, ++i) {
+      const double x = x_in_ - (layer + 0.5) * dx_;
+      const double z = bed_z_ + (row + 0.5) * dx_;
+      // rho = rho0 (1 + rho0 g (z_s - z)/B)^(1/7)
+      const double rho = eos_.hydrostatic_density(gravity_, surface_z_ - z);
+      particles.assign(i, ParticleType::inflow, x, z, rho, mass_, next_id++);
+      particles.u[i] = particles.u_old[i] = velocity_;
+      particles.p[i] = eos_.pressure(rho);
+    }
+  }
+}
+
+double InflowBuffer::advance(ParticleSet& particles, double dt, std::int64_t& next_id) {
+  const Eigen::Index n = particles.size();
+  const double depth_span = layers_ * dx_;
+  std::int64_t converted = 0;
+  std::vector<Eigen::Index> refill;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (particles.type[i] != inflow_code) continue;
+    particles.x[i] += velocity_ * dt;
+    particles.u[i] = particles.u_old[i] = velocity_;
+    particles.w[i] = particles.w_old[i] = 0.0;
+    particles.x_old[i] = particles.x[i];
+    particles.z_old[i] = particles.z[i];
+    if (particles.x[i] >= x_in_) {
+      // Crossed the inflow section: it becomes fluid; a new buffer particle takes its place upstream.
+      particles.type[i] = fluid_code;
+      refill.push_back(i);
+      ++converted;
+    } else {
+      const double rho = eos_.hydrostatic_density(gravity_, surface_z_ - particles.z[i]);
+      particles.rho[i] = particles.rho_old[i] = rho;
+      particles.p[i] = eos_.pressure(rho);
+    }
+  }
+  if (!refill.empty()) {
+    particles.resize(n + static_cast<Eigen::Index>(refill.size()));
+    Eigen::Index j = n;
+    for (const Eigen::Index i : refill) {
+      const double z = particles.z[i];
+      const double rho = eos_.hydrostatic_density(gravity_, surface_z_ - z);
+      particles.assign(j, ParticleType::inflow, particles.x[i] - depth_span, z, rho, mass_, next_id++);
+      particles.u[j] = particles.u_old[j] = velocity_;
+      particles.p[j] = eos_.pressure(rho);
+      ++j;
+    }
+  }
+  totals_.particles_in += converted;
+  const double mass = static_cast<double>(converted) * mass_;
+  totals_.mass_in += mass;
+  return mass;
+}
+
+OutflowBuffer::OutflowBuffer(const cases::OutflowBoundary& outflow, double bed_z, const BufferParameters& params)
+    : x_out_(outflow.x_m),
+      bed_z_(bed_z),
+      dx_(params.dx),
+      level_z_(bed_z + outflow.tailwater_depth_m),
+      gravity_(params.gravity),
+      layers_(buffer_layers(params.support, params.dx, params.layers)),
+      eos_(params.eos) {
+  if (!(outflow.tailwater_depth_m > 0.0)) throw std::invalid_argument("outflow buffer: tailwater depth must be positive");
+}
+
+double OutflowBuffer::advance(ParticleSet& particles, double dt) {
+  const Eigen::Index n = particles.size();
+  const double x_end = x_out_ + layers_ * dx_;
+  const double strip = layers_ * dx_;
+  // Depth-averaged velocity of the fluid strip just upstream of x_out (zero-gradient outflow).
+  double momentum = 0.0, mass = 0.0;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (particles.type[i] == fluid_code && particles.x[i] < x_out_ && particles.x[i] >= x_out_ - strip) {
+      momentum += particles.mass[i] * particles.u[i];
+      mass += particles.mass[i];
+    }
+  }
+  const double u_out = mass > 0.0 ? std::max(0.0, momentum / mass) : 0.0;
+
+  std::vector<char> remove(static_cast<std::size_t>(n), 0);
+  std::int64_t removed = 0;
+  double removed_mass = 0.0;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const auto t = particles.type[i];
+    if (t == fluid_code && particles.x[i] >= x_out_) {
+      particles.type[i] = outflow_code;
+      // Water arriving above the tailwater level spills: removed at once (level control).
+      if (particles.z[i] > level_z_ + 0.5 * dx_) {
+        remove[static_cast<std::size_t>(i)] = 1;
+        ++removed;
+        removed_mass += particles.mass[i];
+        continue;
+      }
+    } else if (t != outflow_code) {
+      continue;
+    }
+    particles.x[i] += u_out * dt;
+    particles.u[i] = particles.u_old[i] = u_out;
+    particles.w[i] = particles.w_old[i] = 0.0;
+    particles.x_old[i] = particles.x[i];
+    particles.z_old[i] = particles.z[i];
+    if (particles.x[i] >= x_end) {
+      remove[static_cast<std::size_t>(i)] = 1;
+      ++removed;
+      removed_mass += particles.mass[i];
+      continue;
+    }
+    // rho = rho0 (1 + rho0 g (z_level - z)/B)^(1/7), never below rho0 above the level
+    const double rho = eos_.hydrostatic_density(gravity_, std::max(0.0, level_z_ - particles.z[i]));
+    particles.rho[i] = particles.rho_old[i] = rho;
+    particles.p[i] = eos_.pressure(rho);
+  }
+  if (removed > 0) remove_particles(particles, remove);
+  totals_.particles_out += removed;
+  totals_.mass_out += removed_mass;
+  return removed_mass;
+}
+
+}  // namespace hydrojump::sph

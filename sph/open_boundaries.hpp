@@ -1,0 +1,116 @@
+// Open boundaries of a stilling basin: a supercritical inflow buffer and a tailwater outflow buffer,
+// in the buffer-zone style of Tafuni, Domínguez, Vacondio & Crespo (2018, Comput. Methods Appl. Mech.
+// Eng. 342:604-624) as used by DualSPHysics' inlet/outlet.
+//
+// Inflow buffer. A block of particles upstream of the inflow section x_in, `layers` columns deep and
+// N = round(y1/dx) rows high, moves at the imposed velocity U_b with the hydrostatic density of its depth:
+//
+//   u = U_b,  w = 0,  rho = rho0 (1 + rho0 g (z_s - z) / B)^(1/7),   z_s = z_b(x_in) + N dx,
+//   U_b = q / (N dx)  with q = y1 U1,      so the discharge is exactly the spec's q even when y1/dx
+//                                           is not a whole number (the depth is N dx instead of y1).
+//
+// A buffer particle that crosses x_in becomes a fluid particle, and a new buffer particle takes its
+// place `layers` dx upstream; each conversion injects one particle mass, so the mass inflow rate is
+// rho0 N dx U_b = rho0 q.
+//
+// Outflow buffer. Fluid that crosses the outflow section x_out becomes outflow-buffer particles. They
+// move horizontally with the depth-averaged velocity of the fluid just upstream (zero-gradient
+// velocity, never negative), carry the hydrostatic density of the tailwater level
+//
+//   rho = rho0 (1 + rho0 g (z_b(x_out) + y_t - z) / B)^(1/7),
+//
+// and are removed once they are `layers` dx past x_out. Buffer particles that enter above the
+// tailwater level (plus dx/2) are removed at once: together with the imposed hydrostatic pressure this
+// holds the outlet level at the tailwater depth y_t (a level controller).
+//
+// Usage
+//   | quantity        | from                                          |
+//   |-----------------|-----------------------------------------------|
+//   | x_in, y1, U1    | CaseGeometry::inflows[0]                      |
+//   | x_out, y_t      | CaseGeometry::outflows[0]                     |
+//   | layers          | ceil(kernel support / dx) + 1 (at least that) |
+// Example:
+//   InflowBuffer inflow(geometry.inflows[0], bed_z, {dx, support, eos, g});
+//   inflow.create(particles, next_id);              // once, at start
+//   inflow.advance(particles, dt, next_id);         // after every time step
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "cases/geometry.hpp"
+#include "sph/equation_of_state.hpp"
+#include "sph/particles.hpp"
+
+namespace hydrojump::sph {
+
+// Numbers both buffers need.
+struct BufferParameters {
+  double dx = 0.0;                 // particle spacing (m)
+  double support = 0.0;            // kernel support radius (m)
+  TaitEquationOfState eos;
+  double gravity = 9.81;           // m/s^2
+  int layers = 0;                  // 0: ceil(support / dx) + 1; otherwise at least that
+};
+
+// Running totals of what crossed the open boundaries (kg per metre of width).
+struct OpenBoundaryTotals {
+  double mass_in = 0.0;
+  double mass_out = 0.0;
+  std::int64_t particles_in = 0;
+  std::int64_t particles_out = 0;
+};
+
+class InflowBuffer {
+ public:
+  // Throws std::invalid_argument when the buffer cannot work (e.g. fewer than 2 rows across y1,
+  // or a requested layer count thinner than the kernel support).
+  InflowBuffer(const cases::InflowBoundary& inflow, double bed_z, const BufferParameters& params);
+
+  // Appends the buffer particles to `particles`; ids from `next_id` (advanced).
+  void create(ParticleSet& particles, std::int64_t& next_id) const;
+  // Moves the buffer by U_b dt, imposes velocity and density, converts particles that crossed x_in
+  // into fluid and refills the buffer. Returns the mass converted into fluid (kg/m).
+  double advance(ParticleSet& particles, double dt, std::int64_t& next_id);
+
+  int rows() const { return rows_; }
+  int layers() const { return layers_; }
+  double buffer_velocity() const { return velocity_; }    // U_b
+  double section_x() const { return x_in_; }
+  double particle_mass() const { return mass_; }
+  const OpenBoundaryTotals& totals() const { return totals_; }
+
+ private:
+  double x_in_, bed_z_, dx_, velocity_, surface_z_, mass_, gravity_;
+  int rows_, layers_;
+  TaitEquationOfState eos_;
+  OpenBoundaryTotals totals_;
+};
+
+class OutflowBuffer {
+ public:
+  OutflowBuffer(const cases::OutflowBoundary& outflow, double bed_z, const BufferParameters& params);
+
+  // Converts fluid past x_out into buffer particles, imposes their velocity and density, removes
+  // those beyond the buffer or above the tailwater level. Returns the mass removed (kg/m).
+  double advance(ParticleSet& particles, double dt);
+
+  int layers() const { return layers_; }
+  double section_x() const { return x_out_; }
+  double level_z() const { return level_z_; }
+  const OpenBoundaryTotals& totals() const { return totals_; }
+
+ private:
+  double x_out_, bed_z_, dx_, level_z_, gravity_;
+  int layers_;
+  TaitEquationOfState eos_;
+  OpenBoundaryTotals totals_;
+};
+
+// Removes the particles whose flag is set, keeping the order of the others.
+void remove_particles(ParticleSet& particles, const std::vector<char>& remove);
+
+// The number of buffer layers for a kernel support: at least ceil(support / dx) + 1.
+int buffer_layers(double support, double dx, int requested);
+
+}  // namespace hydrojump::sph

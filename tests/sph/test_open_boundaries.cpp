@@ -1,0 +1,130 @@
+// Open boundaries: the inflow buffer injects exactly rho0 q, the outflow buffer removes what leaves,
+// holds the tailwater level, and mass is accounted for to the particle.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "sph/open_boundaries.hpp"
+
+using namespace hydrojump::sph;
+
+namespace {
+
+BufferParameters parameters(double dx) {
+  BufferParameters p;
+  p.dx = dx;
+  p.support = 2.0 * std::sqrt(2.0) * dx;  // Wendland C2 with h = sqrt(2) dx
+  p.eos = TaitEquationOfState(1000.0, 40.0);
+  p.gravity = 9.81;
+  return p;
+}
+
+double total_mass(const ParticleSet& p, ParticleType t) {
+  double m = 0.0;
+  for (Eigen::Index i = 0; i < p.size(); ++i) {
+    if (p.type[i] == static_cast<std::uint8_t>(t)) m += p.mass[i];
+  }
+  return m;
+}
+
+}  // namespace
+
+TEST_CASE("Buffer layers cover the kernel support", "[sph][open_boundary]") {
+  CHECK(buffer_layers(2.0 * std::sqrt(2.0) * 0.005, 0.005, 0) == 4);
+  CHECK(buffer_layers(0.01, 0.005, 0) == 3);
+  CHECK_THROWS_WITH(buffer_layers(2.0 * std::sqrt(2.0) * 0.005, 0.005, 2),
+                    Catch::Contains("thinner than the kernel support"));
+}
+
+TEST_CASE("Inflow buffer injects the prescribed discharge", "[sph][open_boundary]") {
+  // Run A: y1 = 25.4 mm, U1 = 2 m/s at dx = 5 mm: N = 5 rows (25 mm), U_b = 0.0508 / 0.025 = 2.032 m/s.
+  const double dx = 0.005, q = 0.0254 * 2.0;
+  InflowBuffer inflow({0.0, 0.0254, 2.0}, 0.0, parameters(dx));
+  CHECK(inflow.rows() == 5);
+  CHECK(inflow.buffer_velocity() * inflow.rows() * dx == Approx(q));
+  ParticleSet p;
+  std::int64_t next_id = 0;
+  inflow.create(p, next_id);
+  CHECK(p.size() == inflow.rows() * inflow.layers());
+  // Hydrostatic density in the buffer: the bottom row is denser than the top row.
+  CHECK(p.rho[0] > p.rho[4]);
+  const double dt = 1e-4;
+  const int steps = 10000;  // 1 s
+  double created = 0.0;
+  for (int s = 0; s < steps; ++s) created += inflow.advance(p, dt, next_id);
+  const double rate = created / (steps * dt);
+  // One column of N particles per dx / U_b seconds: the rate is exact up to one column.
+  const double column = 1000.0 * dx * dx * inflow.rows();
+  CHECK(std::abs(rate - 1000.0 * q) <= column / (steps * dt) + 1e-9);
+  CHECK(total_mass(p, ParticleType::fluid) == Approx(created));
+  CHECK(total_mass(p, ParticleType::inflow) == Approx(column * inflow.layers()));
+  // Ids stay unique.
+  std::vector<std::int64_t> ids(p.id.data(), p.id.data() + p.size());
+  std::sort(ids.begin(), ids.end());
+  CHECK(std::adjacent_find(ids.begin(), ids.end()) == ids.end());
+  // Every buffer particle is upstream of the section, every fluid particle downstream of it.
+  for (Eigen::Index i = 0; i < p.size(); ++i) {
+    if (p.type[i] == static_cast<std::uint8_t>(ParticleType::inflow)) CHECK(p.x[i] < 0.0);
+    else CHECK(p.x[i] >= 0.0);
+  }
+}
+
+TEST_CASE("Inflow buffer rejects an unresolved inflow", "[sph][open_boundary]") {
+  CHECK_THROWS_WITH(InflowBuffer({0.0, 0.006, 2.0}, 0.0, parameters(0.005)), Catch::Contains("fewer than 2"));
+}
+
+TEST_CASE("Outflow buffer removes what leaves and holds the level", "[sph][open_boundary]") {
+  const double dx = 0.01, x_out = 1.0, tailwater = 0.1;
+  OutflowBuffer outflow({x_out, tailwater}, 0.0, parameters(dx));
+  // A layer of fluid 0.15 m deep (above the tailwater) moving at 0.5 m/s towards the outlet.
+  ParticleSet p;
+  std::int64_t id = 0;
+  const int columns = 60, rows = 15;
+  p.resize(columns * rows);
+  Eigen::Index i = 0;
+  for (int c = 0; c < columns; ++c) {
+    for (int r = 0; r < rows; ++r, ++i) {
+      p.assign(i, ParticleType::fluid, 0.5 + (c + 0.5) * dx, (r + 0.5) * dx, 1000.0, 0.1, id++);
+      p.u[i] = 0.5;
+    }
+  }
+  const double initial = total_mass(p, ParticleType::fluid);
+  double removed = 0.0;
+  const double dt = 1e-3;
+  for (int s = 0; s < 400; ++s) {
+    for (Eigen::Index k = 0; k < p.size(); ++k) {
+      if (p.type[k] == static_cast<std::uint8_t>(ParticleType::fluid)) p.x[k] += p.u[k] * dt;  // "integrator"
+    }
+    removed += outflow.advance(p, dt);
+    for (Eigen::Index k = 0; k < p.size(); ++k) {
+      if (p.type[k] == static_cast<std::uint8_t>(ParticleType::outflow)) {
+        CHECK(p.x[k] >= x_out);
+        CHECK(p.x[k] < x_out + outflow.layers() * dx);
+        CHECK(p.z[k] <= tailwater + 0.5 * dx);
+      }
+    }
+  }
+  // Mass is accounted for: what is left plus what was removed is what there was.
+  CHECK(total_mass(p, ParticleType::fluid) + total_mass(p, ParticleType::outflow) + removed == Approx(initial));
+  CHECK(outflow.totals().mass_out == Approx(removed));
+  CHECK(removed > 0.0);
+  // Buffer particles carry the hydrostatic density of the tailwater level.
+  const TaitEquationOfState eos(1000.0, 40.0);
+  for (Eigen::Index k = 0; k < p.size(); ++k) {
+    if (p.type[k] == static_cast<std::uint8_t>(ParticleType::outflow)) {
+      CHECK(p.rho[k] == Approx(eos.hydrostatic_density(9.81, std::max(0.0, tailwater - p.z[k]))).epsilon(1e-12));
+    }
+  }
+}
+
+TEST_CASE("remove_particles keeps the others in order", "[sph][open_boundary]") {
+  ParticleSet p;
+  p.resize(6);
+  for (int i = 0; i < 6; ++i) p.assign(i, ParticleType::fluid, i, 0.0, 1000.0, 1.0, 100 + i);
+  remove_particles(p, {1, 0, 0, 1, 0, 1});
+  REQUIRE(p.size() == 3);
+  CHECK(p.id[0] == 101);
+  CHECK(p.id[1] == 102);
+  CHECK(p.id[2] == 104);
+  CHECK(p.x[2] == 4.0);
+}
