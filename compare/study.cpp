@@ -129,7 +129,8 @@ class StudyRunner {
     // Regenerate the case directories only when the case changed (keeps finished results).
     const auto generated_stamp = dir / "generate.stamp";
     if (options_.force || read_text(generated_stamp) != fingerprint) {
-      for (const char* stage : {"sph", "vof", "compare"}) std::filesystem::remove(dir / (std::string(stage) + ".stamp"));
+      // The results of a changed case are stale: start its directory afresh.
+      std::filesystem::remove_all(dir);
       generate_cases(study_, {&c}, options_.resolution, options_.out, log_stream());
       cases::write_file_atomically(generated_stamp, fingerprint);
     }
@@ -140,8 +141,12 @@ class StudyRunner {
         args.push_back("--np");
         args.push_back(std::to_string(options_.mpi_ranks));
       }
+      // Resume an interrupted solver from what it left: the SPH checkpoint, or OpenFOAM's mesh and
+      // time directories.
       const auto started = dir / (method + ".started");
-      if (std::filesystem::exists(started)) args.push_back("--resume");
+      const bool resumable = method == "sph" ? std::filesystem::exists(dir / "sph" / "checkpoint.bin")
+                                             : std::filesystem::exists(dir / "vof" / "constant" / "polyMesh");
+      if (std::filesystem::exists(started) && resumable) args.push_back("--resume");
       const auto stage = run_stage(c.id, method, args, dir, fingerprint, started);
       any_solver_ok = any_solver_ok || stage.state == "done" || stage.state == "cached";
       result.stages.push_back(stage);

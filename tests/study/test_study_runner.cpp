@@ -86,8 +86,9 @@ TEST_CASE("Study runner: failures are isolated, results cached, changes re-run",
   const fs::path calls = dir / "calls.txt";
   // A stand-in for the hydrojump executable: records each call; the SPH run of case B fails.
   const fs::path fake = dir / "fake_hydrojump";
+  // It leaves a checkpoint behind, as the real solver does.
   write(fake, "#!/bin/sh\necho \"$*\" >> '" + calls.string() +
-                  "'\ncase \"$1 $2\" in\n  \"sph \"*/B/sph) echo 'B diverged' ; exit 3 ;;\nesac\nexit 0\n");
+                  "'\ncase \"$1 $2\" in\n  \"sph \"*/B/sph) touch \"$2/checkpoint.bin\"; echo 'B diverged' ; exit 3 ;;\nesac\nexit 0\n");
   fs::permissions(fake, fs::perms::owner_all);
   write(dir / "mini.toml", with_tailwater("0.104"));
 
