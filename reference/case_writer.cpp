@@ -288,6 +288,30 @@ Value libs(const std::string& lib) { return foam::list({foam::string(lib)}); }
 
 }  // namespace
 
+// Discretisation of every interFoam case written here: Euler in time, linearUpwind momentum,
+// vanLeer + interface compression for alpha, upwind turbulence (k, omega) when `turbulent`.
+foam::Dictionary interfoam_fv_schemes(bool turbulent) {
+  using foam::Dictionary;
+  Dictionary fs;
+  fs.subdict("ddtSchemes").set("default", foam::word("Euler"));
+  fs.subdict("gradSchemes").set("default", foam::word("Gauss linear"));
+  Dictionary& div = fs.subdict("divSchemes");
+  div.set("default", foam::word("none"));
+  div.set("div(rhoPhi,U)", foam::word("Gauss linearUpwind grad(U)"));
+  div.set("div(phi,alpha)", foam::word("Gauss vanLeer"));
+  div.set("div(phirb,alpha)", foam::word("Gauss linear"));
+  if (turbulent) {
+    div.set("div(phi,k)", foam::word("Gauss upwind"));
+    div.set("div(phi,omega)", foam::word("Gauss upwind"));
+  }
+  div.set("div(((rho*nuEff)*dev2(T(grad(U)))))", foam::word("Gauss linear"));
+  fs.subdict("laplacianSchemes").set("default", foam::word("Gauss linear corrected"));
+  fs.subdict("interpolationSchemes").set("default", foam::word("linear"));
+  fs.subdict("snGradSchemes").set("default", foam::word("corrected"));
+  if (turbulent) fs.subdict("wallDist").set("method", foam::word("meshWave"));
+  return fs;
+}
+
 foam::Dictionary decompose_par_dict(int subdomains) {
   if (subdomains < 1) throw std::invalid_argument("decomposeParDict: subdomains must be >= 1");
   Dictionary d;
@@ -676,21 +700,7 @@ VofCase build_vof_case(const cases::Study& study, const cases::Case& c, const st
 
   // ---- system/fvSchemes, fvSolution, decomposeParDict
   {
-    Dictionary fs;
-    fs.subdict("ddtSchemes").set("default", foam::word("Euler"));
-    fs.subdict("gradSchemes").set("default", foam::word("Gauss linear"));
-    Dictionary& div = fs.subdict("divSchemes");
-    div.set("default", foam::word("none"));
-    div.set("div(rhoPhi,U)", foam::word("Gauss linearUpwind grad(U)"));
-    div.set("div(phi,alpha)", foam::word("Gauss vanLeer"));
-    div.set("div(phirb,alpha)", foam::word("Gauss linear"));
-    div.set("div(phi,k)", foam::word("Gauss upwind"));
-    div.set("div(phi,omega)", foam::word("Gauss upwind"));
-    div.set("div(((rho*nuEff)*dev2(T(grad(U)))))", foam::word("Gauss linear"));
-    fs.subdict("laplacianSchemes").set("default", foam::word("Gauss linear corrected"));
-    fs.subdict("interpolationSchemes").set("default", foam::word("linear"));
-    fs.subdict("snGradSchemes").set("default", foam::word("corrected"));
-    fs.subdict("wallDist").set("method", foam::word("meshWave"));
+    const Dictionary fs = interfoam_fv_schemes(turbulent);
     add("system/fvSchemes", "dictionary", fs);
 
     Dictionary sol;

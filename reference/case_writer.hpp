@@ -89,4 +89,7 @@ void write_vof_files(const VofCase& vof, const std::filesystem::path& dir);
 // Updates system/decomposeParDict for `subdomains` MPI ranks (simple decomposition along x).
 foam::Dictionary decompose_par_dict(int subdomains);
 
+// system/fvSchemes of the interFoam cases (with the k and omega schemes when `turbulent`).
+foam::Dictionary interfoam_fv_schemes(bool turbulent);
+
 }  // namespace hydrojump::reference

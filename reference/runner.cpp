@@ -279,18 +279,7 @@ void write_self_test_case(const fs::path& dir, double shear_m) {
   write("system/setFieldsDict", "dictionary", sf);
 
   // Schemes and solvers as in the generated cases.
-  Dictionary fs_d;
-  fs_d.subdict("ddtSchemes").set("default", foam::word("Euler"));
-  fs_d.subdict("gradSchemes").set("default", foam::word("Gauss linear"));
-  Dictionary& div = fs_d.subdict("divSchemes");
-  div.set("default", foam::word("none"));
-  div.set("div(rhoPhi,U)", foam::word("Gauss linearUpwind grad(U)"));
-  div.set("div(phi,alpha)", foam::word("Gauss vanLeer"));
-  div.set("div(phirb,alpha)", foam::word("Gauss linear"));
-  div.set("div(((rho*nuEff)*dev2(T(grad(U)))))", foam::word("Gauss linear"));
-  fs_d.subdict("laplacianSchemes").set("default", foam::word("Gauss linear corrected"));
-  fs_d.subdict("interpolationSchemes").set("default", foam::word("linear"));
-  fs_d.subdict("snGradSchemes").set("default", foam::word("corrected"));
+  const Dictionary fs_d = interfoam_fv_schemes(false);
   write("system/fvSchemes", "dictionary", fs_d);
 
   Dictionary sol;
