@@ -6,6 +6,7 @@
 #include <string>
 #include <system_error>
 
+#include <fcntl.h>
 #include <unistd.h>
 
 namespace hydrojump::cases {
@@ -30,14 +31,25 @@ void ensure_parent(const std::filesystem::path& target) {
   }
 }
 
+// Flushes a finished file to disk, so that a crash after the rename cannot leave it empty.
+void sync_file(const std::filesystem::path& p) {
+  const int fd = ::open(p.c_str(), O_RDONLY);
+  if (fd < 0) return;
+  ::fsync(fd);
+  ::close(fd);
+}
+
 void rename_over(const std::filesystem::path& from, const std::filesystem::path& to) {
+  sync_file(from);
   std::error_code ec;
   std::filesystem::rename(from, to, ec);
   if (ec) {
-    std::filesystem::remove(from, ec);
+    std::error_code cleanup;
+    std::filesystem::remove(from, cleanup);
     throw std::runtime_error("cannot move the finished file into place at '" + to.string() +
                              "': " + ec.message());
   }
+  if (to.has_parent_path()) sync_file(to.parent_path());
 }
 
 }  // namespace
@@ -54,8 +66,8 @@ void write_file_atomically(const std::filesystem::path& target,
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) throw std::runtime_error("cannot open '" + tmp.string() + "' for writing");
     produce(out);
-    out.flush();
-    if (!out) throw std::runtime_error("write failed for '" + target.string() + "' (disk full?)");
+    out.close();
+    if (out.fail()) throw std::runtime_error("write failed for '" + target.string() + "' (disk full?)");
   });
 }
 

@@ -563,6 +563,13 @@ Case read_case(TableReader& c, std::size_t index, const Study& study, const SphS
     result.sections_given = true;
   } else if (const auto* b = result.stilling_basin()) {
     result.sections = default_stilling_basin_sections(*b);
+    // The downstream section (y2, E2) must lie past the toe, and 3 y2 clear of the outlet.
+    const double needed = 3.0 * b->tailwater_depth_m + (b->bed.profile == "sinusoidal" ? b->bed.wavelength_m : 0.0);
+    if (result.sections.back().x_m <= b->upstream_length_m + b->tailwater_depth_m) {
+      auto domain = c.required_table("domain");
+      domain.fail_at(domain.raw().get("basin_length_m"), "basin_length_m",
+                     "= " + number_text(b->basin_length_m) + " is too short for the default sections: basin_length_m + downstream_length_m must exceed " + number_text(needed + b->tailwater_depth_m) + " m (4 tailwater depths" + (b->bed.profile == "sinusoidal" ? std::string(" plus a wavelength") : std::string()) + "), or list [[case.sections]] explicitly");
+    }
   } else if (const auto* d = result.dam_break()) {
     for (std::size_t i = 0; i < d->gauges_x_m.size(); ++i) {
       result.sections.push_back({"H" + std::to_string(i + 1), d->gauges_x_m[i], "gauge"});

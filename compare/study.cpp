@@ -98,6 +98,7 @@ struct StageResult {
   std::string state;     // "done", "cached", "failed", "skipped"
   double seconds = 0.0;
   int exit_status = 0;
+  std::string message;   // why a stage failed before it could run
 };
 
 struct CaseResult {
@@ -119,7 +120,18 @@ class StudyRunner {
         log_(log),
         self_(options.executable.empty() ? std::filesystem::read_symlink("/proc/self/exe") : options.executable) {}
 
+  // Runs every stage of `c`; never throws (a failure is recorded, so the other cases go on).
   CaseResult run_case(const cases::Case& c) {
+    try {
+      return run_case_stages(c);
+    } catch (const std::exception& e) {
+      say(c.id + ": FAILED: " + e.what());
+      return CaseResult{c.id, {{"setup", "failed", 0.0, 1, e.what()}}};
+    }
+  }
+
+ private:
+  CaseResult run_case_stages(const cases::Case& c) {
     CaseResult result{c.id, {}};
     const auto dir = options_.out / c.id;
     std::string text = cases::resolved_case_text(study_, c, options_.resolution);
@@ -131,10 +143,12 @@ class StudyRunner {
     if (options_.force || read_text(generated_stamp) != fingerprint) {
       // The results of a changed case are stale: start its directory afresh.
       std::filesystem::remove_all(dir);
-      generate_cases(study_, {&c}, options_.resolution, options_.out, log_stream());
+      std::ostringstream generated;
+      generate_cases(study_, {&c}, options_.resolution, options_.out, generated);
+      say(c.id + ": " + generated.str().substr(0, generated.str().find_last_not_of('\n') + 1));
       cases::write_file_atomically(generated_stamp, fingerprint);
     }
-    bool any_solver_ok = false;
+    bool any_solver_ok = false, any_solver_ran = false;
     for (const auto& method : options_.methods) {
       std::vector<std::string> args = {self_.string(), method, (dir / method).string()};
       if (method == "vof" && options_.mpi_ranks > 1) {
@@ -149,8 +163,11 @@ class StudyRunner {
       if (std::filesystem::exists(started) && resumable) args.push_back("--resume");
       const auto stage = run_stage(c.id, method, args, dir, fingerprint, started);
       any_solver_ok = any_solver_ok || stage.state == "done" || stage.state == "cached";
+      any_solver_ran = any_solver_ran || stage.state == "done" || stage.state == "failed";
       result.stages.push_back(stage);
     }
+    // A comparison is only as current as the solver results it read.
+    if (any_solver_ran) std::filesystem::remove(dir / "compare.stamp");
     if (any_solver_ok) {
       result.stages.push_back(run_stage(c.id, "compare", {self_.string(), "compare", dir.string()}, dir,
                                         fingerprint, {}));
@@ -160,7 +177,6 @@ class StudyRunner {
     return result;
   }
 
- private:
   StageResult run_stage(const std::string& id, const std::string& stage, const std::vector<std::string>& args,
                         const std::filesystem::path& dir, const std::string& fingerprint,
                         const std::filesystem::path& started_marker) {
@@ -209,8 +225,6 @@ class StudyRunner {
     log_ << "[" << clock_now() << "] " << message << std::endl;
   }
 
-  std::ostream& log_stream() { return log_; }
-
   const StudyOptions& options_;
   const cases::Study& study_;
   std::ostream& log_;
@@ -249,7 +263,7 @@ void write_study_report(const StudyOptions& options, const cases::Study& study,
     for (const auto& s : r.stages) {
       const bool has_report = std::filesystem::exists(options.out / r.id / "report.md");
       md << "| " << r.id << " | " << s.stage << " | " << s.state
-         << (s.state == "failed" ? " (exit " + std::to_string(s.exit_status) + ")" : "") << " | "
+         << (s.state == "failed" ? (s.message.empty() ? " (exit " + std::to_string(s.exit_status) + ")" : ": " + s.message) : "") << " | "
          << (s.state == "done" || s.state == "failed" ? duration_text(s.seconds) : "-") << " | "
          << (has_report && s.stage == "compare" ? "[" + r.id + "/report.md](" + r.id + "/report.md)" : "")
          << " |\n";

@@ -193,6 +193,11 @@ TEST_CASE("Non-physical values are rejected with the allowed range", "[cases][sp
     CHECK_THAT(msg, Catch::Contains("bed.reach_end_m = 1"));
     CHECK_THAT(msg, Catch::Contains("whole number of wavelengths"));
   }
+  SECTION("basin too short for the default downstream section") {
+    const auto msg = rejection(replaced(replaced(valid_spec, "basin_length_m = 1.36", "basin_length_m = 0.136"),
+                                        "downstream_length_m = 0.2", "downstream_length_m = 0.0"));
+    CHECK_THAT(msg, Catch::Contains("domain.basin_length_m = 0.136 is too short"));
+  }
   SECTION("too few particles across y1") {
     const auto msg = rejection(replaced(valid_spec, "particle_spacing_m = 0.005", "particle_spacing_m = 0.0125"));
     CHECK_THAT(msg, Catch::Contains("inflow.depth_m = 0.0254"));
