@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 #include "cases/atomic_file.hpp"
+#include "cases/fingerprint.hpp"
 #include "cases/spec_reader.hpp"
 #include "compare/generate.hpp"
 #include "compare/plots.hpp"
@@ -27,29 +28,6 @@ extern char** environ;
 
 namespace hydrojump::compare {
 namespace {
-
-// FNV-1a, 64 bit: a stable fingerprint of a resolved case (not a security hash).
-std::uint64_t fnv1a(std::string_view text) {
-  std::uint64_t h = 1469598103934665603ull;
-  for (unsigned char ch : text) {
-    h ^= ch;
-    h *= 1099511628211ull;
-  }
-  return h;
-}
-
-std::string hex(std::uint64_t v) {
-  std::ostringstream s;
-  s << std::hex << std::setw(16) << std::setfill('0') << v;
-  return s.str();
-}
-
-std::string read_text(const std::filesystem::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 std::string clock_now() {
   const auto t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
@@ -136,11 +114,11 @@ class StudyRunner {
     const auto dir = options_.out / c.id;
     std::string text = cases::resolved_case_text(study_, c, options_.resolution);
     text = text.substr(text.find('\n') + 1);  // the first line names the source file: not part of the case
-    const std::string fingerprint = hex(fnv1a(text + "\nversion " + version_string));
+    const std::string fingerprint = cases::fingerprint(text + "\nversion " + version_string);
 
     // Regenerate the case directories only when the case changed (keeps finished results).
     const auto generated_stamp = dir / "generate.stamp";
-    if (options_.force || read_text(generated_stamp) != fingerprint) {
+    if (options_.force || cases::read_text_file(generated_stamp) != fingerprint) {
       // The results of a changed case are stale: start its directory afresh.
       std::filesystem::remove_all(dir);
       std::ostringstream generated;
@@ -172,7 +150,7 @@ class StudyRunner {
       result.stages.push_back(run_stage(c.id, "compare", {self_.string(), "compare", dir.string()}, dir,
                                         fingerprint, {}));
     } else {
-      result.stages.push_back({"compare", "skipped", 0.0, 0});
+      result.stages.push_back({"compare", "skipped", 0.0, 0, {}});
     }
     return result;
   }
@@ -181,9 +159,9 @@ class StudyRunner {
                         const std::filesystem::path& dir, const std::string& fingerprint,
                         const std::filesystem::path& started_marker) {
     const auto stamp = dir / (stage + ".stamp");
-    if (!options_.force && read_text(stamp) == fingerprint) {
+    if (!options_.force && cases::read_text_file(stamp) == fingerprint) {
       say(id + ": " + stage + " up to date (cached)");
-      return {stage, "cached", 0.0, 0};
+      return {stage, "cached", 0.0, 0, {}};
     }
     const auto log_file = dir / (stage + ".log");
     if (!started_marker.empty()) cases::write_file_atomically(started_marker, fingerprint);
@@ -194,16 +172,16 @@ class StudyRunner {
     if (status != 0) {
       say(id + ": " + stage + " FAILED (exit status " + std::to_string(status) + ") after " +
           duration_text(seconds) + "; last lines of " + log_file.string() + ":\n" + tail(log_file, 8));
-      return {stage, "failed", seconds, status};
+      return {stage, "failed", seconds, status, {}};
     }
     cases::write_file_atomically(stamp, fingerprint);
     if (!started_marker.empty()) std::filesystem::remove(started_marker);
     say(id + ": " + stage + " finished in " + duration_text(seconds));
-    return {stage, "done", seconds, 0};
+    return {stage, "done", seconds, 0, {}};
   }
 
   static std::string tail(const std::filesystem::path& file, int lines) {
-    const std::string text = read_text(file);
+    const std::string text = cases::read_text_file(file);
     std::size_t at = text.size();
     for (int n = 0; n <= lines && at > 0; ++n) {
       const auto p = text.rfind('\n', at - 1);

@@ -1,5 +1,8 @@
 #include "sph/cli.hpp"
 
+#include "cases/fingerprint.hpp"
+#include "hydrojump/version.hpp"
+
 #include <atomic>
 #include <csignal>
 #include <fstream>
@@ -38,25 +41,6 @@ extern "C" void request_stop(int sig) {
   g_stop_requested.store(true);
 }
 
-std::string read_text(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-// FNV-1a of the resolved case text: a checkpoint only resumes the case it was written for.
-std::string fingerprint_of(const std::string& text) {
-  std::uint64_t h = 1469598103934665603ull;
-  for (unsigned char ch : text) {
-    h ^= ch;
-    h *= 1099511628211ull;
-  }
-  std::ostringstream o;
-  o << std::hex << std::setw(16) << std::setfill('0') << h;
-  return o.str();
-}
-
 }  // namespace
 
 int run_sph_directory(const SphOptions& opt) {
@@ -91,7 +75,8 @@ int run_sph_directory(const SphOptions& opt) {
   ro.end_time_s = opt.end_time > 0.0 ? opt.end_time : c.run.end_time_s;
   ro.output_interval_s = c.run.output_interval_s;
   ro.checkpoint_interval_wall_s = c.sph.checkpoint_interval_wall_s;
-  ro.fingerprint = fingerprint_of(read_text(case_file));
+  // The resolved case and the program version: a checkpoint only resumes the run it was written for.
+  ro.fingerprint = cases::fingerprint(cases::read_text_file(case_file) + "\nversion " + version_string);
   for (const auto& section : geometry.sections) ro.gauges.push_back({section.name, section.x_m});
   if (ro.gauges.empty()) ro.gauges.push_back({"centre", 0.5 * (geometry.x_min_m + geometry.x_max_m)});
   ro.bed_elevation = [bed = geometry.bed](double x) { return bed.elevation(x); };
