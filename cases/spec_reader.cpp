@@ -523,6 +523,11 @@ void check_resolution(const Case& c, const Resolution& r, const std::string& fil
     if (s->water_depth_m < 4.0 * dx) fail("particle_spacing_m = " + number_text(dx) + " puts fewer than 4 particles across water.depth_m");
   } else if (const auto* p = c.poiseuille()) {
     if (p->channel_width_m < 8.0 * dx) fail("particle_spacing_m = " + number_text(dx) + " puts fewer than 8 particles across channel.width_m");
+    // The periodic length must hold at least 3 kernel supports 2h, h = coef_h sqrt(2) dx.
+    const double support = 2.0 * c.sph.coef_h * std::sqrt(2.0) * dx;
+    if (p->channel_length_m < 3.0 * support - 1e-12) {
+      fail("channel.length_m = " + number_text(p->channel_length_m) + " is out of range: the periodic channel must be at least 3 kernel supports long at particle_spacing_m = " + number_text(dx) + ", i.e. >= " + number_text(3.0 * support) + " m");
+    }
   }
 }
 

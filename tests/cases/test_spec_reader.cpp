@@ -204,6 +204,29 @@ TEST_CASE("Non-physical values are rejected with the allowed range", "[cases][sp
   }
 }
 
+TEST_CASE("A periodic channel shorter than three kernel supports is rejected", "[cases][spec][reject]") {
+  const std::string channel = R"(
+[study]
+name = "p"
+[resolution.quick]
+particle_spacing_m = 0.001
+vof_cell_size_bed_m = 0.001
+vof_cell_size_bulk_m = 0.001
+[[case]]
+id = "poiseuille"
+kind = "poiseuille"
+[case.run]
+end_time_s = 1.0
+[case.channel]
+width_m = 0.02
+length_m = 0.005
+body_force_m_s2 = 0.02
+)";
+  const auto msg = rejection(channel);
+  CHECK_THAT(msg, Catch::Contains("channel.length_m = 0.005 is out of range"));
+  CHECK_THAT(msg, Catch::Contains(">= 0.00848"));
+}
+
 TEST_CASE("A stated discharge or Froude number that disagrees by more than 2 % is an error",
           "[cases][spec][reject]") {
   const auto text = replaced(valid_spec, "discharge_m2_s = 0.051", "discharge_m2_s = 0.06");
