@@ -18,6 +18,9 @@
 #include <cmath>
 #include <iostream>
 
+#include <filesystem>
+
+#include "sph/checkpoint.hpp"
 #include "sph/open_boundaries.hpp"
 #include "sph/run.hpp"
 #include "sph_test_support.hpp"
@@ -42,33 +45,52 @@ double strip_discharge(const sph::ParticleSet& ps, double x0, double x1) {
   return q / (x1 - x0);
 }
 
-}  // namespace
+struct ShortBasin {
+  cases::Study study;
+  cases::Case spec;
+  cases::CaseGeometry geometry;
+  sph::SolverSettings settings;
+  sph::ParticleSet particles;
+};
 
-TEST_CASE("smooth-bed stilling basin: stable, mass balance and inflow discharge", "[sph][stilling_basin]") {
-  cases::Study study = cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/cases/ead2002.toml");
+ShortBasin short_smooth_basin() {
+  ShortBasin out;
+  out.study = cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/cases/ead2002.toml");
   const cases::Case* found = nullptr;
-  for (const auto& c : study.cases)
+  for (const auto& c : out.study.cases)
     if (c.id == "A_smooth") found = &c;
   REQUIRE(found != nullptr);
-  cases::Case spec = *found;
-  auto& basin = std::get<cases::StillingBasinCase>(spec.data);
+  out.spec = *found;
+  auto& basin = std::get<cases::StillingBasinCase>(out.spec.data);
   basin.upstream_length_m = 0.1;
   basin.basin_length_m = 0.3;
   basin.downstream_length_m = 0.1;
-  const double dx = 0.005;
   // mDBC and c0 = 20 sqrt(g H_max): with the spec's DBC walls (c0 = 10 sqrt(g H_max)) the walls next
   // to the inlet (gate and bed) pressurise and the density limit of 5 % is exceeded by t = 0.25 s
   // (see sph/README.md, "Stilling basins").
-  spec.sph.boundary = "mdbc";
-  spec.sph.sound_speed_coefficient = 20.0;
-  const cases::CaseGeometry geometry = cases::make_geometry(spec, study.fluid);
-  const sph::SolverSettings settings = sph::make_settings(spec, study.fluid, geometry, dx);
-  sph::ParticleSet particles = sph::generate_particles(geometry, settings, spec.sph.boundary_layers);
+  out.spec.sph.boundary = "mdbc";
+  out.spec.sph.sound_speed_coefficient = 20.0;
+  out.geometry = cases::make_geometry(out.spec, out.study.fluid);
+  out.settings = sph::make_settings(out.spec, out.study.fluid, out.geometry, 0.005);
+  out.particles = sph::generate_particles(out.geometry, out.settings, out.spec.sph.boundary_layers);
+  return out;
+}
+
+sph::OpenBoundaries open_boundaries_of(const ShortBasin& b) {
+  return sph::OpenBoundaries::from_geometry(b.geometry, sph::buffer_parameters(b.settings));
+}
+
+}  // namespace
+
+TEST_CASE("smooth-bed stilling basin: stable, mass balance and inflow discharge", "[sph][stilling_basin]") {
+  ShortBasin b = short_smooth_basin();
+  const auto& basin = *b.spec.stilling_basin();
+  const auto& settings = b.settings;
+  const double dx = settings.dx;
   const double q = basin.inflow_depth_m * basin.inflow_velocity_m_s;
   const double rho0 = settings.eos.rho0;
 
-  sph::Solver solver(settings, std::move(particles), {},
-                     sph::OpenBoundaries::from_geometry(geometry, sph::buffer_parameters(settings)));
+  sph::Solver solver(settings, std::move(b.particles), {}, open_boundaries_of(b));
   const double m0 = water_mass(solver.particles());
   const double end_time = 0.5;
   double q_strip_sum = 0.0;
@@ -99,4 +121,37 @@ TEST_CASE("smooth-bed stilling basin: stable, mass balance and inflow discharge"
   CHECK(std::abs(balance) <= 0.005 * open.mass_in());
   CHECK(q_in == Approx(q).epsilon(0.02));
   CHECK(q_strip == Approx(q).epsilon(0.05));
+}
+
+TEST_CASE("a stilling-basin run resumed from a checkpoint continues bit for bit", "[sph][stilling_basin][restart]") {
+  ShortBasin b = short_smooth_basin();
+  sph::Solver whole(b.settings, b.particles, {}, open_boundaries_of(b));
+  for (int k = 0; k < 150; ++k) whole.step();
+  // Checkpoint after 150 steps (several buffer columns converted), read back, resumed by a new solver
+  // with new buffers, as `hydrojump sph DIR --resume` does.
+  sph::Checkpoint ck;
+  ck.fingerprint = "stilling basin resume test";
+  ck.clock = whole.clock();
+  ck.particles = whole.particles();
+  const auto file = std::filesystem::temp_directory_path() / "hydrojump_stilling_basin_resume.bin";
+  sph::write_checkpoint(ck, file);
+  const sph::Checkpoint back = sph::read_checkpoint(file);
+  std::filesystem::remove(file);
+  sph::Solver resumed(b.settings, back.particles, back.clock, open_boundaries_of(b));
+  for (int k = 0; k < 150; ++k) {
+    whole.step();
+    resumed.step();
+  }
+  CHECK(whole.open_boundaries().mass_in() > 0.0);
+  const auto& pa = whole.particles();
+  const auto& pb = resumed.particles();
+  REQUIRE(pa.size() == pb.size());
+  CHECK(resumed.time() == whole.time());
+  CHECK(pa.id == pb.id);
+  CHECK(pa.type == pb.type);
+  CHECK(pa.x == pb.x);
+  CHECK(pa.z == pb.z);
+  CHECK(pa.u == pb.u);
+  CHECK(pa.w == pb.w);
+  CHECK(pa.rho == pb.rho);
 }
