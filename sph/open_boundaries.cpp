@@ -217,11 +217,13 @@ void OpenBoundaries::create(ParticleSet& particles) const {
   for (const auto& in : inflows_) in.create(particles, next_id);
 }
 
-void OpenBoundaries::advance(ParticleSet& particles, double dt) {
-  if (empty()) return;
+OpenBoundaryTotals OpenBoundaries::advance(ParticleSet& particles, double dt) {
+  OpenBoundaryTotals step;
+  if (empty()) return step;
   std::int64_t next_id = next_particle_id(particles);
-  for (auto& in : inflows_) in.advance(particles, dt, next_id);
-  for (auto& o : outflows_) o.advance(particles, dt);
+  for (auto& in : inflows_) step.mass_in += in.advance(particles, dt, next_id);
+  for (auto& o : outflows_) step.mass_out += o.advance(particles, dt);
+  return step;
 }
 
 double OpenBoundaries::mass_in() const {

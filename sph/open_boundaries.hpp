@@ -125,8 +125,9 @@ class OpenBoundaries {
   bool empty() const { return inflows_.empty() && outflows_.empty(); }
   // Appends the inflow buffers' particles, ids from max id + 1.
   void create(ParticleSet& particles) const;
-  // Advances every inflow, then every outflow buffer by dt; new ids from max id + 1.
-  void advance(ParticleSet& particles, double dt);
+  // Advances every inflow, then every outflow buffer by dt; new ids from max id + 1. Returns what
+  // crossed the open boundaries in this step.
+  OpenBoundaryTotals advance(ParticleSet& particles, double dt);
   // Totals since this object was made (kg per metre of width).
   double mass_in() const;
   double mass_out() const;

@@ -46,7 +46,9 @@ void Solver::step() {
     const bool euler = clock_.steps % settings_.verlet_euler_interval == 0;
     verlet_update(particles_, settings_, dt, euler);
   }
-  open_.advance(particles_, dt);
+  const OpenBoundaryTotals crossed = open_.advance(particles_, dt);
+  clock_.inflow_mass += crossed.mass_in;
+  clock_.outflow_mass += crossed.mass_out;
   clock_.time += dt;
   clock_.last_dt = dt;
   ++clock_.steps;

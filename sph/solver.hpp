@@ -28,6 +28,9 @@ struct SolverClock {
   double time = 0.0;        // simulated time (s)
   double last_dt = 0.0;     // the last time step (s)
   std::int64_t steps = 0;   // completed steps
+  // Open boundaries: mass injected at the inflows and removed at the outflows since t = 0 (kg/m).
+  double inflow_mass = 0.0;
+  double outflow_mass = 0.0;
 };
 
 class Solver {
