@@ -12,6 +12,8 @@ namespace hydrojump::sph {
 
 namespace {
 
+constexpr auto kBoundary = static_cast<std::uint8_t>(ParticleType::boundary);
+
 // Shepard sum sum_j V_j W_gj above which the ghost node counts as inside the fluid.
 constexpr double kFullSupport = 0.5;
 // Below this Shepard sum the ghost node lies mostly outside the fluid (e.g. the wall above the free
@@ -29,7 +31,7 @@ void mdbc_with(ParticleSet& ps, const CellList& cells, const SolverSettings& s, 
   const double period = s.x_max - s.x_min;
 #pragma omp parallel for schedule(dynamic, 64) if (use_threads(n))
   for (Eigen::Index i = 0; i < n; ++i) {
-    if (ps.is_fluid(i)) continue;
+    if (ps.type[i] != kBoundary) continue;  // walls only; buffers have imposed densities
     double gx = ps.x[i] + ps.ghost_dx[i];
     const double gz = ps.z[i] + ps.ghost_dz[i];
     if (s.periodic_x) gx = s.x_min + std::fmod(std::fmod(gx - s.x_min, period) + period, period);
@@ -37,7 +39,7 @@ void mdbc_with(ParticleSet& ps, const CellList& cells, const SolverSettings& s, 
     Eigen::Vector3d rhs = Eigen::Vector3d::Zero(), rhs_u = Eigen::Vector3d::Zero(), rhs_w = Eigen::Vector3d::Zero();
     cells.for_each_neighbour_range(cells.cell_of_point(gx, gz), [&](int begin, int end, double shift) {
       for (int j = begin; j < end; ++j) {
-        if (!ps.is_fluid(j)) continue;
+        if (ps.type[j] == kBoundary) continue;  // the fluid side: fluid and buffer particles
         const double rx = ps.x[j] + shift - gx, rz = ps.z[j] - gz;  // r_j - r_g
         const double r2 = rx * rx + rz * rz;
         if (r2 >= support2) continue;

@@ -12,7 +12,7 @@ namespace hydrojump::sph {
 
 namespace {
 
-constexpr char kMagic[8] = {'H', 'J', 'S', 'P', 'H', 'C', 'K', '1'};
+constexpr char kMagic[8] = {'H', 'J', 'S', 'P', 'H', 'C', 'K', '2'};
 
 template <class T>
 void put(std::ostream& out, const T& v) {
@@ -65,6 +65,8 @@ void write_checkpoint(const Checkpoint& c, const std::filesystem::path& file) {
     put(out, c.clock.time);
     put(out, c.clock.last_dt);
     put(out, c.clock.steps);
+    put(out, c.clock.inflow_mass);
+    put(out, c.clock.outflow_mass);
     const std::int64_t n = c.particles.size();
     put(out, n);
     c.particles.for_each_real_array([&](const Vector& v) { put_array(out, v); });
@@ -97,6 +99,8 @@ Checkpoint read_checkpoint(const std::filesystem::path& file) {
   c.clock.time = r.get<double>();
   c.clock.last_dt = r.get<double>();
   c.clock.steps = r.get<std::int64_t>();
+  c.clock.inflow_mass = r.get<double>();
+  c.clock.outflow_mass = r.get<double>();
   const auto n = r.get<std::int64_t>();
   if (n < 0 || n > (1ll << 34)) r.fail();
   c.particles.resize(n);

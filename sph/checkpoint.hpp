@@ -4,7 +4,8 @@
 // number of threads. Written atomically (temporary file, then rename), so a run killed while writing
 // keeps the previous checkpoint.
 //
-// Format (little endian, host doubles): "HJSPHCK1", the case fingerprint, the clock, the particle
+// Format (little endian, host doubles): "HJSPHCK2", the case fingerprint, the clock (time, last dt, steps,
+// inflow and outflow mass totals), the particle
 // count and arrays, then the run state. Readers reject other magic strings and truncated files.
 #pragma once
 

@@ -59,11 +59,6 @@ int run_sph_directory(const SphOptions& opt) {
     throw std::runtime_error("'" + case_file.string() + "' defines " + std::to_string(c.resolutions.size()) +
                              " resolutions; a run directory holds exactly one");
   const cases::Resolution& resolution = c.resolutions.begin()->second;
-  if (c.stilling_basin() != nullptr)
-    throw std::runtime_error("case \"" + c.id +
-                             "\" is a stilling basin: its inflow and outflow boundaries are not implemented in the SPH "
-                             "solver yet (the SPH hydraulic-jump issue); only dam_break, still_water and poiseuille "
-                             "cases run");
   if (const auto* d = c.dam_break(); d != nullptr && d->gate != "instant")
     throw std::runtime_error("case \"" + c.id + "\": gate.type = \"" + d->gate +
                              "\" is not modelled by the SPH solver (only \"instant\": the column is released at t = 0)");
@@ -117,14 +112,16 @@ int run_sph_directory(const SphOptions& opt) {
   }
   std::unique_ptr<Solver> solver;
   if (checkpoint) {
-    solver = std::make_unique<Solver>(settings, checkpoint->particles, checkpoint->clock);
+    solver = std::make_unique<Solver>(settings, checkpoint->particles, checkpoint->clock,
+                                      OpenBoundaries::from_geometry(geometry, buffer_parameters(settings)));
     checkpoint->particles = ParticleSet{};
   } else {
-    solver = std::make_unique<Solver>(settings, generate_particles(geometry, settings, c.sph.boundary_layers));
+    solver = std::make_unique<Solver>(settings, generate_particles(geometry, settings, c.sph.boundary_layers),
+                                      SolverClock{}, OpenBoundaries::from_geometry(geometry, buffer_parameters(settings)));
   }
   std::cerr << "hydrojump sph: case \"" << c.id << "\" (" << c.kind << "), dx = " << settings.dx << " m, "
             << solver->particles().fluid_count() << " fluid + "
-            << solver->particles().size() - solver->particles().fluid_count() << " boundary particles, "
+            << solver->particles().size() - solver->particles().fluid_count() << " boundary and buffer particles, "
             << omp_get_max_threads() << " thread(s), c0 = " << settings.eos.c0 << " m/s, "
             << (checkpoint ? "resuming at t = " + std::to_string(solver->time()) + " s" : std::string("from t = 0"))
             << "\n";

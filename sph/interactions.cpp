@@ -15,6 +15,7 @@ namespace hydrojump::sph {
 namespace {
 
 constexpr std::uint8_t kFluid = static_cast<std::uint8_t>(ParticleType::fluid);
+constexpr std::uint8_t kBoundary = static_cast<std::uint8_t>(ParticleType::boundary);
 
 struct Range {
   int begin, end;
@@ -80,14 +81,15 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
     for (int i = first; i < last; ++i) {
       const double xi = x[i], zi = z[i], ui = u[i], wi = w[i], rhoi = rho[i];
       if (type[i] != kFluid) {
-        // Boundary particle (DBC, boundary_dbc.hpp): continuity with the fluid neighbours only; it
-        // does not move. With mDBC its density comes from the ghost node instead.
+        // Boundary particle (DBC, boundary_dbc.hpp): continuity with the fluid (and open-boundary
+        // buffer) neighbours only; it does not move. With mDBC its density comes from the ghost node
+        // instead. Buffer particles get no rates: their buffer imposes their state.
         double d = 0.0;
-        if (dbc) {
+        if (dbc && type[i] == kBoundary) {
           for (int k = 0; k < n_ranges; ++k) {
             const Range rg = ranges[k];
             for (int j = rg.begin; j < rg.end; ++j) {
-              if (type[j] != kFluid) continue;
+              if (type[j] == kBoundary) continue;
               const double dx = xi - (x[j] + rg.shift), dz = zi - z[j];
               const double r2 = dx * dx + dz * dz;
               if (r2 >= support2) continue;
@@ -115,7 +117,8 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
           const double mj = m[j], vj = volume[j];
           // Continuity: m_j v_ij . grad_i W_ij
           d += mj * (du * gx + dw * gzw);
-          const bool fluid_j = type[j] == kFluid;
+          // Inflow/outflow buffer neighbours act like fluid (their imposed velocity and density).
+          const bool fluid_j = type[j] != kBoundary;
           if (diffusion && fluid_j) {
             double jump = rho[j] - rhoi;
             if (fourtakas) jump -= hydrostatic_density_difference(rho0, b, gz, -dz);

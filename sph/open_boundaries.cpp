@@ -191,4 +191,52 @@ double OutflowBuffer::advance(ParticleSet& particles, double dt) {
   return removed_mass;
 }
 
+BufferParameters buffer_parameters(const SolverSettings& settings) {
+  BufferParameters p;
+  p.dx = settings.dx;
+  p.support = settings.support();
+  p.eos = settings.eos;
+  p.gravity = std::abs(settings.body_force_z);
+  return p;
+}
+
+std::int64_t next_particle_id(const ParticleSet& particles) {
+  return particles.size() == 0 ? 0 : particles.id.maxCoeff() + 1;
+}
+
+OpenBoundaries OpenBoundaries::from_geometry(const cases::CaseGeometry& geometry, const BufferParameters& params) {
+  OpenBoundaries out;
+  for (const auto& in : geometry.inflows) out.inflows_.emplace_back(in, geometry.bed.elevation(in.x_m), params);
+  for (const auto& o : geometry.outflows) out.outflows_.emplace_back(o, geometry.bed.elevation(o.x_m), params);
+  out.buffer_length_ = buffer_layers(params.support, params.dx, params.layers) * params.dx;
+  return out;
+}
+
+void OpenBoundaries::create(ParticleSet& particles) const {
+  std::int64_t next_id = next_particle_id(particles);
+  for (const auto& in : inflows_) in.create(particles, next_id);
+}
+
+OpenBoundaryTotals OpenBoundaries::advance(ParticleSet& particles, double dt) {
+  OpenBoundaryTotals step;
+  if (empty()) return step;
+  std::int64_t next_id = next_particle_id(particles);
+  for (auto& in : inflows_) step.mass_in += in.advance(particles, dt, next_id);
+  for (auto& o : outflows_) step.mass_out += o.advance(particles, dt);
+  return step;
+}
+
+double OpenBoundaries::mass_in() const {
+  double m = 0.0;
+  for (const auto& in : inflows_) m += in.totals().mass_in;
+  return m;
+}
+
+double OpenBoundaries::mass_out() const {
+  double m = 0.0;
+  for (const auto& o : outflows_) m += o.totals().mass_out;
+  return m;
+}
+
+
 }  // namespace hydrojump::sph

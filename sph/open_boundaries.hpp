@@ -41,6 +41,7 @@
 #include "cases/geometry.hpp"
 #include "sph/equation_of_state.hpp"
 #include "sph/particles.hpp"
+#include "sph/settings.hpp"
 
 namespace hydrojump::sph {
 
@@ -106,6 +107,46 @@ class OutflowBuffer {
   TaitEquationOfState eos_;
   OpenBoundaryTotals totals_;
 };
+
+// The open boundaries of a case: its inflow and outflow buffers (none for closed cases). Their state
+// is derived from the particles (the buffer particles' types and positions), so a run resumed from
+// its particles continues exactly; only the running totals start again from zero.
+//
+// Usage
+//   OpenBoundaries open = OpenBoundaries::from_geometry(geometry, buffer_parameters(settings));
+//   open.create(particles);        // the generator: the inflow buffers' first particles
+//   open.advance(particles, dt);   // the solver: after every completed time step
+class OpenBoundaries {
+ public:
+  OpenBoundaries() = default;  // a closed case
+  // One buffer per geometry inflow and outflow, at the bed elevation of its section.
+  static OpenBoundaries from_geometry(const cases::CaseGeometry& geometry, const BufferParameters& params);
+
+  bool empty() const { return inflows_.empty() && outflows_.empty(); }
+  // Appends the inflow buffers' particles, ids from max id + 1.
+  void create(ParticleSet& particles) const;
+  // Advances every inflow, then every outflow buffer by dt; new ids from max id + 1. Returns what
+  // crossed the open boundaries in this step.
+  OpenBoundaryTotals advance(ParticleSet& particles, double dt);
+  // Totals since this object was made (kg per metre of width).
+  double mass_in() const;
+  double mass_out() const;
+  const std::vector<InflowBuffer>& inflows() const { return inflows_; }
+  const std::vector<OutflowBuffer>& outflows() const { return outflows_; }
+  // Length of the buffer zones beyond the sections (m): layers dx.
+  double buffer_length() const { return buffer_length_; }
+
+ private:
+  std::vector<InflowBuffer> inflows_;
+  std::vector<OutflowBuffer> outflows_;
+  double buffer_length_ = 0.0;
+};
+
+// Buffer parameters of a run: its particle spacing, kernel support, equation of state and gravity.
+BufferParameters buffer_parameters(const SolverSettings& settings);
+
+// The next free particle id: max id + 1 (0 for no particles).
+std::int64_t next_particle_id(const ParticleSet& particles);
 
 // Removes the particles whose flag is set, keeping the order of the others.
 void remove_particles(ParticleSet& particles, const std::vector<char>& remove);

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "cases/geometry.hpp"
+#include "sph/open_boundaries.hpp"
 
 namespace hydrojump::sph {
 
@@ -48,10 +49,42 @@ ParticleSet generate_particles(const cases::CaseGeometry& g, const SolverSetting
   }
   auto in_period = [&](double x) { return !g.periodic_x || (x >= g.x_min_m && x < g.x_max_m); };
 
+  // Open boundaries (stilling basins): the bed continues flat under the inflow buffer (x < x_in) and
+  // past the outflow section (x > x_out) by the buffer length, so buffer particles and the fluid next
+  // to the sections have a wall below them.
+  const OpenBoundaries open = OpenBoundaries::from_geometry(g, buffer_parameters(s));
+  const double buffer_length = open.empty() ? 0.0 : open.buffer_length();
+  std::vector<cases::WallPolyline> walls = g.walls;
+  for (const auto& in : g.inflows) {
+    const double zb = g.bed.elevation(in.x_m);
+    walls.push_back({"inflow_bed", {cases::Vec2(in.x_m - buffer_length, zb), cases::Vec2(in.x_m, zb)}});
+  }
+  for (const auto& out : g.outflows) {
+    const double zb = g.bed.elevation(out.x_m);
+    walls.push_back({"outflow_bed", {cases::Vec2(out.x_m, zb), cases::Vec2(out.x_m + buffer_length, zb)}});
+  }
+  // Inside an inflow buffer (above the extended bed, below the inflow depth) there is no wall: the
+  // lower end of the sluice gate would otherwise put boundary particles among the buffer particles.
+  auto in_inflow_buffer = [&](double x, double z) {
+    for (std::size_t k = 0; k < g.inflows.size(); ++k) {
+      const auto& in = g.inflows[k];
+      const double zb = g.bed.elevation(in.x_m);
+      const double top = zb + std::max(in.depth_m, open.inflows()[k].rows() * dx);
+      if (x < in.x_m && z > zb && z < top) return true;
+    }
+    return false;
+  };
+  // Outflow buffers start filled with tailwater: x_out < x < x_out + buffer length.
+  auto outflow_at = [&](double x) -> const cases::OutflowBoundary* {
+    for (const auto& out : g.outflows)
+      if (x > out.x_m && x < out.x_m + buffer_length) return &out;
+    return nullptr;
+  };
+
   // Boundary candidates: lattice points within n_layers dx of some wall segment.
   std::map<std::pair<long, long>, Candidate> near_wall;
   const double reach = n_layers * dx;
-  for (const auto& wall : g.walls) {
+  for (const auto& wall : walls) {
     for (std::size_t k = 0; k + 1 < wall.points.size(); ++k) {
       const Eigen::Vector2d a = wall.points[k], b = wall.points[k + 1];
       const Eigen::Vector2d d = b - a;
@@ -86,12 +119,14 @@ ParticleSet generate_particles(const cases::CaseGeometry& g, const SolverSetting
   const auto& water = g.initial_water;
   if (water.x_end_m > water.x_begin_m) {
     const long i0 = static_cast<long>(std::floor((water.x_begin_m - x0) / dx)) - 1;
-    const long i1 = static_cast<long>(std::ceil((water.x_end_m - x0) / dx)) + 1;
+    const long i1 = static_cast<long>(std::ceil((water.x_end_m + buffer_length - x0) / dx)) + 1;
     for (long i = i0; i <= i1; ++i) {
       const double x = lattice_x(i);
-      if (x < water.x_begin_m || x > water.x_end_m || !in_period(x)) continue;
-      const double surface = water.surface_at(x);
-      const double bed = g.bed.elevation(x);
+      const cases::OutflowBoundary* outflow = outflow_at(x);
+      if (x < water.x_begin_m || (x > water.x_end_m && outflow == nullptr) || !in_period(x)) continue;
+      const ParticleType type = outflow != nullptr ? ParticleType::outflow : ParticleType::fluid;
+      const double bed = outflow != nullptr ? g.bed.elevation(outflow->x_m) : g.bed.elevation(x);
+      const double surface = outflow != nullptr ? bed + outflow->tailwater_depth_m : water.surface_at(x);
       const double depth = surface - bed;
       const double u = depth > 0.0 ? water.discharge_m2_s / depth : 0.0;
       const long j0 = static_cast<long>(std::floor((bed - z0) / dx)) - 1;
@@ -103,7 +138,7 @@ ParticleSet generate_particles(const cases::CaseGeometry& g, const SolverSetting
         if (it != near_wall.end() && (it->second.distance < 0.25 * dx ||
                                       (Eigen::Vector2d(x, z) - it->second.nearest).dot(it->second.normal_sum) <= 0.0))
           continue;  // on or behind a wall
-        seeds.push_back({ParticleType::fluid, x, z, s.eos.hydrostatic_density(gravity, surface - z), u, 0.0, 0.0});
+        seeds.push_back({type, x, z, s.eos.hydrostatic_density(gravity, surface - z), u, 0.0, 0.0});
       }
     }
   }
@@ -113,8 +148,10 @@ ParticleSet generate_particles(const cases::CaseGeometry& g, const SolverSetting
     const Eigen::Vector2d p(lattice_x(ij.first), lattice_z(ij.second));
     if (!in_period(p.x())) continue;
     if ((p - c.nearest).dot(c.normal_sum) >= 0.0 || c.distance < 0.25 * dx) continue;  // fluid side
+    if (in_inflow_buffer(p.x(), p.y())) continue;
     double rho = s.eos.rho0;
-    if (water.x_end_m > water.x_begin_m && p.x() >= water.x_begin_m && p.x() <= water.x_end_m) {
+    if (water.x_end_m > water.x_begin_m && p.x() >= water.x_begin_m - buffer_length &&
+        p.x() <= water.x_end_m + buffer_length) {
       const double depth = water.surface_at(p.x()) - p.y();
       if (depth > 0.0) rho = s.eos.hydrostatic_density(gravity, depth);
     }
@@ -136,6 +173,7 @@ ParticleSet generate_particles(const cases::CaseGeometry& g, const SolverSetting
     ps.ghost_dx[i] = sd.ghost_dx;
     ps.ghost_dz[i] = sd.ghost_dz;
   }
+  open.create(ps);  // the inflow buffers, ids after the others
   return ps;
 }
 

@@ -9,6 +9,10 @@
 // q the nearest wall point (corners mirror through the corner point).
 // Particle mass is the initial density times dx^2 (per metre of width), so each particle starts with
 // the volume of its lattice cell.
+// Open boundaries (stilling basins, sph/open_boundaries.hpp): the bed continues flat by the buffer
+// length under the inflow buffer (x < x_in) and past the outflow section (x > x_out); the inflow
+// buffer's particles are appended last (ids after the others, no wall particles among them); the
+// outflow buffer starts filled with tailwater (type outflow, hydrostatic, u = q / y_t).
 //
 // Usage: `ParticleSet ps = generate_particles(geometry, settings, case_.sph.boundary_layers);`
 //   | argument | meaning                                                           |

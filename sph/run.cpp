@@ -64,12 +64,13 @@ class RunState {
     }
     std::ostringstream row;
     row << std::setprecision(10) << t << ',' << solver_.clock().steps << ',' << solver_.clock().last_dt << ',' << mass
-        << ',' << kinetic << ',' << potential << ',' << max_var << ',' << ps.fluid_count();
+        << ',' << kinetic << ',' << potential << ',' << max_var << ',' << ps.fluid_count() << ','
+        << solver_.clock().inflow_mass << ',' << solver_.clock().outflow_mass;
     log_rows_.push_back(row.str());
     cases::write_file_atomically(
         o_.dir / "run_log.csv",
         join("t_s,step,dt_s,fluid_mass_kg_per_m,kinetic_energy_J_per_m,potential_energy_J_per_m,max_density_variation,"
-             "fluid_particles",
+             "fluid_particles,inflow_mass_kg_per_m,outflow_mass_kg_per_m",
              log_rows_));
     // Gauges.
     std::ostringstream g;

@@ -1,7 +1,9 @@
 // Running a case to its end time with outputs, checks, checkpoints and progress:
 //
 //   DIR/particles.pvd, DIR/particles_NNNN.vtp   particle snapshots every output interval (ParaView)
-//   DIR/run_log.csv    t, step, dt, fluid mass, kinetic and potential energy, max |rho/rho0 - 1|
+//   DIR/run_log.csv    t, step, dt, fluid mass, kinetic and potential energy, max |rho/rho0 - 1|,
+//                      fluid particles, mass injected at the inflows and removed at the outflows
+//                      since t = 0 (open boundaries; 0 for closed cases)
 //   DIR/gauges.csv     at every gauge x: free-surface elevation and the velocity (u, w) at mid-depth
 //                      (Shepard kernel interpolation); for dam breaks also the surge front
 //   DIR/checkpoint.bin restart file, every checkpoint interval of wall-clock time and at exit

@@ -1,5 +1,7 @@
 #include "sph/settings.hpp"
 
+#include "sph/open_boundaries.hpp"
+
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -85,6 +87,11 @@ SolverSettings make_settings(const cases::Case& c, const cases::FluidProperties&
   out.periodic_x = g.periodic_x;
   out.max_density_variation = s.max_density_variation;
   out.domain_margin = 4.0 * out.h;
+  // Open boundaries: the buffer zones (layers dx upstream of the inflow, downstream of the outflow)
+  // belong to the domain; their particles may be fluid for a step before their buffer takes them.
+  const double buffer_length = buffer_layers(out.support(), out.dx, 0) * out.dx;
+  if (!g.inflows.empty()) out.x_min -= buffer_length;
+  if (!g.outflows.empty()) out.x_max += buffer_length;
   out.validate();
   return out;
 }

@@ -7,8 +7,8 @@
 
 namespace hydrojump::sph {
 
-Solver::Solver(SolverSettings settings, ParticleSet particles, SolverClock clock)
-    : settings_(std::move(settings)), particles_(std::move(particles)), clock_(clock) {
+Solver::Solver(SolverSettings settings, ParticleSet particles, SolverClock clock, OpenBoundaries open)
+    : settings_(std::move(settings)), particles_(std::move(particles)), clock_(clock), open_(std::move(open)) {
   settings_.validate();
   update_pressure();
 }
@@ -46,6 +46,9 @@ void Solver::step() {
     const bool euler = clock_.steps % settings_.verlet_euler_interval == 0;
     verlet_update(particles_, settings_, dt, euler);
   }
+  const OpenBoundaryTotals crossed = open_.advance(particles_, dt);
+  clock_.inflow_mass += crossed.mass_in;
+  clock_.outflow_mass += crossed.mass_out;
   clock_.time += dt;
   clock_.last_dt = dt;
   ++clock_.steps;

@@ -1,7 +1,12 @@
 // The SPH solver: particles, settings and the time step as a script.
 //
 //   symplectic:  interactions(); dt = time_step(); predictor(dt); interactions(); corrector(dt);
-//   verlet:      interactions(); dt = time_step(); verlet(dt);
+//                open_boundaries(dt);
+//   verlet:      interactions(); dt = time_step(); verlet(dt); open_boundaries(dt);
+//
+// open_boundaries() advances the inflow/outflow buffers (sph/open_boundaries.hpp) of a stilling
+// basin: it moves the buffer particles, turns inflow particles into fluid and fluid into outflow
+// particles; nothing for closed cases.
 //
 // interactions() sorts the particles by cell (the order of the neighbour search), computes the
 // boundary densities (mDBC), pressures, SPS stresses and the rates. All loops gather per particle,
@@ -12,6 +17,7 @@
 
 #include "sph/cell_list.hpp"
 #include "sph/interactions.hpp"
+#include "sph/open_boundaries.hpp"
 #include "sph/particles.hpp"
 #include "sph/settings.hpp"
 
@@ -22,11 +28,14 @@ struct SolverClock {
   double time = 0.0;        // simulated time (s)
   double last_dt = 0.0;     // the last time step (s)
   std::int64_t steps = 0;   // completed steps
+  // Open boundaries: mass injected at the inflows and removed at the outflows since t = 0 (kg/m).
+  double inflow_mass = 0.0;
+  double outflow_mass = 0.0;
 };
 
 class Solver {
  public:
-  Solver(SolverSettings settings, ParticleSet particles, SolverClock clock = {});
+  Solver(SolverSettings settings, ParticleSet particles, SolverClock clock = {}, OpenBoundaries open = {});
 
   // Advances the state by one time step.
   void step();
@@ -34,6 +43,8 @@ class Solver {
   const SolverSettings& settings() const { return settings_; }
   const ParticleSet& particles() const { return particles_; }
   const SolverClock& clock() const { return clock_; }
+  // The inflow/outflow buffers and their mass totals since this solver was made.
+  const OpenBoundaries& open_boundaries() const { return open_; }
   double time() const { return clock_.time; }
   // Nominal acoustic time step CFL h / c0 (used to detect a collapsing time step).
   double acoustic_time_step() const { return settings_.cfl * settings_.h / settings_.eos.c0; }
@@ -47,6 +58,7 @@ class Solver {
   SolverSettings settings_;
   ParticleSet particles_;
   SolverClock clock_;
+  OpenBoundaries open_;
   CellList cells_;
 };
 

@@ -8,6 +8,13 @@
 
 namespace hydrojump::sph {
 
+namespace {
+// Walls get DBC density updates; inflow/outflow buffer particles are left to their buffers.
+inline bool is_wall(const ParticleSet& ps, Eigen::Index i) {
+  return ps.type[i] == static_cast<std::uint8_t>(ParticleType::boundary);
+}
+}  // namespace
+
 double variable_time_step(const InteractionSummary& summary, const SolverSettings& s) {
   const double dt_f = summary.max_acceleration > 0.0 ? std::sqrt(s.h / summary.max_acceleration)
                                                      : std::numeric_limits<double>::infinity();
@@ -35,7 +42,7 @@ void symplectic_predictor(ParticleSet& ps, const SolverSettings& s, double dt) {
       ps.z[i] += half * ps.w[i];
       ps.u[i] += half * ps.ax[i];
       ps.w[i] += half * ps.az[i];
-    } else if (dbc) {
+    } else if (dbc && is_wall(ps, i)) {
       ps.rho[i] = std::max(rho0, ps.rho[i] + half * ps.drho[i]);
     }
   }
@@ -49,7 +56,7 @@ void symplectic_corrector(ParticleSet& ps, const SolverSettings& s, double dt) {
 #pragma omp parallel for schedule(static) if (use_threads(n))
   for (Eigen::Index i = 0; i < n; ++i) {
     const bool fluid = ps.is_fluid(i);
-    if (!fluid && !dbc) continue;
+    if (!fluid && !(dbc && is_wall(ps, i))) continue;
     const double eps = -(ps.drho[i] / ps.rho[i]) * dt;
     double rho_new = ps.rho_old[i] * (2.0 - eps) / (2.0 + eps);
     if (!fluid) {
@@ -75,7 +82,7 @@ void verlet_update(ParticleSet& ps, const SolverSettings& s, double dt, bool eul
 #pragma omp parallel for schedule(static) if (use_threads(n))
   for (Eigen::Index i = 0; i < n; ++i) {
     const bool fluid = ps.is_fluid(i);
-    if (!fluid && !dbc) continue;
+    if (!fluid && !(dbc && is_wall(ps, i))) continue;
     const double rho_new = euler_step ? ps.rho[i] + dt * ps.drho[i] : ps.rho_old[i] + dt2 * ps.drho[i];
     ps.rho_old[i] = ps.rho[i];
     if (!fluid) {
