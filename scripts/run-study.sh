@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The main job: installs what is missing, builds, and runs the default study (the embedded
 # cases/ead2002.toml) at the quick resolution into ./study/, ending with study/study_report.md and the
-# plots. By default only cases A and A_smooth (under an hour on 2 cores); extra arguments go to
+# plots. By default only case A_smooth (SPH and OpenFOAM); extra arguments go to
 # `hydrojump study`, e.g. --cases A,B,C, or --cases all for all ten cases.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -13,7 +13,7 @@ has_cases=0
 for a in "${args[@]}"; do
   case "$a" in --cases|--cases=*) has_cases=1 ;; esac
 done
-if [ "$has_cases" -eq 0 ]; then args+=(--cases A,A_smooth); fi
+if [ "$has_cases" -eq 0 ]; then args+=(--cases A_smooth); fi
 # "--cases all" means every case: drop the option.
 filtered=()
 skip=0
