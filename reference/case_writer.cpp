@@ -312,6 +312,16 @@ foam::Dictionary interfoam_fv_schemes(bool turbulent) {
   return fs;
 }
 
+// A symmetric Gauss-Seidel smoothSolver to an absolute tolerance (relTol 0).
+foam::Dictionary smooth_solver(double tolerance) {
+  foam::Dictionary d;
+  d.set("solver", foam::word("smoothSolver"));
+  d.set("smoother", foam::word("symGaussSeidel"));
+  d.set("tolerance", tolerance);
+  d.set("relTol", 0);
+  return d;
+}
+
 foam::Dictionary decompose_par_dict(int subdomains) {
   if (subdomains < 1) throw std::invalid_argument("decomposeParDict: subdomains must be >= 1");
   Dictionary d;
@@ -732,12 +742,7 @@ VofCase build_vof_case(const cases::Study& study, const cases::Case& c, const st
     prgh_final.directive("$p_rgh;");
     prgh_final.set("relTol", 0);
     solvers.set("p_rghFinal", prgh_final);
-    Dictionary others;
-    others.set("solver", foam::word("smoothSolver"));
-    others.set("smoother", foam::word("symGaussSeidel"));
-    others.set("tolerance", 1e-7);
-    others.set("relTol", 0);
-    solvers.set("\"(U|k|omega).*\"", others);
+    solvers.set("\"(U|k|omega).*\"", smooth_solver(1e-7));
     Dictionary& pimple = sol.subdict("PIMPLE");
     pimple.set("momentumPredictor", foam::word("no"));
     pimple.set("nOuterCorrectors", 1);

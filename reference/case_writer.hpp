@@ -89,6 +89,9 @@ void write_vof_files(const VofCase& vof, const std::filesystem::path& dir);
 // Updates system/decomposeParDict for `subdomains` MPI ranks (simple decomposition along x).
 foam::Dictionary decompose_par_dict(int subdomains);
 
+// A symmetric Gauss-Seidel smoothSolver entry of fvSolution with the given tolerance and relTol 0.
+foam::Dictionary smooth_solver(double tolerance);
+
 // system/fvSchemes of the interFoam cases (with the k and omega schemes when `turbulent`).
 foam::Dictionary interfoam_fv_schemes(bool turbulent);
 

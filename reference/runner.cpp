@@ -301,12 +301,7 @@ void write_self_test_case(const fs::path& dir, double shear_m) {
   pcg.set("tolerance", 1e-8);
   pcg.set("relTol", 0);
   solvers.set("\"(pcorr|p_rgh).*\"", pcg);
-  Dictionary u;
-  u.set("solver", foam::word("smoothSolver"));
-  u.set("smoother", foam::word("symGaussSeidel"));
-  u.set("tolerance", 1e-8);
-  u.set("relTol", 0);
-  solvers.set("\"U.*\"", u);
+  solvers.set("\"U.*\"", smooth_solver(1e-8));
   Dictionary& pimple = sol.subdict("PIMPLE");
   pimple.set("momentumPredictor", foam::word("no"));
   pimple.set("nOuterCorrectors", 1);
