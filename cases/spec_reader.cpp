@@ -287,6 +287,16 @@ void read_sph(TableReader& t, SphSettings& s) {
   s.time_integrator = t.choice("time_integrator", s.time_integrator, {"symplectic", "verlet"});
   s.verlet_euler_interval = t.integer_or("verlet_euler_interval", s.verlet_euler_interval, 1, 1000);
   s.boundary_layers = t.integer_or("boundary_layers", s.boundary_layers, 0, 20);
+  s.open_boundary_layers = t.integer_or("open_boundary_layers", s.open_boundary_layers, 0, 50);
+  if (s.open_boundary_layers > 0) {
+    // The buffers must cover the kernel support 2h = 2 sqrt(2) coef_h dx of the fluid next to them.
+    const int needed = static_cast<int>(std::ceil(2.0 * std::sqrt(2.0) * s.coef_h - 1e-9)) + 1;
+    if (s.open_boundary_layers < needed)
+      t.fail_at(t.raw().get("open_boundary_layers"), "open_boundary_layers",
+                "= " + std::to_string(s.open_boundary_layers) + " makes the inflow/outflow buffers thinner than the kernel support 2h = " +
+                    number_text(2.0 * std::sqrt(2.0) * s.coef_h) + " dx (coef_h = " + number_text(s.coef_h) +
+                    "): use 0 (automatic) or at least " + std::to_string(needed));
+  }
   s.max_density_variation = t.number_or("max_density_variation", s.max_density_variation, Range{0.0, 0.5, true, false, "|rho/rho0 - 1|"});
   s.checkpoint_interval_wall_s = t.number_or("checkpoint_interval_wall_s", s.checkpoint_interval_wall_s, positive("s", 1e6));
   t.reject_unknown_keys();
@@ -746,6 +756,7 @@ void write_sph(TomlWriter& w, const SphSettings& s) {
   w.str("time_integrator", s.time_integrator);
   w.integer("verlet_euler_interval", s.verlet_euler_interval);
   w.integer("boundary_layers", s.boundary_layers);
+  w.integer("open_boundary_layers", s.open_boundary_layers);
   w.num("max_density_variation", s.max_density_variation);
   w.num("checkpoint_interval_wall_s", s.checkpoint_interval_wall_s);
 }

@@ -1,5 +1,7 @@
 #include "compare/jump_metrics.hpp"
 
+#include "cases/jump_toe.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -16,36 +18,11 @@ double section_energy(const ColumnStatistics& s, double gravity, bool alpha_one)
 
 double dissipation_rate(double e1, double e2) { return (e1 - e2) / e1; }
 
-std::vector<double> running_mean(const std::vector<double>& v, int half_width) {
-  std::vector<double> out(v.size(), not_a_number);
-  const long n = static_cast<long>(v.size());
-  for (long i = 0; i < n; ++i) {
-    double s = 0.0;
-    int c = 0;
-    for (long k = std::max(0L, i - half_width); k <= std::min(n - 1, i + half_width); ++k)
-      if (std::isfinite(v[static_cast<std::size_t>(k)])) { s += v[static_cast<std::size_t>(k)]; ++c; }
-    if (c > 0) out[static_cast<std::size_t>(i)] = s / c;
-  }
-  return out;
-}
-
 std::size_t find_toe(const std::vector<double>& x, const std::vector<double>& zeta, double x_from,
                      const JumpInputs& in) {
-  if (x.size() < 3) return x.size();
-  const double y1 = in.inflow_depth_m;
-  const double ds = (x.back() - x.front()) / static_cast<double>(x.size() - 1);
-  const int half = std::max(0, static_cast<int>(std::lround(0.5 * in.options.toe_window_y1 * y1 / ds)));
-  const std::vector<double> zm = running_mean(zeta, half);
-  const std::size_t persist = static_cast<std::size_t>(std::ceil(in.options.toe_persistence_y1 * y1 / ds));
-  const double threshold = in.options.toe_threshold_y1 * y1;
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    if (x[i] < x_from) continue;
-    bool ok = true;
-    for (std::size_t k = i; k <= std::min(x.size() - 1, i + persist); ++k)
-      if (!(zm[k] > threshold)) { ok = false; break; }
-    if (ok) return i;
-  }
-  return x.size();
+  const cases::ToeCriterion criterion{in.options.toe_threshold_y1, in.options.toe_window_y1,
+                                      in.options.toe_persistence_y1};
+  return cases::find_jump_toe(x, zeta, x_from, in.inflow_depth_m, criterion);
 }
 
 static const ColumnStatistics* find_role(const MethodStatistics& m, const std::string& role) {
@@ -97,7 +74,7 @@ JumpMetrics compute_jump_metrics(const MethodStatistics& m, const JumpInputs& in
   }
   const double ds = (xs.back() - xs.front()) / static_cast<double>(xs.size() - 1);
   const int half = std::max(0, static_cast<int>(std::lround(0.5 * in.options.toe_window_y1 * y1 / ds)));
-  const std::vector<double> zm = running_mean(zeta, half);
+  const std::vector<double> zm = cases::running_mean(zeta, half);
   const double x_down = down ? down->spec.x_m : st.back().spec.x_m;
   const double x_up = up ? up->spec.x_m : st.front().spec.x_m;
   const std::size_t toe = find_toe(xs, zeta, x_up, in);

@@ -76,10 +76,7 @@ double section_energy(const ColumnStatistics& s, double gravity, bool alpha_one)
 // eta = (E1 - E2) / E1
 double dissipation_rate(double e1, double e2);
 
-// Running mean of `v` over a centred window of `half_width` samples each side (NaNs skipped).
-std::vector<double> running_mean(const std::vector<double>& v, int half_width);
-
-// Index of the toe station by the criterion above on the surface zeta(x) above the floor (x evenly
+// Index of the toe station by the criterion above (cases/jump_toe.hpp) on the surface zeta(x) above the floor (x evenly
 // spaced), searching from x_from on; x.size() when there is none.
 std::size_t find_toe(const std::vector<double>& x, const std::vector<double>& zeta, double x_from,
                      const JumpInputs& in);

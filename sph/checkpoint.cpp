@@ -1,6 +1,7 @@
 #include "sph/checkpoint.hpp"
 
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <istream>
 #include <ostream>
@@ -12,7 +13,7 @@ namespace hydrojump::sph {
 
 namespace {
 
-constexpr char kMagic[8] = {'H', 'J', 'S', 'P', 'H', 'C', 'K', '2'};
+constexpr char kMagic[8] = {'H', 'J', 'S', 'P', 'H', 'C', 'K', '3'};
 
 template <class T>
 void put(std::ostream& out, const T& v) {
@@ -78,7 +79,7 @@ void write_checkpoint(const Checkpoint& c, const std::filesystem::path& file) {
       put(out, t);
       put_string(out, f);
     }
-    for (const auto* rows : {&c.log_rows, &c.gauge_rows}) {
+    for (const auto* rows : {&c.log_rows, &c.gauge_rows, &c.basin_rows}) {
       put<std::uint64_t>(out, rows->size());
       for (const auto& r : *rows) put_string(out, r);
     }
@@ -92,6 +93,10 @@ Checkpoint read_checkpoint(const std::filesystem::path& file) {
   Reader r(in, file);
   char magic[8];
   r.read(magic, sizeof magic);
+  if (std::memcmp(magic, kMagic, 7) == 0 && magic[7] != kMagic[7])
+    throw std::runtime_error("'" + file.string() + "' is a checkpoint of another hydrojump version (format " +
+                             std::string(magic, sizeof magic) + ", this version reads " +
+                             std::string(kMagic, sizeof kMagic) + "): start the run again with --restart");
   if (std::memcmp(magic, kMagic, sizeof magic) != 0)
     throw std::runtime_error("'" + file.string() + "' is not a hydrojump SPH checkpoint");
   Checkpoint c;
@@ -102,7 +107,14 @@ Checkpoint read_checkpoint(const std::filesystem::path& file) {
   c.clock.inflow_mass = r.get<double>();
   c.clock.outflow_mass = r.get<double>();
   const auto n = r.get<std::int64_t>();
-  if (n < 0 || n > (1ll << 34)) r.fail();
+  // Every particle takes at least its real arrays, id and type in the file: a count the file cannot
+  // hold is a damaged file, not a reason to allocate memory.
+  std::error_code size_error;
+  const auto file_bytes = std::filesystem::file_size(file, size_error);
+  std::int64_t reals = 0;
+  c.particles.for_each_real_array([&](const Vector&) { ++reals; });
+  const std::int64_t bytes_per_particle = reals * 8 + 8 + 1;
+  if (n < 0 || size_error || n > static_cast<std::int64_t>(file_bytes) / bytes_per_particle) r.fail();
   c.particles.resize(n);
   c.particles.for_each_real_array([&](Vector& v) { r.read(v.data(), static_cast<std::size_t>(n) * sizeof(double)); });
   r.read(c.particles.id.data(), static_cast<std::size_t>(n) * sizeof(std::int64_t));
@@ -114,7 +126,7 @@ Checkpoint read_checkpoint(const std::filesystem::path& file) {
     const double t = r.get<double>();
     c.series.emplace_back(t, r.get_string());
   }
-  for (auto* rows : {&c.log_rows, &c.gauge_rows}) {
+  for (auto* rows : {&c.log_rows, &c.gauge_rows, &c.basin_rows}) {
     const auto m = r.get<std::uint64_t>();
     if (m > (1ull << 32)) r.fail();
     for (std::uint64_t k = 0; k < m; ++k) rows->push_back(r.get_string());

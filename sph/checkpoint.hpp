@@ -1,10 +1,10 @@
 // Binary checkpoints of a run: the solver clock, every particle array, and the state of the run's
-// outputs (output series, log and gauge rows), so `hydrojump sph DIR --resume` continues exactly
+// outputs (output series, log, gauge and basin rows), so `hydrojump sph DIR --resume` continues exactly
 // where the run stopped: a resumed run reproduces the uninterrupted one bit for bit on the same
 // number of threads. Written atomically (temporary file, then rename), so a run killed while writing
 // keeps the previous checkpoint.
 //
-// Format (little endian, host doubles): "HJSPHCK2", the case fingerprint, the clock (time, last dt, steps,
+// Format (little endian, host doubles): "HJSPHCK3", the case fingerprint, the clock (time, last dt, steps,
 // inflow and outflow mass totals), the particle
 // count and arrays, then the run state. Readers reject other magic strings and truncated files.
 #pragma once
@@ -28,6 +28,7 @@ struct Checkpoint {
   std::vector<std::pair<double, std::string>> series;    // .pvd entries
   std::vector<std::string> log_rows;                     // run_log.csv rows (without header)
   std::vector<std::string> gauge_rows;                   // gauges.csv rows (without header)
+  std::vector<std::string> basin_rows;                   // basin.csv rows (stilling basins)
 };
 
 void write_checkpoint(const Checkpoint& c, const std::filesystem::path& file);

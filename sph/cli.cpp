@@ -75,6 +75,8 @@ int run_sph_directory(const SphOptions& opt) {
   for (const auto& section : geometry.sections) ro.gauges.push_back({section.name, section.x_m});
   if (ro.gauges.empty()) ro.gauges.push_back({"centre", 0.5 * (geometry.x_min_m + geometry.x_max_m)});
   ro.bed_elevation = [bed = geometry.bed](double x) { return bed.elevation(x); };
+  if (c.stilling_basin() != nullptr)
+    ro.basin = BasinMonitorSetup::from_case(c, geometry, settings.dx, settings.eos.rho0);
   if (const auto* d = c.dam_break()) {  // its gauges are among the geometry's sections
     ro.record_front = true;
     ro.front_layer_m = 0.1 * d->column_width_m;
@@ -150,7 +152,7 @@ int run_sph_directory(const SphOptions& opt) {
     return 128 + sig;
   }
   std::cerr << "hydrojump sph: finished at t = " << solver->time() << " s after " << solver->clock().steps
-            << " steps; outputs in " << dir.string() << " (particles.pvd, run_log.csv, gauges.csv)\n";
+            << " steps; outputs in " << dir.string() << " (particles.pvd, run_log.csv, gauges.csv" << (c.stilling_basin() ? ", basin.csv, summary.json" : "") << ")\n";
   return 0;
 }
 
@@ -161,7 +163,9 @@ void register_commands(CLI::App& app) {
       "Run the weakly compressible SPH solver on a case directory written by `generate` (DIR/<case>/sph).\n"
       "Reads DIR/case.toml; writes DIR/particles.pvd with one .vtp per output time (open it in ParaView),\n"
       "DIR/run_log.csv (mass, energies, max density variation, dt), DIR/gauges.csv (free-surface elevation\n"
-      "at the sections and gauges) and DIR/checkpoint.bin (every sph.checkpoint_interval_wall_s seconds and\n"
+      "at the sections and gauges), for stilling basins DIR/basin.csv (jump toe, inflow/outflow discharge,\n"
+      "depth and discharge at every section per output) and DIR/summary.json (averages over the averaging\n"
+      "window, y2/y1 against Belanger, mass balance, steady-state verdict), and DIR/checkpoint.bin (every sph.checkpoint_interval_wall_s seconds and\n"
       "at exit). Ctrl-C (SIGINT) or SIGTERM writes a checkpoint and stops; continue with --resume. An unstable\n"
       "run stops with a diagnosis in DIR/failure.txt and keeps its last good checkpoint.");
   sph->add_option("DIR", opt->dir, "case directory holding case.toml")->required()->check(CLI::ExistingDirectory);

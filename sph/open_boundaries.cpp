@@ -197,6 +197,7 @@ BufferParameters buffer_parameters(const SolverSettings& settings) {
   p.support = settings.support();
   p.eos = settings.eos;
   p.gravity = std::abs(settings.body_force_z);
+  p.layers = settings.open_boundary_layers;
   return p;
 }
 

@@ -38,13 +38,16 @@ std::string describe(const ParticleSet& ps, Eigen::Index i) {
 
 class RunState {
  public:
-  RunState(Solver& solver, const RunOptions& o) : solver_(solver), o_(o), series_(o.dir, "particles") {}
+  RunState(Solver& solver, const RunOptions& o) : solver_(solver), o_(o), series_(o.dir, "particles") {
+    if (o.basin) basin_.emplace(*o.basin);
+  }
 
   void restore(const Checkpoint& c) {
     next_output_ = c.next_output_time;
     series_.restore(c.series);
     log_rows_ = c.log_rows;
     gauge_rows_ = c.gauge_rows;
+    if (basin_) basin_->restore(c.basin_rows);
   }
 
   void write_output() {
@@ -87,7 +90,15 @@ class RunState {
       header += ",surface_z_" + gauge.name + "_m,u_" + gauge.name + "_m_s,w_" + gauge.name + "_m_s";
     if (o_.record_front) header += ",front_x_m";
     cases::write_file_atomically(o_.dir / "gauges.csv", join(header, gauge_rows_));
+    // Stilling basins: toe, discharges, sections, summary.
+    if (basin_) {
+      basin_->record(ps, t, solver_.clock().inflow_mass, solver_.clock().outflow_mass);
+      cases::write_file_atomically(o_.dir / "basin.csv", basin_->csv());
+      cases::write_file_atomically(o_.dir / "summary.json", basin_->summary_json());
+    }
   }
+
+  std::string status() const { return basin_ ? basin_->status_line() : std::string(); }
 
   void write_checkpoint_now() {
     Checkpoint c;
@@ -98,6 +109,7 @@ class RunState {
     c.series = series_.entries();
     c.log_rows = log_rows_;
     c.gauge_rows = gauge_rows_;
+    if (basin_) c.basin_rows = basin_->csv_rows();
     write_checkpoint(c, checkpoint_path(o_.dir));
   }
 
@@ -115,6 +127,7 @@ class RunState {
   const RunOptions& o_;
   ParticleSeries series_;
   std::vector<std::string> log_rows_, gauge_rows_;
+  std::optional<BasinMonitor> basin_;
 };
 
 }  // namespace
@@ -228,6 +241,8 @@ RunStatus run_case(Solver& solver, const RunOptions& o, const std::optional<Chec
     line << std::fixed << std::setprecision(4) << "t = " << solver.time() << " / " << o.end_time_s << " s  step "
          << solver.clock().steps << "  dt " << std::scientific << std::setprecision(2) << solver.clock().last_dt
          << " s  " << std::fixed << std::setprecision(1) << rate << " steps/s  ETA " << format_duration(eta);
+    const std::string basin = state.status();
+    if (!basin.empty()) line << "  |  " << basin;
     if (o.progress_is_terminal) *o.progress << '\r' << line.str() << "   " << (final_line ? "\n" : "") << std::flush;
     else *o.progress << line.str() << "\n" << std::flush;
   };

@@ -6,6 +6,9 @@
 //                      since t = 0 (open boundaries; 0 for closed cases)
 //   DIR/gauges.csv     at every gauge x: free-surface elevation and the velocity (u, w) at mid-depth
 //                      (Shepard kernel interpolation); for dam breaks also the surge front
+//   DIR/basin.csv      stilling basins: jump toe, inflow/outflow discharge, depth, surface and
+//                      discharge at every section, per output time (sph/basin_monitor.hpp)
+//   DIR/summary.json   stilling basins: averages over the averaging window and the steady-state verdict
 //   DIR/checkpoint.bin restart file, every checkpoint interval of wall-clock time and at exit
 //   DIR/failure.txt, DIR/failure_state.vtp   only when the run goes unstable
 //
@@ -26,6 +29,7 @@
 #include <utility>
 #include <vector>
 
+#include "sph/basin_monitor.hpp"
 #include "sph/checkpoint.hpp"
 #include "sph/solver.hpp"
 
@@ -49,6 +53,7 @@ struct RunOptions {
   std::int64_t max_steps = -1;             // stop after this many steps of this invocation (-1: no limit)
   std::vector<Gauge> gauges;               // free-surface and velocity gauges
   std::function<double(double)> bed_elevation = [](double) { return 0.0; };  // floor z at x (m)
+  std::optional<BasinMonitorSetup> basin;  // stilling basins: basin.csv and summary.json
   bool record_front = false;               // dam break: surge front x in gauges.csv
   double front_layer_m = 0.0;              // front: fluid within this height of the floor
   std::string fingerprint;                 // of the resolved case, stored in checkpoints

@@ -89,7 +89,8 @@ SolverSettings make_settings(const cases::Case& c, const cases::FluidProperties&
   out.domain_margin = 4.0 * out.h;
   // Open boundaries: the buffer zones (layers dx upstream of the inflow, downstream of the outflow)
   // belong to the domain; their particles may be fluid for a step before their buffer takes them.
-  const double buffer_length = buffer_layers(out.support(), out.dx, 0) * out.dx;
+  out.open_boundary_layers = s.open_boundary_layers;
+  const double buffer_length = buffer_layers(out.support(), out.dx, out.open_boundary_layers) * out.dx;
   if (!g.inflows.empty()) out.x_min -= buffer_length;
   if (!g.outflows.empty()) out.x_max += buffer_length;
   out.validate();

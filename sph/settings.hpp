@@ -45,6 +45,7 @@ struct SolverSettings {
   bool periodic_x = false;           // period x_max - x_min
   double max_density_variation = 0.05;
   double domain_margin = 0.0;        // tolerated excursion beyond the box (m)
+  int open_boundary_layers = 0;      // inflow/outflow buffer columns (0: ceil(support/dx) + 1)
 
   double support() const { return 2.0 * h; }
   double eta2() const { return 0.01 * h * h; }

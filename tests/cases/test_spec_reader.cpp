@@ -198,6 +198,16 @@ TEST_CASE("Non-physical values are rejected with the allowed range", "[cases][sp
                                         "downstream_length_m = 0.2", "downstream_length_m = 0.0"));
     CHECK_THAT(msg, Catch::Contains("domain.basin_length_m = 0.136 is too short"));
   }
+  SECTION("open-boundary buffers thinner than the kernel support") {
+    // 2h = 2 sqrt(2) dx at coef_h = 1: at least ceil(2.83) + 1 = 4 columns.
+    const auto text = replaced(valid_spec, "[[case]]", "[sph]\nopen_boundary_layers = 2\n\n[[case]]");
+    const auto msg = rejection(text);
+    CHECK_THAT(msg, Catch::Contains("spec.toml:" + std::to_string(line_of(text, "open_boundary_layers"))));
+    CHECK_THAT(msg, Catch::Contains("sph.open_boundary_layers = 2"));
+    CHECK_THAT(msg, Catch::Contains("at least 4"));
+    CHECK_NOTHROW(parse_study(replaced(valid_spec, "[[case]]", "[sph]\nopen_boundary_layers = 4\n\n[[case]]"),
+                              "spec.toml", "."));
+  }
   SECTION("too few particles across y1") {
     const auto msg = rejection(replaced(valid_spec, "particle_spacing_m = 0.005", "particle_spacing_m = 0.0125"));
     CHECK_THAT(msg, Catch::Contains("inflow.depth_m = 0.0254"));

@@ -1,0 +1,65 @@
+// The jump-toe criterion shared by the SPH run monitor and the comparator (cases/jump_toe.hpp).
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "cases/jump_toe.hpp"
+
+using namespace hydrojump::cases;
+
+namespace {
+
+// Stations every ds from 0 to length; surface zeta = y1 up to x_jump, then a linear rise to y2 over
+// `rise` (a schematic jump).
+struct Profile {
+  std::vector<double> x, zeta;
+};
+
+Profile schematic_jump(double y1, double y2, double x_jump, double rise, double ds, double length) {
+  Profile p;
+  for (double x = 0.0; x <= length + 1e-12; x += ds) {
+    p.x.push_back(x);
+    const double s = std::clamp((x - x_jump) / rise, 0.0, 1.0);
+    p.zeta.push_back(y1 + s * (y2 - y1));
+  }
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("running mean over a centred window skips NaN", "[cases][toe]") {
+  const std::vector<double> v{1.0, 2.0, std::nan(""), 4.0, 5.0};
+  const std::vector<double> m = running_mean(v, 1);
+  CHECK(m[0] == Approx(1.5));
+  CHECK(m[1] == Approx(1.5));   // (1 + 2) / 2, the NaN skipped
+  CHECK(m[2] == Approx(3.0));   // (2 + 4) / 2
+  CHECK(m[4] == Approx(4.5));
+  CHECK(std::isnan(running_mean({std::nan("")}, 2)[0]));
+}
+
+TEST_CASE("the toe of a schematic jump is where the surface passes 1.5 y1", "[cases][toe]") {
+  const double y1 = 0.025, y2 = 0.13, ds = 0.005;
+  // Surface reaches 1.5 y1 at x_jump + rise (0.5 y1)/(y2 - y1).
+  const Profile p = schematic_jump(y1, y2, 0.4, 0.3, ds, 1.5);
+  const std::size_t i = find_jump_toe(p.x, p.zeta, 0.1, y1, ToeCriterion{});
+  REQUIRE(i < p.x.size());
+  const double expected = 0.4 + 0.3 * (0.5 * y1) / (y2 - y1);
+  // The running mean over 0.8 y1 of a linear rise is the rise itself: found within one station.
+  CHECK(std::abs(p.x[i] - expected) <= ds + 1e-12);
+}
+
+TEST_CASE("a splash thinner than the persistence length does not trip the toe", "[cases][toe]") {
+  const double y1 = 0.025, ds = 0.005;
+  Profile p = schematic_jump(y1, 0.13, 0.8, 0.3, ds, 1.5);
+  // A 1 cm spike of 4 y1 at x = 0.3 m (a droplet or an air pocket).
+  for (std::size_t k = 0; k < p.x.size(); ++k)
+    if (std::abs(p.x[k] - 0.3) < 0.006) p.zeta[k] = 4.0 * y1;
+  const std::size_t i = find_jump_toe(p.x, p.zeta, 0.1, y1, ToeCriterion{});
+  REQUIRE(i < p.x.size());
+  CHECK(p.x[i] > 0.8);
+  // Searching starts at x_from; no rise at all gives "none".
+  const Profile flat = schematic_jump(y1, y1, 0.8, 0.3, ds, 1.5);
+  CHECK(find_jump_toe(flat.x, flat.zeta, 0.1, y1, ToeCriterion{}) == flat.x.size());
+}

@@ -1,0 +1,144 @@
+// The stilling-basin run monitor (sph/basin_monitor.hpp) on particle sets built by hand, where the
+// answers are known: water columns of a lattice, the toe of a step, the discharges from the buffer mass
+// totals, the steady-state verdict and the summary, and the restore of a resumed run.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <string>
+
+#include "sph/basin_monitor.hpp"
+
+using namespace hydrojump;
+
+namespace {
+
+constexpr double dx = 0.005, rho0 = 1000.0, depth1 = 0.025, depth2 = 0.13, q = 0.05;
+
+// Fluid on a lattice: depth depth1 (u = q / depth1) for x < x_step, depth2 (u = q / depth2) beyond, from x = 0 to 1 m
+// over a flat floor at z = 0.
+sph::ParticleSet step_particles(double x_step) {
+  sph::ParticleSet ps;
+  const int columns = static_cast<int>(std::lround(1.0 / dx));
+  Eigen::Index n = 0;
+  for (int c = 0; c < columns; ++c) {
+    const double x = (c + 0.5) * dx;
+    const double depth = x < x_step ? depth1 : depth2;
+    const int rows = static_cast<int>(std::lround(depth / dx));
+    ps.resize(n + rows);
+    for (int r = 0; r < rows; ++r, ++n) {
+      ps.assign(n, sph::ParticleType::fluid, x, (r + 0.5) * dx, rho0, rho0 * dx * dx, n);
+      ps.u[n] = q / (rows * dx);
+    }
+  }
+  return ps;
+}
+
+sph::BasinMonitorSetup setup() {
+  sph::BasinMonitorSetup s;
+  s.case_id = "step";
+  s.dx = dx;
+  s.rho0 = rho0;
+  s.inflow_depth_m = depth1;
+  s.discharge_m2_s = q;
+  s.belanger_y2_m = depth2;
+  s.x_inflow_m = 0.0;
+  s.x_outflow_m = 1.0;
+  s.toe_search_from_m = 0.05;
+  s.drift_tolerance_m = 0.068;
+  s.average_start_s = 1.5;
+  s.average_end_s = 3.0;
+  s.sections = {{"upstream", 0.0525, "upstream"}, {"downstream", 0.8025, "downstream"}};
+  s.bed_elevation = [](double) { return 0.0; };
+  return s;
+}
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+}  // namespace
+
+TEST_CASE("water columns of a lattice give its depth and discharge", "[sph][basin]") {
+  const sph::ParticleSet ps = step_particles(0.5);
+  // The hat weights sum to w/dx over a lattice whatever its offset: exact depth and discharge for
+  // stations on, between and anywhere near the particle columns, for w = dx and w = 2 dx.
+  for (const double width : {dx, 2.0 * dx}) {
+    const auto c = sph::BasinMonitor::columns(ps, {0.2525, 0.25, 0.2513, 0.7525, 0.7547}, width);
+    for (int k = 0; k < 3; ++k) {
+      CHECK(c[k].depth == Approx(depth1).epsilon(1e-12));
+      CHECK(c[k].discharge == Approx(q).epsilon(1e-12));
+    }
+    for (int k = 3; k < 5; ++k) {
+      CHECK(c[k].depth == Approx(depth2).epsilon(1e-12));
+      CHECK(c[k].discharge == Approx(q).epsilon(1e-12));
+    }
+  }
+}
+
+TEST_CASE("the monitor finds the toe of a step and reads the sections", "[sph][basin]") {
+  sph::BasinMonitor monitor(setup());
+  monitor.record(step_particles(0.5), 0.0, 0.0, 0.0);
+  const sph::BasinSample& s = monitor.samples().back();
+  // Running mean over 0.8 depth1 = 4 stations: the step shows half-way at most 2 stations early.
+  CHECK(s.toe_x == Approx(0.5).margin(2.5 * dx));
+  CHECK(s.depth[0] == Approx(depth1).epsilon(1e-9));
+  CHECK(s.depth[1] == Approx(depth2).epsilon(1e-9));
+  CHECK(s.discharge[1] == Approx(q).epsilon(1e-9));
+  CHECK(std::isnan(s.q_in));  // no interval before the first sample
+  CHECK(monitor.jump_state() == "in_basin");
+  // No rise anywhere: the jump has left the basin; a rise from the upstream section on: drowned.
+  monitor.record(step_particles(2.0), 0.1, 0.0, 0.0);
+  CHECK(monitor.jump_state() == "swept_downstream");
+  CHECK(std::isnan(monitor.samples().back().toe_x));
+  monitor.record(step_particles(0.0), 0.2, 0.0, 0.0);
+  CHECK(monitor.jump_state() == "at_inflow");
+  CHECK_THAT(monitor.summary_json(), Catch::Contains("\"jump_state\": \"at_inflow\""));
+}
+
+TEST_CASE("a stationary jump with balanced discharges is steady; a drifting one is not", "[sph][basin]") {
+  const double dt = 0.1;
+  SECTION("stationary") {
+    sph::BasinMonitor monitor(setup());
+    const sph::ParticleSet ps = step_particles(0.5);
+    for (int k = 0; k <= 30; ++k) {
+      const double t = k * dt;
+      monitor.record(ps, t, rho0 * q * t, rho0 * q * t);  // in = out = q
+    }
+    CHECK(monitor.samples().back().q_in == Approx(q).epsilon(1e-9));
+    CHECK(monitor.steady_from() == Approx(1.0).margin(1e-9));  // the first time with 1 s of history
+    const std::string json = monitor.summary_json();
+    CHECK(contains(json, "\"steady_over_window\": true"));
+    CHECK(contains(json, "\"inflow_discharge_relative_error\": 0,"));
+    CHECK(contains(json, "\"y2_over_y1\": 5.2,"));
+  }
+  SECTION("drifting downstream at 0.1 m/s") {
+    sph::BasinMonitor monitor(setup());
+    for (int k = 0; k <= 30; ++k) {
+      const double t = k * dt;
+      monitor.record(step_particles(0.3 + 0.1 * t), t, rho0 * q * t, rho0 * q * t);
+    }
+    // 0.1 m of drift per second is above the 0.068 m tolerance.
+    CHECK(std::isnan(monitor.steady_from()));
+    CHECK(contains(monitor.summary_json(), "\"steady_over_window\": false"));
+  }
+  SECTION("outflow 5 % short of the inflow") {
+    sph::BasinMonitor monitor(setup());
+    const sph::ParticleSet ps = step_particles(0.5);
+    for (int k = 0; k <= 30; ++k) {
+      const double t = k * dt;
+      monitor.record(ps, t, rho0 * q * t, 0.95 * rho0 * q * t);
+    }
+    CHECK(std::isnan(monitor.steady_from()));
+  }
+}
+
+TEST_CASE("a resumed monitor continues from the checkpoint's rows", "[sph][basin]") {
+  sph::BasinMonitor first(setup());
+  const sph::ParticleSet ps = step_particles(0.5);
+  for (int k = 0; k <= 5; ++k) first.record(ps, 0.1 * k, rho0 * q * 0.1 * k, 0.0);
+  sph::BasinMonitor resumed(setup());
+  resumed.restore(first.csv_rows());
+  CHECK(resumed.csv() == first.csv());
+  // The checkpoint's own time is recorded again on resume: replaced, not duplicated.
+  resumed.record(ps, 0.5, rho0 * q * 0.5, 0.0);
+  CHECK(resumed.samples().size() == first.samples().size());
+  CHECK_THROWS(resumed.restore({"0,1,2"}));
+}
