@@ -28,6 +28,60 @@ struct Seed {
 
 }  // namespace
 
+std::vector<BedParticle> corrugated_bed_layers(const cases::BedProfile& bed, double dx, int layers) {
+  std::vector<BedParticle> out;
+  if (!bed.corrugated() || !(dx > 0.0) || layers <= 0) return out;
+  const double xa = bed.reach_start_m(), xb = bed.reach_end_m();
+  // Dense samples of the bed: positions and normals.
+  const double fine = dx / 40.0;
+  const auto n_fine = static_cast<std::size_t>(std::ceil((xb - xa) / fine));
+  std::vector<Eigen::Vector2d> b(n_fine + 1), n(n_fine + 1);
+  for (std::size_t k = 0; k <= n_fine; ++k) {
+    const double x = xa + (xb - xa) * static_cast<double>(k) / static_cast<double>(n_fine);
+    b[k] = Eigen::Vector2d(x, bed.elevation(x));
+    n[k] = bed.normal(x);
+  }
+  // Distance from p to the bed near x (samples within 2 layers' depth plus dx either side).
+  const double reach = (layers + 1.0) * dx;
+  auto bed_distance = [&](const Eigen::Vector2d& p) {
+    double best = 1e300;
+    const double lo = p.x() - reach, hi = p.x() + reach;
+    const double last = static_cast<double>(n_fine);
+    const auto k0 = static_cast<std::size_t>(std::max(0.0, std::floor((lo - xa) / (xb - xa) * last)));
+    const auto k1 = static_cast<std::size_t>(std::min(last, std::ceil((hi - xa) / (xb - xa) * last)));
+    for (std::size_t k = k0; k <= k1; ++k) best = std::min(best, (p - b[k]).norm());
+    return best;
+  };
+  for (int layer = 0; layer < layers; ++layer) {
+    // Offset curve r(x) = b(x) - d n(x), d = (layer + 1/2) dx, and its cumulative arc length.
+    const double d = (layer + 0.5) * dx;
+    std::vector<double> s(n_fine + 1, 0.0);
+    for (std::size_t k = 1; k <= n_fine; ++k) s[k] = s[k - 1] + ((b[k] - d * n[k]) - (b[k - 1] - d * n[k - 1])).norm();
+    const auto count = static_cast<std::size_t>(std::max(1.0, std::round(s.back() / dx)));
+    const double spacing = s.back() / static_cast<double>(count);
+    std::size_t k = 0;
+    for (std::size_t j = 0; j < count; ++j) {
+      // s_j = (j + 1/2) spacing, half a spacing from the crests, like the lattice columns.
+      const double target = (static_cast<double>(j) + 0.5) * spacing;
+      while (k + 1 < n_fine && s[k + 1] < target) ++k;
+      const double f = (target - s[k]) / std::max(s[k + 1] - s[k], 1e-300);
+      const Eigen::Vector2d q = b[k] + f * (b[k + 1] - b[k]);
+      const Eigen::Vector2d normal = (n[k] + f * (n[k + 1] - n[k])).normalized();
+      const Eigen::Vector2d p = q - d * normal;
+      // Past a crest whose radius of curvature is below d the offset curve folds over itself (a
+      // swallowtail): keep only points whose nearest bed point is their own, and none closer than
+      // dx/2 to a particle already placed.
+      if (bed_distance(p) < d - 0.25 * dx) continue;
+      bool crowded = false;
+      for (auto it = out.rbegin(); it != out.rend() && !crowded; ++it)
+        if (std::abs(it->position.x() - p.x()) < dx && (it->position - p).norm() < 0.5 * dx) crowded = true;
+      if (crowded) continue;
+      out.push_back({p, q});
+    }
+  }
+  return out;
+}
+
 int boundary_layer_count(const SolverSettings& settings, int layers) {
   if (layers > 0) return layers;
   return static_cast<int>(std::ceil(settings.support() / settings.dx - 1e-9));
@@ -36,7 +90,15 @@ int boundary_layer_count(const SolverSettings& settings, int layers) {
 ParticleSet generate_particles(const cases::CaseGeometry& g, const SolverSettings& s, int layers) {
   const double dx = s.dx;
   const int n_layers = boundary_layer_count(s, layers);
-  const double x0 = g.x_min_m, z0 = g.z_min_m;
+  // The lattice corner: the domain box corner, moved (down and left, by less than dx) so that with an
+  // inflow the rows and columns line up with the inflow buffer's (rows at z_b(x_in) + (k + 1/2) dx,
+  // columns at x_in - (k + 1/2) dx) even when the corrugation troughs lie below the upstream floor.
+  double x0 = g.x_min_m, z0 = g.z_min_m;
+  if (!g.inflows.empty()) {
+    const double x_in = g.inflows.front().x_m, z_in = g.bed.elevation(x_in);
+    x0 = x_in - std::ceil((x_in - g.x_min_m) / dx - 1e-9) * dx;
+    z0 = z_in - std::ceil((z_in - g.z_min_m) / dx - 1e-9) * dx;
+  }
   const double gravity = std::abs(s.body_force_z);
   auto lattice_x = [&](long i) { return x0 + (static_cast<double>(i) + 0.5) * dx; };
   auto lattice_z = [&](long j) { return z0 + (static_cast<double>(j) + 0.5) * dx; };
@@ -144,19 +206,36 @@ ParticleSet generate_particles(const cases::CaseGeometry& g, const SolverSetting
   }
   const std::size_t n_fluid = seeds.size();
   // Boundary.
-  for (const auto& [ij, c] : near_wall) {
-    const Eigen::Vector2d p(lattice_x(ij.first), lattice_z(ij.second));
-    if (!in_period(p.x())) continue;
-    if ((p - c.nearest).dot(c.normal_sum) >= 0.0 || c.distance < 0.25 * dx) continue;  // fluid side
-    if (in_inflow_buffer(p.x(), p.y())) continue;
+  auto boundary_density = [&](const Eigen::Vector2d& p) {
     double rho = s.eos.rho0;
     if (water.x_end_m > water.x_begin_m && p.x() >= water.x_begin_m - buffer_length &&
         p.x() <= water.x_end_m + buffer_length) {
       const double depth = water.surface_at(p.x()) - p.y();
       if (depth > 0.0) rho = s.eos.hydrostatic_density(gravity, depth);
     }
+    return rho;
+  };
+  // A corrugated reach gets its own layers, spaced evenly along the bed (corrugated_bed_layers); the
+  // lattice gives the straight walls and floors.
+  const bool corrugated = g.bed.corrugated();
+  auto on_corrugated_reach = [&](const Eigen::Vector2d& q) {
+    return corrugated && q.x() > g.bed.reach_start_m() + 1e-9 * dx && q.x() < g.bed.reach_end_m() - 1e-9 * dx;
+  };
+  for (const auto& [ij, c] : near_wall) {
+    const Eigen::Vector2d p(lattice_x(ij.first), lattice_z(ij.second));
+    if (!in_period(p.x())) continue;
+    if ((p - c.nearest).dot(c.normal_sum) >= 0.0 || c.distance < 0.25 * dx) continue;  // fluid side
+    if (in_inflow_buffer(p.x(), p.y())) continue;
+    if (on_corrugated_reach(c.nearest)) continue;
     const Eigen::Vector2d ghost = 2.0 * (c.nearest - p);
-    seeds.push_back({ParticleType::boundary, p.x(), p.y(), rho, 0.0, ghost.x(), ghost.y()});
+    seeds.push_back({ParticleType::boundary, p.x(), p.y(), boundary_density(p), 0.0, ghost.x(), ghost.y()});
+  }
+  if (corrugated) {
+    for (const BedParticle& b : corrugated_bed_layers(g.bed, dx, n_layers)) {
+      const Eigen::Vector2d ghost = 2.0 * (b.nearest - b.position);
+      seeds.push_back({ParticleType::boundary, b.position.x(), b.position.y(), boundary_density(b.position), 0.0,
+                       ghost.x(), ghost.y()});
+    }
   }
   if (n_fluid == 0) throw std::invalid_argument("the initial water region holds no fluid particle at dx = " + std::to_string(dx) + " m");
 
