@@ -24,14 +24,7 @@ class SphKernel2D {
     if (!(smoothing_length_m > 0.0))
       throw std::invalid_argument("SPH kernel: smoothing length must be > 0, got " +
                                   std::to_string(smoothing_length_m));
-    if (name == "wendland_c2") {
-      wendland_ = true;
-    } else if (name == "cubic_spline") {
-      wendland_ = false;
-    } else {
-      throw std::invalid_argument("SPH kernel \"" + name +
-                                  "\" is unknown: allowed \"wendland_c2\", \"cubic_spline\"");
-    }
+    wendland_ = sph::parse_kernel(name) == sph::KernelType::wendland_c2;
   }
 
   double smoothing_length() const { return h_; }

@@ -14,10 +14,9 @@ namespace {
 
 constexpr auto kBoundary = static_cast<std::uint8_t>(ParticleType::boundary);
 
-// Shepard sum sum_j V_j W_gj above which the ghost node counts as inside the fluid.
-constexpr double kFullSupport = 0.5;
-// Below this Shepard sum the ghost node lies mostly outside the fluid (e.g. the wall above the free
-// surface) and the boundary particle keeps rho0 (zero pressure).
+// Below this Shepard sum sum_j V_j W_gj the ghost node lies mostly outside the fluid (e.g. the wall
+// above the free surface) and the boundary particle keeps rho0 (zero pressure); at or above it the
+// first-order extrapolation is used unless the matrix is singular.
 constexpr double kSomeSupport = 0.5;
 // The matrix is dimensionless (its length and inverse-length entries pair up) and close to
 // diag(1, -1, -1) inside the fluid; below this |det| it is treated as singular.
@@ -64,7 +63,7 @@ void mdbc_with(ParticleSet& ps, const CellList& cells, const SolverSettings& s, 
       const double det = a.determinant();
       // First order only where the ghost node is surrounded by fluid; near the free surface the
       // one-sided gradient would extrapolate spurious pressure into the wall above the water.
-      if (a(0, 0) > kFullSupport && std::abs(det) > kMinDeterminant) {
+      if (std::abs(det) > kMinDeterminant) {
         const auto lu = a.partialPivLu();
         const Eigen::Vector3d sol = lu.solve(rhs);
         rho_b = sol(0) - (ps.ghost_dx[i] * sol(1) + ps.ghost_dz[i] * sol(2));

@@ -11,10 +11,9 @@
 //
 // (fluid neighbours j, V_j = m_j / rho_j), and extrapolated back to the boundary particle:
 //   rho_b = rho_g + (r_b - r_g) . grad rho_g.
-// Where the ghost node is not surrounded by fluid (Shepard sum sum_j V_j W_gj < 0.9: near the free
-// surface) or the matrix is singular, the Shepard value sum m_j W / sum V_j W is used without the
-// gradient (a one-sided gradient extrapolated over up to 2 n_layers dx pushes on the surface),
-// and where the ghost node lies mostly outside the fluid (Shepard sum < 0.5) rho_b = rho0. rho_b is never below rho0, so walls do not pull
+// Where the matrix is singular (|det| < 1e-3; e.g. a ghost node with few fluid neighbours near the
+// free surface) the Shepard value sum m_j W / sum V_j W is used without the gradient, and where the
+// ghost node lies mostly outside the fluid (Shepard sum sum_j V_j W_gj < 0.5) rho_b = rho0. rho_b is never below rho0, so walls do not pull
 // on the fluid. Boundary particles do not move; for the viscous terms (laminar_sps) they carry the
 // no-slip velocity mirrored about the fixed wall, v_b = 2 v_wall - v_g = -v_g, with v_g interpolated at
 // the ghost node with the same first-order correction (English et al. 2022, no-slip variant).

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -22,10 +23,19 @@ void finite_range(const Eigen::VectorXd& v, double& lo, double& hi) {
 }  // namespace
 
 CellGrid CellGrid::enclosing(const Eigen::VectorXd& x, const Eigen::VectorXd& z, double support) {
+  const double inf = std::numeric_limits<double>::infinity();
+  return enclosing(x, z, support, Box{-inf, inf, -inf, inf});
+}
+
+CellGrid CellGrid::enclosing(const Eigen::VectorXd& x, const Eigen::VectorXd& z, double support, const Box& limit) {
   CellGrid g;
   double xlo, xhi, zlo, zhi;
   finite_range(x, xlo, xhi);
   finite_range(z, zlo, zhi);
+  xlo = std::max(xlo, limit.x_lo);
+  xhi = std::max(xlo, std::min(xhi, limit.x_hi));
+  zlo = std::max(zlo, limit.z_lo);
+  zhi = std::max(zlo, std::min(zhi, limit.z_hi));
   g.cell_size = support;
   g.x0 = xlo;
   g.z0 = zlo;

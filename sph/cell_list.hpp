@@ -26,8 +26,15 @@ struct CellGrid {
   bool periodic = false;       // periodic in x with period nx * cell_size
   double period() const { return nx * cell_size; }
 
-  // Cells covering the bounding box of (x, z) with cells of size `support`.
+  // Cells covering the bounding box of (x, z) with cells of size `support`, cut to the box `limit`
+  // ({x_lo, x_hi, z_lo, z_hi}) when given: points outside it go to the edge cells (clamping keeps
+  // every pair closer than `support` in the same or adjacent cells, so the search stays exact), so a
+  // particle flung far away cannot make a huge grid before the run's checks stop it.
+  struct Box {
+    double x_lo, x_hi, z_lo, z_hi;
+  };
   static CellGrid enclosing(const Eigen::VectorXd& x, const Eigen::VectorXd& z, double support);
+  static CellGrid enclosing(const Eigen::VectorXd& x, const Eigen::VectorXd& z, double support, const Box& limit);
   // Periodic in x over [x_begin, x_end) (at least 3 cells, each >= support), z range from the points.
   // Throws std::invalid_argument if the period is shorter than 3 supports.
   static CellGrid periodic_x(double x_begin, double x_end, const Eigen::VectorXd& z, double support);

@@ -9,9 +9,7 @@ Kernel Kernel::make(const std::string& name, double h_m) {
   Kernel k;
   k.name_ = name;
   k.h_ = h_m;
-  if (name == "wendland_c2") k.wendland_ = true;
-  else if (name == "cubic_spline") k.wendland_ = false;
-  else throw std::invalid_argument("sph.kernel = \"" + name + "\" is not allowed: use \"wendland_c2\" or \"cubic_spline\"");
+  k.wendland_ = parse_kernel(name) == KernelType::wendland_c2;
   return k;
 }
 

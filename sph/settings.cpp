@@ -12,12 +12,6 @@
 
 namespace hydrojump::sph {
 
-KernelType parse_kernel(const std::string& name) {
-  if (name == "wendland_c2") return KernelType::wendland_c2;
-  if (name == "cubic_spline") return KernelType::cubic_spline;
-  throw std::invalid_argument("sph.kernel = \"" + name + "\" is not allowed: use \"wendland_c2\" or \"cubic_spline\"");
-}
-
 BoundaryMethod parse_boundary(const std::string& name) {
   if (name == "dbc") return BoundaryMethod::dbc;
   if (name == "mdbc") return BoundaryMethod::mdbc;
@@ -30,7 +24,6 @@ TimeIntegrator parse_time_integrator(const std::string& name) {
   throw std::invalid_argument("sph.time_integrator = \"" + name + "\" is not allowed: use \"symplectic\" or \"verlet\"");
 }
 
-const char* to_string(KernelType k) { return k == KernelType::wendland_c2 ? "wendland_c2" : "cubic_spline"; }
 
 namespace {
 void require(bool ok, const std::string& key, double value, const std::string& range) {

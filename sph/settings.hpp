@@ -6,6 +6,7 @@
 #include <string>
 
 #include "sph/density_diffusion.hpp"
+#include "sph/kernel.hpp"
 #include "sph/equation_of_state.hpp"
 #include "sph/viscosity.hpp"
 
@@ -19,7 +20,6 @@ namespace hydrojump::sph {
 
 enum class BoundaryMethod { dbc, mdbc };
 enum class TimeIntegrator { symplectic, verlet };
-enum class KernelType { wendland_c2, cubic_spline };
 
 struct SolverSettings {
   // Options (the strings of the spec, parsed).
@@ -53,10 +53,8 @@ struct SolverSettings {
   void validate() const;
 };
 
-KernelType parse_kernel(const std::string& name);
 BoundaryMethod parse_boundary(const std::string& name);
 TimeIntegrator parse_time_integrator(const std::string& name);
-const char* to_string(KernelType k);
 
 // Settings of case `c` at particle spacing `dx` with the geometry `g` (domain, body force, H_max).
 SolverSettings make_settings(const cases::Case& c, const cases::FluidProperties& fluid,

@@ -13,10 +13,15 @@ Solver::Solver(SolverSettings settings, ParticleSet particles, SolverClock clock
   update_pressure();
 }
 
+CellGrid::Box Solver::grid_limit() const {
+  const double pad = settings_.domain_margin + 3.0 * settings_.support();
+  return {settings_.x_min - pad, settings_.x_max + pad, settings_.z_min - pad, settings_.z_max + pad};
+}
+
 void Solver::sort_by_cell() {
   const CellGrid grid = settings_.periodic_x
                             ? CellGrid::periodic_x(settings_.x_min, settings_.x_max, particles_.z, settings_.support())
-                            : CellGrid::enclosing(particles_.x, particles_.z, settings_.support());
+                            : CellGrid::enclosing(particles_.x, particles_.z, settings_.support(), grid_limit());
   cells_.build(particles_.x, particles_.z, grid);
   bool identity = true;
   const auto& order = cells_.order();

@@ -54,6 +54,9 @@ class Solver {
  private:
   InteractionSummary interactions();
   void sort_by_cell();
+  // The cell grid's extent: the domain box plus the tolerated margin and three kernel supports (the
+  // boundary particles' layers); fluid beyond it is stopped by the run's checks after the step.
+  CellGrid::Box grid_limit() const;
 
   SolverSettings settings_;
   ParticleSet particles_;

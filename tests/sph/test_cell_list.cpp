@@ -106,3 +106,21 @@ TEST_CASE("cell list equals brute force with periodic wrap in x", "[sph][neighbo
   auto [x, z] = random_set(10, 0.12, 0.3, 1u, false);
   CHECK_THROWS_WITH(CellGrid::periodic_x(0.0, 0.12, z, 0.05), Catch::Contains("shorter than 3 kernel supports"));
 }
+
+TEST_CASE("a grid cut to a limit box stays small and exact with points far outside it", "[sph][neighbours]") {
+  const double radius = 0.05;
+  auto [x, z] = random_set(1000, 1.0, 0.4, 11u, true);
+  // Points beyond the limit box: a clump just outside each side (they still have neighbours there)
+  // and one particle flung 1 km away.
+  for (int i = 0; i < 40; ++i) {
+    x[i] = (i % 2 == 0 ? -0.3 : 1.3) + 0.01 * (i % 5);
+    z[i] = 0.6 + 0.01 * (i % 7);
+  }
+  x[40] = 1000.0;
+  z[40] = -1000.0;
+  const CellGrid::Box limit{-0.1, 1.1, -0.1, 0.5};
+  const CellGrid grid = CellGrid::enclosing(x, z, radius, limit);
+  CHECK(grid.nx <= std::lround(1.2 / radius) + 1);  // 25 cells of 0.05 m, not 20,000
+  CHECK(grid.nz <= std::lround(0.6 / radius) + 1);
+  CHECK(cell_search(x, z, radius, grid) == brute_force(x, z, radius, 0.0));
+}

@@ -32,7 +32,6 @@ double poiseuille_l2_error(double dx, double end_time) {
     sum += (ps.u[i] - exact) * (ps.u[i] - exact);
     max_dev = std::max(max_dev, std::abs(ps.u[i] - exact));
     ++n;
-    if (std::getenv("HYDROJUMP_TEST_VERBOSE") && ps.x[i] < dx) std::cout << "  z " << z << " u " << ps.u[i] << " exact " << exact << "\n";
   }
   const double l2 = std::sqrt(sum / n) / u_max;
   std::cout << "poiseuille dx = " << dx << ", t = " << solver.time() << " s, " << n << " fluid particles: L2 error "

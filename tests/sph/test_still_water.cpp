@@ -27,14 +27,7 @@ StillWaterResult run_still_water(double dx, const std::string& boundary, double 
   const double depth = loaded.spec.still_water()->water_depth_m;
   const double g = loaded.study.fluid.gravity_m_s2;
   hydrojump::sph::Solver solver(loaded.settings, loaded.particles);
-  double next_trace = 0.0;
-  while (solver.time() < end_time) {
-    solver.step();
-    if (std::getenv("HYDROJUMP_TEST_VERBOSE") && solver.time() >= next_trace) {
-      std::cout << "  t " << solver.time() << " max|v| " << sph_test::max_fluid_speed(solver.particles()) << "\n";
-      next_trace += 0.05;
-    }
-  }
+  while (solver.time() < end_time) solver.step();
   solver.update_pressure();
   const auto& ps = solver.particles();
   StillWaterResult r;
@@ -49,10 +42,6 @@ StillWaterResult run_still_water(double dx, const std::string& boundary, double 
     if (!ps.is_fluid(i)) continue;
     const long col = std::lround(std::floor(ps.x[i] / dx));
     top[col] = std::max(top.count(col) ? top[col] : -1e9, ps.z[i] + 0.5 * dx);
-    if (std::getenv("HYDROJUMP_TEST_VERBOSE") && std::hypot(ps.u[i], ps.w[i]) > 0.005)
-      std::cout << "  fast particle at " << ps.x[i] << ", " << ps.z[i] << " v " << ps.u[i] << ", " << ps.w[i] << "\n";
-    if (std::getenv("HYDROJUMP_TEST_VERBOSE") && ps.x[i] > 0.5 && ps.x[i] < 0.5 + dx)
-      std::cout << "  column z " << ps.z[i] << " p " << ps.p[i] << " hydrostatic " << 1000 * g * (depth - ps.z[i]) << "\n";
     if (ps.x[i] < 0.25 || ps.x[i] > 0.75) continue;
     n += 1;
     sz += ps.z[i];
