@@ -36,6 +36,7 @@ struct SphSettings {
   double density_diffusion_coefficient = 0.1;      // delta
   double sound_speed_coefficient = 10.0;           // c0 = coef * sqrt(g * H_max) ...
   double sound_speed_m_s = 0.0;                    // ... unless > 0: then c0 is given directly
+  double sound_speed_min_flow_ratio = 10.0;        // and c0 >= ratio * expected max flow speed (Mach <= 0.1)
   double cfl_number = 0.2;
   double coef_h = 1.0;                             // h = coef_h * sqrt(2) * dx
   std::string time_integrator = "symplectic";      // "symplectic" | "verlet"

@@ -282,6 +282,7 @@ void read_sph(TableReader& t, SphSettings& s) {
   s.density_diffusion_coefficient = t.number_or("density_diffusion_coefficient", s.density_diffusion_coefficient, between(0.0, 1.0));
   s.sound_speed_coefficient = t.number_or("sound_speed_coefficient", s.sound_speed_coefficient, Range{1.0, 1000.0, false, false, "c0 / sqrt(g H_max)"});
   s.sound_speed_m_s = t.number_or("sound_speed_m_s", s.sound_speed_m_s, non_negative("m/s", 1e5));
+  s.sound_speed_min_flow_ratio = t.number_or("sound_speed_min_flow_ratio", s.sound_speed_min_flow_ratio, Range{0.0, 1000.0, true, false, "c0 / expected max flow speed"});
   s.cfl_number = t.number_or("cfl_number", s.cfl_number, Range{0.0, 1.0, true, false, ""});
   s.coef_h = t.number_or("coef_h", s.coef_h, Range{0.5, 3.0, false, false, "h = coef_h sqrt(2) dx"});
   s.time_integrator = t.choice("time_integrator", s.time_integrator, {"symplectic", "verlet"});
@@ -751,6 +752,7 @@ void write_sph(TomlWriter& w, const SphSettings& s) {
   w.num("density_diffusion_coefficient", s.density_diffusion_coefficient);
   w.num("sound_speed_coefficient", s.sound_speed_coefficient);
   w.num("sound_speed_m_s", s.sound_speed_m_s);
+  w.num("sound_speed_min_flow_ratio", s.sound_speed_min_flow_ratio);
   w.num("cfl_number", s.cfl_number);
   w.num("coef_h", s.coef_h);
   w.str("time_integrator", s.time_integrator);

@@ -61,8 +61,13 @@ SolverSettings make_settings(const cases::Case& c, const cases::FluidProperties&
   out.h = smoothing_length(s.coef_h, dx);
   const double g_abs = std::hypot(g.body_force_m_s2.x(), g.body_force_m_s2.y());
   const double gravity = fluid.gravity_m_s2 > 0.0 ? fluid.gravity_m_s2 : g_abs;
-  const double c0 = s.sound_speed_m_s > 0.0 ? s.sound_speed_m_s
-                                            : s.sound_speed_coefficient * std::sqrt(gravity * g.max_water_height_m);
+  // c0 = max(coef sqrt(g H_max), ratio U_max) unless given: the weakly compressible fluid needs both a
+  // sound speed well above the gravity-wave speed and a Mach number U/c0 <= 1/ratio (density varies
+  // by about (U/c0)^2), as the corrugated-bed SPH study requires (c0 >= 10 U_max).
+  const double c0 = s.sound_speed_m_s > 0.0
+                        ? s.sound_speed_m_s
+                        : std::max(s.sound_speed_coefficient * std::sqrt(gravity * g.max_water_height_m),
+                                   s.sound_speed_min_flow_ratio * g.max_flow_speed_m_s);
   out.eos = TaitEquationOfState(fluid.density_kg_m3, c0);
   out.artificial_alpha = s.artificial_viscosity_alpha;
   out.kinematic_viscosity = fluid.kinematic_viscosity_m2_s;
