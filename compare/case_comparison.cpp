@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "cases/fingerprint.hpp"
 #include "cases/geometry.hpp"
 #include "cases/hydraulics.hpp"
 #include "cases/spec_reader.hpp"
@@ -24,6 +25,43 @@ cases::Study load_run_case(const fs::path& run_dir) {
     if (fs::exists(p)) return cases::load_study(p);
   throw std::runtime_error(run_dir.string() + ": no case.toml in " + (run_dir / "sph").string() + " or " +
                            (run_dir / "vof").string() + " (is this a directory written by `hydrojump generate`?)");
+}
+
+namespace {
+
+// The scalar after "\"key\": " in the SPH run's summary.json (its own flat format): the raw token.
+std::string summary_token(const std::string& json, const std::string& key) {
+  const std::string needle = "\"" + key + "\": ";
+  const auto at = json.find(needle);
+  if (at == std::string::npos) return {};
+  const auto begin = at + needle.size();
+  const auto end = json.find_first_of(",}\n", begin);
+  std::string token = json.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
+  if (!token.empty() && token.front() == '"') token = token.substr(1, token.size() - 2);
+  return token;
+}
+
+}  // namespace
+
+std::string sph_run_note(const fs::path& summary_file) {
+  if (!fs::exists(summary_file)) return {};
+  std::string json;
+  try {
+    json = cases::read_text_file(summary_file);
+  } catch (const std::exception&) {
+    return {};
+  }
+  const std::string state = summary_token(json, "jump_state");
+  const std::string from = summary_token(json, "steady_from_s");
+  const std::string window = summary_token(json, "steady_over_window");
+  const std::string q_error = summary_token(json, "inflow_discharge_relative_error");
+  if (state.empty()) return {};
+  std::ostringstream o;
+  o << "run monitor (" << summary_file.filename().string() << "): jump " << state
+    << (window == "true" ? ", steady over the averaging window" : ", NOT steady over the averaging window");
+  if (!from.empty() && from != "null") o << " (steady from t = " << from << " s)";
+  if (!q_error.empty() && q_error != "null") o << "; inflow discharge error " << std::stod(q_error) * 100.0 << " %";
+  return o.str();
 }
 
 namespace {
@@ -220,6 +258,11 @@ CaseComparison compare_case(const cases::Study& study, const fs::path& run_dir, 
     log << m->method << ": " << m->status << std::endl;
     if (!m->available) continue;
     m->metrics = compute_jump_metrics(m->stats, {r.inflow_depth_m, r.inflow_velocity_m_s, r.floor_z_m, g, options.metrics});
+  }
+  // The SPH run's own verdict (summary.json of sph/basin_monitor.hpp), when it wrote one.
+  if (r.sph.available) {
+    const std::string note = sph_run_note(run_dir / "sph" / "summary.json");
+    if (!note.empty()) r.sph.metrics.notes.push_back(note);
   }
   if (r.sph.available && r.vof.available) {
     r.surface = surface_difference(r.sph.stats, r.vof.stats, r.basin_start_m, r.basin_end_m);

@@ -71,4 +71,8 @@ CaseComparison compare_case(const cases::Study& study, const std::filesystem::pa
 CaseComparison compare_case_directory(const std::filesystem::path& run_dir, const CompareOptions& options,
                                       std::ostream& log);
 
+// One line on the SPH run's own verdict from its summary.json (jump state, steady or not, inflow
+// discharge error); empty when the file is absent or unreadable.
+std::string sph_run_note(const std::filesystem::path& summary_file);
+
 }  // namespace hydrojump::compare
