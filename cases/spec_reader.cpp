@@ -289,6 +289,7 @@ void read_sph(TableReader& t, SphSettings& s) {
   s.verlet_euler_interval = t.integer_or("verlet_euler_interval", s.verlet_euler_interval, 1, 1000);
   s.boundary_layers = t.integer_or("boundary_layers", s.boundary_layers, 0, 20);
   s.open_boundary_layers = t.integer_or("open_boundary_layers", s.open_boundary_layers, 0, 50);
+  s.outflow_condition = t.choice("outflow_condition", s.outflow_condition, {"hydrostatic_level", "absorbing"});
   if (s.open_boundary_layers > 0) {
     // The buffers must cover the kernel support 2h = 2 sqrt(2) coef_h dx of the fluid next to them.
     const int needed = static_cast<int>(std::ceil(2.0 * std::sqrt(2.0) * s.coef_h - 1e-9)) + 1;
@@ -759,6 +760,7 @@ void write_sph(TomlWriter& w, const SphSettings& s) {
   w.integer("verlet_euler_interval", s.verlet_euler_interval);
   w.integer("boundary_layers", s.boundary_layers);
   w.integer("open_boundary_layers", s.open_boundary_layers);
+  w.str("outflow_condition", s.outflow_condition);
   w.num("max_density_variation", s.max_density_variation);
   w.num("checkpoint_interval_wall_s", s.checkpoint_interval_wall_s);
 }

@@ -127,7 +127,8 @@ double InflowBuffer::advance(ParticleSet& particles, double dt, std::int64_t& ne
   return mass;
 }
 
-OutflowBuffer::OutflowBuffer(const cases::OutflowBoundary& outflow, double bed_z, const BufferParameters& params)
+OutflowBuffer::OutflowBuffer(const cases::OutflowBoundary& outflow, double bed_z, const BufferParameters& params,
+                             double discharge_m2_s)
     : x_out_(outflow.x_m),
       bed_z_(bed_z),
       dx_(params.dx),
@@ -136,6 +137,8 @@ OutflowBuffer::OutflowBuffer(const cases::OutflowBoundary& outflow, double bed_z
       layers_(buffer_layers(params.support, params.dx, params.layers)),
       eos_(params.eos) {
   if (!(outflow.tailwater_depth_m > 0.0)) throw std::invalid_argument("outflow buffer: tailwater depth must be positive");
+  absorbing_ = params.absorbing_outflow;
+  target_velocity_ = discharge_m2_s / outflow.tailwater_depth_m;
 }
 
 double OutflowBuffer::advance(ParticleSet& particles, double dt) {
@@ -150,7 +153,21 @@ double OutflowBuffer::advance(ParticleSet& particles, double dt) {
       mass += particles.mass[i];
     }
   }
-  const double u_out = mass > 0.0 ? std::max(0.0, momentum / mass) : 0.0;
+  double u_out = mass > 0.0 ? std::max(0.0, momentum / mass) : 0.0;
+  double level_z = level_z_;  // the level the buffer's pressure and spill refer to
+  double spill_margin = 0.5 * dx_;
+  if (absorbing_) {
+    // h = water volume of the strip / strip length;  u_b = U_t + 2 (sqrt(g h) - sqrt(g y_t))
+    double volume = 0.0;
+    for (Eigen::Index i = 0; i < n; ++i)
+      if (particles.type[i] == fluid_code && particles.x[i] < x_out_ && particles.x[i] >= x_out_ - strip)
+        volume += particles.mass[i] / particles.rho[i];
+    const double h = volume / strip;
+    const double y_t = level_z_ - bed_z_;
+    u_out = std::max(0.0, target_velocity_ + 2.0 * (std::sqrt(gravity_ * h) - std::sqrt(gravity_ * y_t)));
+    if (h > 0.0) level_z = bed_z_ + h;
+    spill_margin = 2.0 * dx_;
+  }
 
   std::vector<char> remove(static_cast<std::size_t>(n), 0);
   std::int64_t removed = 0;
@@ -160,7 +177,7 @@ double OutflowBuffer::advance(ParticleSet& particles, double dt) {
     if (t == fluid_code && particles.x[i] >= x_out_) {
       particles.type[i] = outflow_code;
       // Water arriving above the tailwater level spills: removed at once (level control).
-      if (particles.z[i] > level_z_ + 0.5 * dx_) {
+      if (particles.z[i] > level_z + spill_margin) {
         remove[static_cast<std::size_t>(i)] = 1;
         ++removed;
         removed_mass += particles.mass[i];
@@ -181,7 +198,7 @@ double OutflowBuffer::advance(ParticleSet& particles, double dt) {
       continue;
     }
     // rho = rho0 (1 + rho0 g (z_level - z)/B)^(1/7), never below rho0 above the level
-    const double rho = eos_.hydrostatic_density(gravity_, std::max(0.0, level_z_ - particles.z[i]));
+    const double rho = eos_.hydrostatic_density(gravity_, std::max(0.0, level_z - particles.z[i]));
     particles.rho[i] = particles.rho_old[i] = rho;
     particles.p[i] = eos_.pressure(rho);
   }
@@ -198,6 +215,7 @@ BufferParameters buffer_parameters(const SolverSettings& settings) {
   p.eos = settings.eos;
   p.gravity = std::abs(settings.body_force_z);
   p.layers = settings.open_boundary_layers;
+  p.absorbing_outflow = settings.absorbing_outflow;
   return p;
 }
 
@@ -208,7 +226,10 @@ std::int64_t next_particle_id(const ParticleSet& particles) {
 OpenBoundaries OpenBoundaries::from_geometry(const cases::CaseGeometry& geometry, const BufferParameters& params) {
   OpenBoundaries out;
   for (const auto& in : geometry.inflows) out.inflows_.emplace_back(in, geometry.bed.elevation(in.x_m), params);
-  for (const auto& o : geometry.outflows) out.outflows_.emplace_back(o, geometry.bed.elevation(o.x_m), params);
+  double discharge = 0.0;  // what the inflows bring: q = sum y1 U1
+  for (const auto& in : geometry.inflows) discharge += in.depth_m * in.velocity_m_s;
+  for (const auto& o : geometry.outflows)
+    out.outflows_.emplace_back(o, geometry.bed.elevation(o.x_m), params, discharge);
   out.buffer_length_ = buffer_layers(params.support, params.dx, params.layers) * params.dx;
   return out;
 }

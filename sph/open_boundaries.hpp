@@ -21,7 +21,20 @@
 //
 // and are removed once they are `layers` dx past x_out. Buffer particles that enter above the
 // tailwater level (plus dx/2) are removed at once: together with the imposed hydrostatic pressure this
-// holds the outlet level at the tailwater depth y_t (a level controller).
+// holds the outlet level at the tailwater depth y_t (a level controller). This is
+// sph.outflow_condition = "hydrostatic_level" (the default). It holds the level firmly but reflects
+// the long waves of the start-up, so the basin sloshes.
+//
+// sph.outflow_condition = "absorbing": the buffer continues the flow as a long-wave outlet. With h the
+// water depth of the fluid strip just upstream of x_out (volume / strip length) and U_t = q / y_t the
+// tailwater velocity, buffer particles move at the velocity that fixes the incoming Riemann invariant
+// of the shallow-water equations to its tailwater value,
+//
+//   u_b - 2 sqrt(g h) = U_t - 2 sqrt(g y_t)   =>   u_b = U_t + 2 (sqrt(g h) - sqrt(g y_t)),  u_b >= 0,
+//
+// so waves arriving from the basin leave instead of reflecting, and the level relaxes to y_t (h > y_t
+// drains faster than q, h < y_t slower). They carry the hydrostatic density of the measured level
+// z_b + h; only particles thrown more than 2 dx above it are removed at once (spray).
 //
 // Usage
 //   | quantity        | from                                          |
@@ -52,6 +65,7 @@ struct BufferParameters {
   TaitEquationOfState eos;
   double gravity = 9.81;           // m/s^2
   int layers = 0;                  // 0: ceil(support / dx) + 1; otherwise at least that
+  bool absorbing_outflow = false;  // outflow: the absorbing (characteristic) condition
 };
 
 // Running totals of what crossed the open boundaries (kg per metre of width).
@@ -90,7 +104,9 @@ class InflowBuffer {
 
 class OutflowBuffer {
  public:
-  OutflowBuffer(const cases::OutflowBoundary& outflow, double bed_z, const BufferParameters& params);
+  // `discharge_m2_s` (the inflow's q) sets U_t = q / y_t for the absorbing condition.
+  OutflowBuffer(const cases::OutflowBoundary& outflow, double bed_z, const BufferParameters& params,
+                double discharge_m2_s = 0.0);
 
   // Converts fluid past x_out into buffer particles, imposes their velocity and density, removes
   // those beyond the buffer or above the tailwater level. Returns the mass removed (kg/m).
@@ -103,6 +119,8 @@ class OutflowBuffer {
 
  private:
   double x_out_, bed_z_, dx_, level_z_, gravity_;
+  double target_velocity_ = 0.0;   // U_t = q / y_t (absorbing condition)
+  bool absorbing_ = false;
   int layers_;
   TaitEquationOfState eos_;
   OpenBoundaryTotals totals_;

@@ -88,6 +88,10 @@ SolverSettings make_settings(const cases::Case& c, const cases::FluidProperties&
   // Open boundaries: the buffer zones (layers dx upstream of the inflow, downstream of the outflow)
   // belong to the domain; their particles may be fluid for a step before their buffer takes them.
   out.open_boundary_layers = s.open_boundary_layers;
+  if (s.outflow_condition != "hydrostatic_level" && s.outflow_condition != "absorbing")
+    throw std::invalid_argument("sph.outflow_condition = \"" + s.outflow_condition +
+                                "\" is not allowed: use \"hydrostatic_level\" or \"absorbing\"");
+  out.absorbing_outflow = s.outflow_condition == "absorbing";
   const double buffer_length = buffer_layers(out.support(), out.dx, out.open_boundary_layers) * out.dx;
   if (!g.inflows.empty()) out.x_min -= buffer_length;
   if (!g.outflows.empty()) out.x_max += buffer_length;

@@ -46,6 +46,7 @@ struct SolverSettings {
   double max_density_variation = 0.05;
   double domain_margin = 0.0;        // tolerated excursion beyond the box (m)
   int open_boundary_layers = 0;      // inflow/outflow buffer columns (0: ceil(support/dx) + 1)
+  bool absorbing_outflow = false;    // sph.outflow_condition = "absorbing" (else "hydrostatic_level")
 
   double support() const { return 2.0 * h; }
   double eta2() const { return 0.01 * h * h; }

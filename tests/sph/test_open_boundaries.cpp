@@ -117,6 +117,37 @@ TEST_CASE("Outflow buffer removes what leaves and holds the level", "[sph][open_
   }
 }
 
+TEST_CASE("Absorbing outflow moves its buffer at the tailwater's Riemann invariant", "[sph][open_boundary]") {
+  const double dx = 0.01, x_out = 1.0, tailwater = 0.1, q = 0.05, g = 9.81;
+  BufferParameters params = parameters(dx);
+  params.absorbing_outflow = true;
+  OutflowBuffer outflow({x_out, tailwater}, 0.0, params, q);
+  // Fluid 0.15 m deep (above the tailwater) at rest upstream of the outlet, a column already in the buffer.
+  ParticleSet p;
+  std::int64_t id = 0;
+  const int columns = 21, rows = 15;  // x = 0.805 ... 0.995, and 1.005 past x_out
+  p.resize(columns * rows);
+  Eigen::Index i = 0;
+  for (int c = 0; c < columns; ++c)
+    for (int r = 0; r < rows; ++r, ++i) p.assign(i, ParticleType::fluid, 0.805 + c * dx, (r + 0.5) * dx, 1000.0, 0.1, id++);
+  const double initial = total_mass(p, ParticleType::fluid);
+  const double removed = outflow.advance(p, 1e-3);
+  // h = 0.15 m measured over the strip: u_b = U_t + 2 (sqrt(g h) - sqrt(g y_t)) > U_t, so the level drains.
+  const double h = rows * dx;
+  const double expected = q / tailwater + 2.0 * (std::sqrt(g * h) - std::sqrt(g * tailwater));
+  int buffer = 0;
+  const TaitEquationOfState eos(1000.0, 40.0);
+  for (Eigen::Index k = 0; k < p.size(); ++k) {
+    if (p.type[k] != static_cast<std::uint8_t>(ParticleType::outflow)) continue;
+    ++buffer;
+    CHECK(p.u[k] == Approx(expected).epsilon(1e-9));
+    // hydrostatic below the measured level h (not the tailwater level)
+    CHECK(p.rho[k] == Approx(eos.hydrostatic_density(g, std::max(0.0, h - p.z[k]))).epsilon(1e-12));
+  }
+  CHECK(buffer == rows);  // the column past x_out, none spilled (all within 2 dx of the level)
+  CHECK(total_mass(p, ParticleType::fluid) + total_mass(p, ParticleType::outflow) + removed == Approx(initial));
+}
+
 TEST_CASE("remove_particles keeps the others in order", "[sph][open_boundary]") {
   ParticleSet p;
   p.resize(6);
