@@ -71,6 +71,13 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
 #pragma omp parallel for schedule(static) if (threads)
   for (Eigen::Index i = 0; i < n; ++i) volume[i] = m[i] / rho[i];
 
+  // laminar_sps: the velocity gradient of every fluid particle, accumulated in the pair loop; the SPS
+  // stress made from it after the loop is used by the next interaction (one half step later), as in
+  // DualSPHysics (Dominguez et al. 2022), instead of a second pair loop:
+  //   grad v_i = sum_j V_j (v_j - v_i) (x) grad_i W_ij
+  std::vector<double> grad_store(sps ? 4 * static_cast<std::size_t>(n) : 0, 0.0);
+  double* grad = grad_store.data();
+
   double max_acc2 = 0.0, max_visc = 0.0;
 #pragma omp parallel for schedule(dynamic, 16) reduction(max : max_acc2, max_visc) if (threads)
   for (int c = 0; c < n_cells; ++c) {
@@ -104,6 +111,7 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
       }
       const double pi = p[i], inv_rhoi = 1.0 / rhoi;
       double d = 0.0, fx = 0.0, fz = 0.0, visc_rate = 0.0;
+      double dudx = 0.0, dudz = 0.0, dwdx = 0.0, dwdz = 0.0;
       for (int k = 0; k < n_ranges; ++k) {
         const Range rg = ranges[k];
         for (int j = rg.begin; j < rg.end; ++j) {
@@ -138,6 +146,10 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
             fx += lam * (fluid_j ? du : ui - wall_u[j]);
             fz += lam * (fluid_j ? dw : wi - wall_w[j]);
             if (sps) {
+              dudx -= vj * du * gx;
+              dudz -= vj * du * gzw;
+              dwdx -= vj * dw * gx;
+              dwdz -= vj * dw * gzw;
               // m_j (tau_i/rho_i^2 + tau_j/rho_j^2) . grad_i W (tau stored divided by rho)
               const double inv_rhoj = vj / mj;
               const double sxx = txx[i] * inv_rhoi + txx[j] * inv_rhoj;
@@ -151,6 +163,13 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
           fz += scalar * gzw;
         }
       }
+      if (sps) {
+        double* gi = grad + 4 * static_cast<std::size_t>(i);
+        gi[0] = dudx;
+        gi[1] = dudz;
+        gi[2] = dwdx;
+        gi[3] = dwdz;
+      }
       drho[i] = d;
       ax[i] = fx + s.body_force_x;
       az[i] = fz + s.body_force_z;
@@ -158,46 +177,21 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
       max_visc = std::max(max_visc, visc_rate);
     }
   }
-  return InteractionSummary{std::sqrt(max_acc2), max_visc};
-}
-
-template <class K>
-void sps_with(ParticleSet& ps, const CellList& cells, const SolverSettings& s, const K& kernel) {
-  const int n_cells = cells.cell_count();
-  const double support2 = s.support() * s.support();
-#pragma omp parallel for schedule(dynamic, 16) if (use_threads(ps.size()))
-  for (int c = 0; c < n_cells; ++c) {
-    const int first = cells.cell_start(c), last = cells.cell_start(c + 1);
-    if (first == last) continue;
-    Range ranges[9];
-    const int n_ranges = neighbour_ranges(cells, c, ranges);
-    for (int i = first; i < last; ++i) {
-      if (ps.type[i] != kFluid) {
+  if (sps) {
+#pragma omp parallel for schedule(static) if (threads)
+    for (Eigen::Index i = 0; i < n; ++i) {
+      if (type[i] != kFluid) {
         ps.tau_xx[i] = ps.tau_xz[i] = ps.tau_zz[i] = 0.0;
         continue;
       }
-      // grad v_i = sum_j V_j (v_j - v_i) (x) grad_i W_ij
-      double dudx = 0.0, dudz = 0.0, dwdx = 0.0, dwdz = 0.0;
-      for (int k = 0; k < n_ranges; ++k) {
-        const Range rg = ranges[k];
-        for (int j = rg.begin; j < rg.end; ++j) {
-          const double dx = ps.x[i] - (ps.x[j] + rg.shift), dz = ps.z[i] - ps.z[j];
-          const double r2 = dx * dx + dz * dz;
-          if (r2 >= support2 || j == i) continue;
-          const double f = kernel.gradient_factor(std::sqrt(r2)) * ps.mass[j] / ps.rho[j];
-          const double du = ps.u[j] - ps.u[i], dw = ps.w[j] - ps.w[i];
-          dudx += du * f * dx;
-          dudz += du * f * dz;
-          dwdx += dw * f * dx;
-          dwdz += dw * f * dz;
-        }
-      }
-      const SpsStress t = sps_stress(dudx, dudz, dwdx, dwdz, s.smagorinsky, s.blin, s.dx);
+      const double* gi = grad + 4 * static_cast<std::size_t>(i);
+      const SpsStress t = sps_stress(gi[0], gi[1], gi[2], gi[3], s.smagorinsky, s.blin, s.dx);
       ps.tau_xx[i] = t.xx;
       ps.tau_xz[i] = t.xz;
       ps.tau_zz[i] = t.zz;
     }
   }
+  return InteractionSummary{std::sqrt(max_acc2), max_visc};
 }
 
 }  // namespace
@@ -206,11 +200,6 @@ void compute_pressure(ParticleSet& ps, const SolverSettings& s) {
   const Eigen::Index n = ps.size();
 #pragma omp parallel for schedule(static) if (use_threads(n))
   for (Eigen::Index i = 0; i < n; ++i) ps.p[i] = s.eos.pressure(ps.rho[i]);
-}
-
-void compute_sps_stress(ParticleSet& ps, const CellList& cells, const SolverSettings& s) {
-  if (s.kernel == KernelType::wendland_c2) sps_with(ps, cells, s, WendlandC2(s.h));
-  else sps_with(ps, cells, s, CubicSpline(s.h));
 }
 
 InteractionSummary compute_interactions(ParticleSet& ps, const CellList& cells, const SolverSettings& s) {

@@ -21,11 +21,9 @@ struct InteractionSummary {
 // p_i = Tait(rho_i) for every particle.
 void compute_pressure(ParticleSet& ps, const SolverSettings& s);
 
-// tau/rho of every fluid particle from its SPH velocity gradient (laminar_sps only).
-void compute_sps_stress(ParticleSet& ps, const CellList& cells, const SolverSettings& s);
-
 // Fills ax, az, drho of every particle (boundary particles: drho only, DBC) and returns the
-// quantities of the time-step conditions.
+// quantities of the time-step conditions. laminar_sps: uses the SPS stress tau/rho of the previous
+// call and leaves the new one (from this call's velocity gradients) in tau_xx, tau_xz, tau_zz.
 InteractionSummary compute_interactions(ParticleSet& ps, const CellList& cells, const SolverSettings& s);
 
 }  // namespace hydrojump::sph

@@ -36,7 +36,6 @@ InteractionSummary Solver::interactions() {
   sort_by_cell();
   if (settings_.boundary == BoundaryMethod::mdbc) mdbc_boundary_density(particles_, cells_, settings_);
   compute_pressure(particles_, settings_);
-  if (settings_.viscosity == Viscosity::laminar_sps) compute_sps_stress(particles_, cells_, settings_);
   return compute_interactions(particles_, cells_, settings_);
 }
 
