@@ -16,9 +16,14 @@ namespace {
 std::filesystem::path temporary_beside(const std::filesystem::path& target) {
   static std::atomic<unsigned long> counter{0};
   const auto n = counter.fetch_add(1);
-  return target.parent_path() /
-         ("." + target.filename().string() + ".tmp." + std::to_string(::getpid()) + "." +
-          std::to_string(n));
+  // Built by appending (GCC 12 reports a false -Wrestrict for "." + std::string temporaries).
+  std::string name = ".";
+  name += target.filename().string();
+  name += ".tmp.";
+  name += std::to_string(::getpid());
+  name += '.';
+  name += std::to_string(n);
+  return target.parent_path() / name;
 }
 
 void ensure_parent(const std::filesystem::path& target) {
