@@ -275,6 +275,7 @@ void read_sph(TableReader& t, SphSettings& s) {
   s.kernel = t.choice("kernel", s.kernel, {"wendland_c2", "cubic_spline"});
   s.viscosity = t.choice("viscosity", s.viscosity, {"artificial", "laminar_sps"});
   s.artificial_viscosity_alpha = t.number_or("artificial_viscosity_alpha", s.artificial_viscosity_alpha, between(0.0, 1.0));
+  s.artificial_viscosity_wall_factor = t.number_or("artificial_viscosity_wall_factor", s.artificial_viscosity_wall_factor, between(0.0, 1.0));
   s.sps_smagorinsky_constant = t.number_or("sps_smagorinsky_constant", s.sps_smagorinsky_constant, between(0.0, 1.0));
   s.sps_blin_constant = t.number_or("sps_blin_constant", s.sps_blin_constant, between(0.0, 1.0));
   s.boundary = t.choice("boundary", s.boundary, {"dbc", "mdbc"});
@@ -746,6 +747,7 @@ void write_sph(TomlWriter& w, const SphSettings& s) {
   w.str("kernel", s.kernel);
   w.str("viscosity", s.viscosity);
   w.num("artificial_viscosity_alpha", s.artificial_viscosity_alpha);
+  w.num("artificial_viscosity_wall_factor", s.artificial_viscosity_wall_factor);
   w.num("sps_smagorinsky_constant", s.sps_smagorinsky_constant);
   w.num("sps_blin_constant", s.sps_blin_constant);
   w.str("boundary", s.boundary);

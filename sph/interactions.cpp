@@ -53,6 +53,7 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
   const double eta2 = s.eta2();
   const double h = s.h;
   const double alpha_c0_h = s.artificial_alpha * s.eos.c0 * h;
+  const double wall_factor = s.artificial_wall_factor;
   const double delta_h_c0 = s.diffusion_delta * h * s.eos.c0;
   const double rho0 = s.eos.rho0, b = s.eos.b;
   const double gz = s.body_force_z;
@@ -138,7 +139,9 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
             // Approaching pair: the viscous time-step condition, and the artificial viscosity.
             const double dot_rr2 = v_dot_r / (r2 + eta2);
             visc_rate = std::max(visc_rate, -h * dot_rr2);
-            if (artificial) scalar -= mj * artificial_viscosity_pair(alpha_c0_h, v_dot_r, r2, eta2, rhoi, rho[j]);
+            if (artificial)
+              scalar -= (fluid_j ? 1.0 : wall_factor) * mj *
+                        artificial_viscosity_pair(alpha_c0_h, v_dot_r, r2, eta2, rhoi, rho[j]);
           }
           if (!artificial) {
             // Boundary neighbours enter with their no-slip wall velocity (zero with DBC).

@@ -40,6 +40,8 @@ void SolverSettings::validate() const {
   require(eos.rho0 > 0.0, "fluid.density_kg_m3", eos.rho0, "must be > 0");
   require(eos.c0 > 0.0 && std::isfinite(eos.c0), "sound speed c0 (m/s)", eos.c0, "must be > 0");
   require(artificial_alpha >= 0.0 && artificial_alpha <= 1.0, "artificial_viscosity_alpha", artificial_alpha, "[0, 1]");
+  require(artificial_wall_factor >= 0.0 && artificial_wall_factor <= 1.0, "artificial_viscosity_wall_factor",
+          artificial_wall_factor, "[0, 1]");
   require(kinematic_viscosity >= 0.0, "fluid.kinematic_viscosity_m2_s", kinematic_viscosity, ">= 0");
   require(diffusion_delta >= 0.0 && diffusion_delta <= 1.0, "density_diffusion_coefficient", diffusion_delta, "[0, 1]");
   require(cfl > 0.0 && cfl <= 1.0, "cfl_number", cfl, "(0, 1]");
@@ -70,6 +72,7 @@ SolverSettings make_settings(const cases::Case& c, const cases::FluidProperties&
                                    s.sound_speed_min_flow_ratio * g.max_flow_speed_m_s);
   out.eos = TaitEquationOfState(fluid.density_kg_m3, c0);
   out.artificial_alpha = s.artificial_viscosity_alpha;
+  out.artificial_wall_factor = s.artificial_viscosity_wall_factor;
   out.kinematic_viscosity = fluid.kinematic_viscosity_m2_s;
   out.smagorinsky = s.sps_smagorinsky_constant;
   out.blin = s.sps_blin_constant;

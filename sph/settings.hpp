@@ -33,6 +33,7 @@ struct SolverSettings {
   double h = 0.0;                    // smoothing length (m)
   TaitEquationOfState eos;           // rho0, c0, B
   double artificial_alpha = 0.01;
+  double artificial_wall_factor = 1.0;  // alpha with wall (boundary) neighbours = factor * alpha
   double kinematic_viscosity = 1e-6; // nu0 (m^2/s)
   double smagorinsky = 0.12;
   double blin = 0.0066;

@@ -15,7 +15,10 @@
 // Usage:
 //   | sph.viscosity  | parameters                                                        |
 //   |----------------|-------------------------------------------------------------------|
-//   | "artificial"   | sph.artificial_viscosity_alpha (default 0.01)                     |
+//   | "artificial"   | sph.artificial_viscosity_alpha (default 0.01);                    |
+//   |                | sph.artificial_viscosity_wall_factor (default 1): alpha times this|
+//   |                | between fluid and wall particles (DualSPHysics' ViscoBoundFactor; |
+//   |                | 0 = no viscous wall friction, e.g. a jump as Belanger assumes it) |
 //   | "laminar_sps"  | fluid.kinematic_viscosity_m2_s, sph.sps_smagorinsky_constant 0.12,|
 //   |                | sph.sps_blin_constant 0.0066                                      |
 #pragma once

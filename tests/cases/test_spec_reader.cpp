@@ -208,6 +208,10 @@ TEST_CASE("Non-physical values are rejected with the allowed range", "[cases][sp
     CHECK_NOTHROW(parse_study(replaced(valid_spec, "[[case]]", "[sph]\nopen_boundary_layers = 4\n\n[[case]]"),
                               "spec.toml", "."));
   }
+  SECTION("artificial viscosity wall factor outside [0, 1]") {
+    const auto msg = rejection(replaced(valid_spec, "[[case]]", "[sph]\nartificial_viscosity_wall_factor = 1.5\n\n[[case]]"));
+    CHECK_THAT(msg, Catch::Contains("sph.artificial_viscosity_wall_factor = 1.5 is out of range"));
+  }
   SECTION("too few particles across y1") {
     const auto msg = rejection(replaced(valid_spec, "particle_spacing_m = 0.005", "particle_spacing_m = 0.0125"));
     CHECK_THAT(msg, Catch::Contains("inflow.depth_m = 0.0254"));
