@@ -1,0 +1,58 @@
+// Artificial viscosity against the walls (sph.artificial_viscosity_wall_factor): still-water tank
+// (cases/still_water.toml, dx = 0.02 m) whose fluid slides uniformly at 0.5 m/s over the DBC floor.
+// With a uniform velocity the fluid-fluid artificial viscosity vanishes (v_ij = 0), so the horizontal
+// acceleration of the bottom row in the middle of the tank is the wall's viscous drag alone: zero with
+// the wall factor 0 (up to the pressure terms, which cancel on the symmetric lattice), a deceleration
+// with the factor 1.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "sph/cell_list.hpp"
+#include "sph/interactions.hpp"
+#include "sph_test_support.hpp"
+
+using namespace hydrojump;
+
+namespace {
+
+// Mean horizontal acceleration of the fluid particles of the bottom row with 0.3 < x < 0.7 m.
+double bottom_row_drag(double wall_factor) {
+  const double dx = 0.02;
+  auto c = sph_test::load_case("still_water.toml", dx, [&](cases::Case& k) {
+    k.sph.viscosity = "artificial";
+    k.sph.artificial_viscosity_alpha = 0.1;
+    k.sph.artificial_viscosity_wall_factor = wall_factor;
+    k.sph.boundary = "dbc";
+  });
+  sph::ParticleSet ps = c.particles;
+  for (Eigen::Index i = 0; i < ps.size(); ++i)
+    if (ps.is_fluid(i)) ps.u[i] = 0.5;
+  sph::CellList cells;
+  cells.build(ps.x, ps.z, sph::CellGrid::enclosing(ps.x, ps.z, c.settings.support()));
+  ps.permute(cells.order());
+  cells.mark_sorted();
+  sph::compute_pressure(ps, c.settings);
+  sph::compute_interactions(ps, cells, c.settings);
+  double sum = 0.0;
+  int n = 0;
+  for (Eigen::Index i = 0; i < ps.size(); ++i)
+    if (ps.is_fluid(i) && ps.z[i] < c.geometry.bed.elevation(ps.x[i]) + dx && ps.x[i] > 0.3 && ps.x[i] < 0.7) {
+      sum += ps.ax[i];
+      ++n;
+    }
+  REQUIRE(n > 0);
+  return sum / n;
+}
+
+}  // namespace
+
+TEST_CASE("the artificial viscosity's wall factor scales the drag of the walls", "[sph][viscosity]") {
+  const double free_slip = bottom_row_drag(0.0);
+  const double no_slip = bottom_row_drag(1.0);
+  INFO("bottom-row a_x: factor 0: " << free_slip << " m/s^2, factor 1: " << no_slip << " m/s^2");
+  CHECK(std::abs(free_slip) < 1e-6);
+  CHECK(no_slip < -0.1);
+  // Linear in the factor: half the factor, half the drag.
+  CHECK(bottom_row_drag(0.5) == Approx(0.5 * no_slip).epsilon(1e-9));
+}
