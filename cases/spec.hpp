@@ -51,7 +51,7 @@ struct SphSettings {
 
 // [vof] — method settings of the OpenFOAM interFoam reference.
 struct VofSettings {
-  std::string turbulence_model = "kOmegaSST";      // "laminar" | "kOmegaSST"
+  std::string turbulence_model = "kOmegaSST";      // "laminar" | "kOmegaSST" | "kEpsilon" | "RNGkEpsilon"
   double max_courant = 0.8;
   double max_alpha_courant = 0.8;
   double max_time_step_s = 1.0e-3;

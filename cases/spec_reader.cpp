@@ -306,7 +306,7 @@ void read_sph(TableReader& t, SphSettings& s) {
 }
 
 void read_vof(TableReader& t, VofSettings& v) {
-  v.turbulence_model = t.choice("turbulence_model", v.turbulence_model, {"laminar", "kOmegaSST"});
+  v.turbulence_model = t.choice("turbulence_model", v.turbulence_model, {"laminar", "kOmegaSST", "kEpsilon", "RNGkEpsilon"});
   v.max_courant = t.number_or("max_courant", v.max_courant, Range{0.0, 5.0, true, false, ""});
   v.max_alpha_courant = t.number_or("max_alpha_courant", v.max_alpha_courant, Range{0.0, 5.0, true, false, ""});
   v.max_time_step_s = t.number_or("max_time_step_s", v.max_time_step_s, positive("s", 1.0));

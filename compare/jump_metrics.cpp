@@ -101,6 +101,16 @@ JumpMetrics compute_jump_metrics(const MethodStatistics& m, const JumpInputs& in
     return r;
   }
   r.toe_x_m = st[toe].spec.x_m;
+  // A jump swept past the downstream section: that section samples the incoming stream (or the
+  // jump itself), not the sequent depth, so y2, E2 and eta would be silently wrong.
+  if (down && r.toe_x_m >= x_down) {
+    std::ostringstream s;
+    s << "the toe (x = " << r.toe_x_m << " m) lies downstream of the \"downstream\" section (x = " << x_down
+      << " m): the jump was swept past it, so y2, E2, eta and Lj are unavailable";
+    r.notes.push_back(s.str());
+    r.sequent_depth_m = r.sequent_depth_std_m = r.e2_m = not_a_number;
+    r.eta = r.eta_alpha1 = r.eta_crest_depth = not_a_number;
+  }
   std::size_t last = toe;  // last station up to the downstream section
   while (last + 1 < st.size() && st[last + 1].spec.x_m <= x_down + 1e-12) ++last;
 

@@ -11,7 +11,8 @@
 //                (2 cm and 5 cm for y1 = 25.4 mm). The same criterion applied to every frame's
 //                instantaneous surface gives the toe's standard deviation over the window.
 //   y2           sequent depth: time-mean surface at the "downstream" section minus z_floor (depth above
-//                the corrugation crests, as measured in the flume).
+//                the corrugation crests, as measured in the flume). When the toe lies downstream of that
+//                section (a jump swept downstream), y2, E2, eta and Lj are NaN with a note.
 //   jump end     the first x >= x_t from which zeta stays within settle_tolerance * (y2 - y1) of y2 up
 //                to the downstream section ("the surface has settled"); Lj = x_end - x_t.
 //   roller end   the last x in (x_t, x_down] where the time-mean near-surface velocity u(eta - 0.1 h) is

@@ -289,9 +289,11 @@ Value libs(const std::string& lib) { return foam::list({foam::string(lib)}); }
 }  // namespace
 
 // Discretisation of every interFoam case written here: Euler in time, linearUpwind momentum,
-// vanLeer + interface compression for alpha, upwind turbulence (k, omega) when `turbulent`.
-foam::Dictionary interfoam_fv_schemes(bool turbulent) {
+// vanLeer + interface compression for alpha, upwind for the turbulence fields of `turbulence_model`
+// (k and omega for "kOmegaSST", k and epsilon for "kEpsilon" and "RNGkEpsilon", none for "laminar").
+foam::Dictionary interfoam_fv_schemes(const std::string& turbulence_model) {
   using foam::Dictionary;
+  const std::vector<std::string> transported = turbulence_fields(turbulence_model);
   Dictionary fs;
   fs.subdict("ddtSchemes").set("default", foam::word("Euler"));
   fs.subdict("gradSchemes").set("default", foam::word("Gauss linear"));
@@ -300,16 +302,21 @@ foam::Dictionary interfoam_fv_schemes(bool turbulent) {
   div.set("div(rhoPhi,U)", foam::word("Gauss linearUpwind grad(U)"));
   div.set("div(phi,alpha)", foam::word("Gauss vanLeer"));
   div.set("div(phirb,alpha)", foam::word("Gauss linear"));
-  if (turbulent) {
-    div.set("div(phi,k)", foam::word("Gauss upwind"));
-    div.set("div(phi,omega)", foam::word("Gauss upwind"));
-  }
+  for (const std::string& f : transported) div.set("div(phi," + f + ")", foam::word("Gauss upwind"));
   div.set("div(((rho*nuEff)*dev2(T(grad(U)))))", foam::word("Gauss linear"));
   fs.subdict("laplacianSchemes").set("default", foam::word("Gauss linear corrected"));
   fs.subdict("interpolationSchemes").set("default", foam::word("linear"));
   fs.subdict("snGradSchemes").set("default", foam::word("corrected"));
-  if (turbulent) fs.subdict("wallDist").set("method", foam::word("meshWave"));
+  if (!transported.empty()) fs.subdict("wallDist").set("method", foam::word("meshWave"));
   return fs;
+}
+
+std::vector<std::string> turbulence_fields(const std::string& turbulence_model) {
+  if (turbulence_model == "laminar") return {};
+  if (turbulence_model == "kOmegaSST") return {"k", "omega"};
+  if (turbulence_model == "kEpsilon" || turbulence_model == "RNGkEpsilon") return {"k", "epsilon"};
+  throw std::invalid_argument("vof.turbulence_model = \"" + turbulence_model +
+                              "\" is unknown: allowed \"laminar\", \"kOmegaSST\", \"kEpsilon\", \"RNGkEpsilon\"");
 }
 
 // A symmetric Gauss-Seidel smoothSolver to an absolute tolerance (relTol 0).
@@ -354,11 +361,14 @@ VofCase build_vof_case(const cases::Study& study, const cases::Case& c, const st
   if (const auto reason = vof_unsupported_reason(c)) throw std::invalid_argument(*reason);
   const auto* basin = c.stilling_basin();
   const auto* dam = c.dam_break();
-  if (c.vof.turbulence_model != "laminar" && c.vof.turbulence_model != "kOmegaSST") {
-    throw std::invalid_argument("case \"" + c.id + "\": vof.turbulence_model = \"" +
-                                c.vof.turbulence_model + "\" is unknown: allowed \"laminar\", \"kOmegaSST\"");
+  std::vector<std::string> transported;
+  try {
+    transported = turbulence_fields(c.vof.turbulence_model);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument("case \"" + c.id + "\": " + e.what());
   }
-  const bool turbulent = c.vof.turbulence_model == "kOmegaSST";
+  const bool turbulent = !transported.empty();
+  const bool k_omega = c.vof.turbulence_model == "kOmegaSST";
   const double g = study.fluid.gravity_m_s2;
   const double h = res.vof_cell_size_bed_m;
 
@@ -412,6 +422,8 @@ VofCase build_vof_case(const cases::Study& study, const cases::Case& c, const st
   }
   const double k_in = 1.5 * std::pow(turbulence_intensity * u_ref, 2);
   const double omega_in = std::sqrt(k_in) / (std::pow(c_mu, 0.25) * mixing_length_factor * length_ref);
+  // epsilon = Cmu^(3/4) k^(3/2) / l = Cmu k omega (the same length scale l as omega)
+  const double epsilon_in = c_mu * k_in * omega_in;
 
   // ---- constant/
   {
@@ -442,7 +454,7 @@ VofCase build_vof_case(const cases::Study& study, const cases::Case& c, const st
     if (turbulent) {
       tu.set("simulationType", foam::word("RAS"));
       Dictionary ras;
-      ras.set("RASModel", foam::word("kOmegaSST"));
+      ras.set("RASModel", foam::word(c.vof.turbulence_model));
       ras.set("turbulence", foam::on_off(true));
       ras.set("printCoeffs", foam::on_off(true));
       tu.set("RAS", ras);
@@ -455,14 +467,16 @@ VofCase build_vof_case(const cases::Study& study, const cases::Case& c, const st
   // ---- 0.orig/
   const std::vector<std::string>& patches = vof.patches;
   {
-    std::map<std::string, Dictionary> u, alpha, p, k, omega, nut;
+    // omega (kOmegaSST) or epsilon (kEpsilon, RNGkEpsilon): the second turbulence field
+    std::map<std::string, Dictionary> u, alpha, p, k, dissipation, nut;
+    const double diss_in = k_omega ? omega_in : epsilon_in;
     const Value zero_vec = foam::uniform(foam::vector(0, 0, 0));
     for (const std::string& wall : {std::string("walls"), std::string("bed")}) {
       u[wall] = type_only("noSlip");
       alpha[wall] = type_only("zeroGradient");
       p[wall] = type_only("fixedFluxPressure");
       k[wall] = with_value("kqRWallFunction", foam::uniform(k_in));
-      omega[wall] = with_value("omegaWallFunction", foam::uniform(omega_in));
+      dissipation[wall] = with_value(k_omega ? "omegaWallFunction" : "epsilonWallFunction", foam::uniform(diss_in));
       nut[wall] = with_value("nutkWallFunction", foam::uniform(0));
     }
     {
@@ -476,7 +490,7 @@ VofCase build_vof_case(const cases::Study& study, const cases::Case& c, const st
       tp.set("p0", foam::uniform(0));
       p["atmosphere"] = tp;
       k["atmosphere"] = inlet_outlet(foam::uniform(k_in));
-      omega["atmosphere"] = inlet_outlet(foam::uniform(omega_in));
+      dissipation["atmosphere"] = inlet_outlet(foam::uniform(diss_in));
       nut["atmosphere"] = with_value("calculated", foam::uniform(0));
     }
     if (basin) {
@@ -485,7 +499,7 @@ VofCase build_vof_case(const cases::Study& study, const cases::Case& c, const st
       alpha["inlet"] = with_value("fixedValue", foam::uniform(1));
       p["inlet"] = type_only("fixedFluxPressure");
       k["inlet"] = with_value("fixedValue", foam::uniform(k_in));
-      omega["inlet"] = with_value("fixedValue", foam::uniform(omega_in));
+      dissipation["inlet"] = with_value("fixedValue", foam::uniform(diss_in));
       nut["inlet"] = with_value("calculated", foam::uniform(0));
 
       Dictionary uo;
@@ -502,7 +516,7 @@ VofCase build_vof_case(const cases::Study& study, const cases::Case& c, const st
       alpha["outlet"] = ao;
       p["outlet"] = type_only("zeroGradient");
       k["outlet"] = inlet_outlet(foam::uniform(k_in));
-      omega["outlet"] = inlet_outlet(foam::uniform(omega_in));
+      dissipation["outlet"] = inlet_outlet(foam::uniform(diss_in));
       nut["outlet"] = with_value("calculated", foam::uniform(0));
     }
     std::vector<std::string> u_trace = {provenance};
@@ -520,11 +534,17 @@ VofCase build_vof_case(const cases::Study& study, const cases::Case& c, const st
         field_file({1, -1, -2, 0, 0, 0, 0}, foam::uniform(0), patches, p, {provenance}));
     if (turbulent) {
       const std::string scales = "k = 3/2 (I U)^2 with I = " + n(turbulence_intensity) + ", U = " + n(u_ref) +
-                                 " m/s; omega = sqrt(k)/(Cmu^0.25 l), l = 0.07 * " + n(length_ref) + " m";
+                                 " m/s; omega = sqrt(k)/(Cmu^0.25 l), l = 0.07 * " + n(length_ref) + " m" +
+                                 (k_omega ? std::string() : "; epsilon = Cmu k omega");
       add("0.orig/k", "volScalarField",
           field_file({0, 2, -2, 0, 0, 0, 0}, foam::uniform(k_in), patches, k, {provenance, scales}));
-      add("0.orig/omega", "volScalarField",
-          field_file({0, 0, -1, 0, 0, 0, 0}, foam::uniform(omega_in), patches, omega, {provenance, scales}));
+      if (k_omega) {
+        add("0.orig/omega", "volScalarField",
+            field_file({0, 0, -1, 0, 0, 0, 0}, foam::uniform(omega_in), patches, dissipation, {provenance, scales}));
+      } else {
+        add("0.orig/epsilon", "volScalarField",
+            field_file({0, 2, -3, 0, 0, 0, 0}, foam::uniform(epsilon_in), patches, dissipation, {provenance, scales}));
+      }
       add("0.orig/nut", "volScalarField",
           field_file({0, 2, -1, 0, 0, 0, 0}, foam::uniform(0), patches, nut, {provenance}));
     }
@@ -710,7 +730,7 @@ VofCase build_vof_case(const cases::Study& study, const cases::Case& c, const st
 
   // ---- system/fvSchemes, fvSolution, decomposeParDict
   {
-    const Dictionary fs = interfoam_fv_schemes(turbulent);
+    const Dictionary fs = interfoam_fv_schemes(c.vof.turbulence_model);
     add("system/fvSchemes", "dictionary", fs);
 
     Dictionary sol;
@@ -742,7 +762,7 @@ VofCase build_vof_case(const cases::Study& study, const cases::Case& c, const st
     prgh_final.directive("$p_rgh;");
     prgh_final.set("relTol", 0);
     solvers.set("p_rghFinal", prgh_final);
-    solvers.set("\"(U|k|omega).*\"", smooth_solver(1e-7));
+    solvers.set("\"(U|k|omega|epsilon).*\"", smooth_solver(1e-7));
     Dictionary& pimple = sol.subdict("PIMPLE");
     pimple.set("momentumPredictor", foam::word("no"));
     pimple.set("nOuterCorrectors", 1);

@@ -16,9 +16,16 @@
 // velocity through the outlet is Umean = q / y2, so the steady outlet depth is y2.
 // Dam break and still water: `walls` (tank ends), `bed` (floor), `atmosphere` (open top).
 //
-// Turbulence: "laminar", or "kOmegaSST" with inlet k = 3/2 (I U)^2, I = 5 %, and
-// omega = sqrt(k) / (Cmu^0.25 l), l = 0.07 D_h with D_h = 4 y1 (wide open channel) or the water
-// height for tanks; walls use kqRWallFunction, omegaWallFunction and nutkWallFunction.
+// Turbulence (vof.turbulence_model):
+//   | model         | fields       | walls                                                   |
+//   |---------------|--------------|---------------------------------------------------------|
+//   | "kOmegaSST"   | k, omega     | kqRWallFunction, omegaWallFunction, nutkWallFunction    |
+//   | "kEpsilon"    | k, epsilon   | kqRWallFunction, epsilonWallFunction, nutkWallFunction  |
+//   | "RNGkEpsilon" | k, epsilon   | as kEpsilon                                             |
+//   | "laminar"     | none         | -                                                       |
+// Inlet and initial values: k = 3/2 (I U)^2, I = 5 %; omega = sqrt(k) / (Cmu^0.25 l) and
+// epsilon = Cmu k omega = Cmu^0.75 k^1.5 / l, with l = 0.07 D_h, D_h = 4 y1 (wide open channel) or the
+// water height for tanks. Example (spec): [vof] turbulence_model = "kEpsilon".
 //
 // Function objects in controlDict (written every output_interval_s of the spec):
 //   sections          `sets`: alpha.water and U along a vertical line at each section (raw text)
@@ -92,7 +99,12 @@ foam::Dictionary decompose_par_dict(int subdomains);
 // A symmetric Gauss-Seidel smoothSolver entry of fvSolution with the given tolerance and relTol 0.
 foam::Dictionary smooth_solver(double tolerance);
 
-// system/fvSchemes of the interFoam cases (with the k and omega schemes when `turbulent`).
-foam::Dictionary interfoam_fv_schemes(bool turbulent);
+// The transported turbulence fields of a vof.turbulence_model: none for "laminar", k and omega for
+// "kOmegaSST", k and epsilon for "kEpsilon" and "RNGkEpsilon". Throws std::invalid_argument naming the
+// allowed values for any other name.
+std::vector<std::string> turbulence_fields(const std::string& turbulence_model);
+
+// system/fvSchemes of the interFoam cases (with the schemes of the model's turbulence fields).
+foam::Dictionary interfoam_fv_schemes(const std::string& turbulence_model);
 
 }  // namespace hydrojump::reference

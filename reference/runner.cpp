@@ -279,7 +279,7 @@ void write_self_test_case(const fs::path& dir, double shear_m) {
   write("system/setFieldsDict", "dictionary", sf);
 
   // Schemes and solvers as in the generated cases.
-  const Dictionary fs_d = interfoam_fv_schemes(false);
+  const Dictionary fs_d = interfoam_fv_schemes("laminar");
   write("system/fvSchemes", "dictionary", fs_d);
 
   Dictionary sol;

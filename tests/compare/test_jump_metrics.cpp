@@ -122,3 +122,29 @@ TEST_CASE("Missing sections and no jump are reported as notes and are not crashe
   for (const auto& n : r.notes) found = found || n.find("no jump toe") != std::string::npos;
   CHECK(found);
 }
+
+TEST_CASE("A toe downstream of the downstream section gives no y2 or eta, with a note", "[compare][metrics]") {
+  // The synthetic ramp jump of the test above (toe near 0.87 m) with the downstream section at 0.6 m,
+  // where the time-mean surface is still the incoming supercritical layer.
+  const double y1 = 0.0254, u1 = 2.0, y2 = 0.104, x_t = 0.8, L = 0.4;
+  MethodStatistics m;
+  m.sections.push_back(as_statistics("upstream", "upstream", uniform_column(0.3, 0.0, y1, u1)));
+  m.sections.push_back(as_statistics("downstream", "downstream", uniform_column(0.6, 0.0, y1, u1)));
+  for (int i = 0; i <= 500; ++i) {
+    ColumnStatistics s;
+    s.spec = {"", "station", i * 0.004, 0.0, 21};
+    const double x = s.spec.x_m;
+    s.surface.mean = x < x_t ? y1 : (x < x_t + L ? y1 + (y2 - y1) * (x - x_t) / L : y2);
+    m.stations.push_back(s);
+  }
+  JumpInputs in{y1, u1, 0.0, g, {}};
+  const JumpMetrics r = compute_jump_metrics(m, in);
+  CHECK(r.toe_x_m > 0.85);
+  CHECK(std::isnan(r.sequent_depth_m));
+  CHECK(std::isnan(r.eta));
+  CHECK(std::isnan(r.eta_crest_depth));
+  CHECK(std::isnan(r.jump_length_m));
+  bool found = false;
+  for (const auto& n : r.notes) found = found || n.find("swept past") != std::string::npos;
+  CHECK(found);
+}

@@ -221,6 +221,33 @@ TEST_CASE("laminar cases have no turbulence fields", "[reference][case]") {
   CHECK(vof.files.at("constant/turbulenceProperties").at("simulationType").text() == "laminar");
 }
 
+TEST_CASE("k-epsilon models write k and epsilon with epsilon wall functions", "[reference][case]") {
+  for (const std::string model : {"kEpsilon", "RNGkEpsilon"}) {
+    INFO(model);
+    const cases::Study study = parse(basin_spec("turbulence_model = \"" + model + "\""));
+    const reference::VofCase vof = reference::build_vof_case(study, study.cases.front(), "quick");
+    CHECK(vof.files.at("constant/turbulenceProperties").subdict_at("RAS").at("RASModel").text() == model);
+    CHECK(vof.files.count("0.orig/omega") == 0);
+    REQUIRE(vof.files.count("0.orig/epsilon") == 1);
+    // epsilon = Cmu^0.75 k^1.5 / l with k = 3/2 (0.05 U1)^2 and l = 0.07 * 4 y1 (U1 = 2 m/s, y1 = 25.4 mm)
+    const double k = 1.5 * std::pow(0.05 * 2.0, 2);
+    const double epsilon = std::pow(0.09, 0.75) * std::pow(k, 1.5) / (0.07 * 4.0 * 0.0254);
+    const auto& eb = vof.files.at("0.orig/epsilon").subdict_at("boundaryField");
+    CHECK(eb.subdict_at("inlet").at("value").items()[1].number() == Approx(epsilon).epsilon(1e-12));
+    CHECK(eb.subdict_at("bed").at("type").text() == "epsilonWallFunction");
+    CHECK(eb.subdict_at("walls").at("type").text() == "epsilonWallFunction");
+    CHECK(eb.subdict_at("outlet").at("type").text() == "inletOutlet");
+    CHECK(vof.files.at("0.orig/k").subdict_at("boundaryField").subdict_at("bed").at("type").text() ==
+          "kqRWallFunction");
+    const auto& div = vof.files.at("system/fvSchemes").subdict_at("divSchemes");
+    CHECK(div.at("div(phi,epsilon)").text() == "Gauss upwind");
+    CHECK_FALSE(div.contains("div(phi,omega)"));
+    CHECK(vof.files.at("system/fvSolution").subdict_at("solvers").contains("\"(U|k|omega|epsilon).*\""));
+  }
+  CHECK_THROWS_WITH(parse(basin_spec("turbulence_model = \"kOmega\"")),
+                    Catch::Contains("turbulence_model") && Catch::Contains("RNGkEpsilon"));
+}
+
 TEST_CASE("controlDict: run settings and sampling of every section", "[reference][case]") {
   const cases::Study study = parse(basin_spec("", 3.5, 0.05));
   const cases::Case& c = study.cases.front();

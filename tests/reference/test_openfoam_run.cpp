@@ -143,6 +143,24 @@ TEST_CASE("a tiny corrugated basin meshes; passes checkMesh; runs and resumes", 
   fs::remove_all(dir);
 }
 
+TEST_CASE("a tiny basin runs with the k-epsilon turbulence model", "[reference][openfoam]") {
+  require_openfoam();
+  const std::string spec = basin_spec("turbulence_model = \"kEpsilon\"", 0.01, 0.01);
+  const cases::Study study = parse(spec);
+  const reference::VofCase vof = reference::build_vof_case(study, study.cases.front(), "quick");
+  const fs::path dir = generate(spec, "kepsilon");
+  std::ostringstream out;
+  reference::run_vof_case(dir, reference::RunOptions{}, out);
+  INFO(out.str());
+  CHECK_THAT(out.str(), Catch::Contains("reached t = 0.01"));
+  CHECK_THAT(read(dir / "log.interFoam"), Catch::Contains("Selecting RAS turbulence model kEpsilon"));
+  CHECK(fs::exists(dir / "0.01/epsilon.gz"));
+  const auto inlet = rows_of(dir / "postProcessing/discharge_inlet/0/surfaceFieldValue.dat");
+  REQUIRE(!inlet.empty());
+  CHECK(std::abs(inlet.back()[1]) / vof.mesh.thickness_m == Approx(0.0254 * 2.0).epsilon(1e-5));
+  fs::remove_all(dir);
+}
+
 TEST_CASE("an MPI run (--np 2) gives the same result as the serial run", "[reference][openfoam]") {
   require_openfoam();
   const std::string spec = basin_spec("", 0.03, 0.01);
