@@ -12,6 +12,7 @@
 #include "cases/spec_reader.hpp"
 #include "compare/case_comparison.hpp"
 #include "compare/generate.hpp"
+#include "../sph/basin_fixture.hpp"
 #include "sph/basin_monitor.hpp"
 #include "temp_dir.hpp"
 
@@ -73,32 +74,11 @@ TEST_CASE("The initial states written by the SPH generator and the OpenFOAM writ
 
 TEST_CASE("The comparator reads the SPH run monitor's verdict from its summary.json", "[compare][sph]") {
   hydrojump::compare::testing::TempDir dir("sph_note");
-  // A summary written by the SPH run monitor itself: a stationary jump, in = out = q.
-  hydrojump::sph::BasinMonitorSetup s;
-  s.case_id = "note";
-  s.dx = 0.005;
-  s.inflow_depth_m = 0.025;
-  s.discharge_m2_s = 0.05;
-  s.belanger_y2_m = 0.13;
-  s.x_inflow_m = 0.0;
-  s.x_outflow_m = 1.0;
-  s.toe_search_from_m = 0.05;
-  s.drift_tolerance_m = 0.05;
-  s.average_start_s = 1.5;
+  // A summary written by the SPH run monitor itself: a stationary jump, in = out = q, window 1.5-2 s.
+  hydrojump::sph::BasinMonitorSetup s = basin_fixture::setup();
   s.average_end_s = 2.0;
-  s.bed_elevation = [](double) { return 0.0; };
   hydrojump::sph::BasinMonitor monitor(s);
-  hydrojump::sph::ParticleSet ps;
-  const double dx = s.dx;
-  Eigen::Index n = 0;
-  for (int c = 0; c < 200; ++c) {
-    const int rows = c < 100 ? 5 : 26;  // 25 mm, then 130 mm
-    ps.resize(n + rows);
-    for (int r = 0; r < rows; ++r, ++n) {
-      ps.assign(n, hydrojump::sph::ParticleType::fluid, (c + 0.5) * dx, (r + 0.5) * dx, 1000.0, 1000.0 * dx * dx, n);
-      ps.u[n] = 0.05 / (rows * dx);
-    }
-  }
+  const hydrojump::sph::ParticleSet ps = basin_fixture::step_particles(0.5);
   for (int k = 0; k <= 20; ++k) monitor.record(ps, 0.1 * k, 1000.0 * 0.05 * 0.1 * k, 1000.0 * 0.05 * 0.1 * k);
   std::ofstream(dir.path() / "summary.json") << monitor.summary_json();
   const std::string note = hydrojump::compare::sph_run_note(dir.path() / "summary.json");

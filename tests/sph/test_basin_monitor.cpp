@@ -6,51 +6,14 @@
 #include <cmath>
 #include <string>
 
+#include "basin_fixture.hpp"
 #include "sph/basin_monitor.hpp"
 
 using namespace hydrojump;
 
+using namespace basin_fixture;
+
 namespace {
-
-constexpr double dx = 0.005, rho0 = 1000.0, depth1 = 0.025, depth2 = 0.13, q = 0.05;
-
-// Fluid on a lattice: depth depth1 (u = q / depth1) for x < x_step, depth2 (u = q / depth2) beyond, from x = 0 to 1 m
-// over a flat floor at z = 0.
-sph::ParticleSet step_particles(double x_step) {
-  sph::ParticleSet ps;
-  const int columns = static_cast<int>(std::lround(1.0 / dx));
-  Eigen::Index n = 0;
-  for (int c = 0; c < columns; ++c) {
-    const double x = (c + 0.5) * dx;
-    const double depth = x < x_step ? depth1 : depth2;
-    const int rows = static_cast<int>(std::lround(depth / dx));
-    ps.resize(n + rows);
-    for (int r = 0; r < rows; ++r, ++n) {
-      ps.assign(n, sph::ParticleType::fluid, x, (r + 0.5) * dx, rho0, rho0 * dx * dx, n);
-      ps.u[n] = q / (rows * dx);
-    }
-  }
-  return ps;
-}
-
-sph::BasinMonitorSetup setup() {
-  sph::BasinMonitorSetup s;
-  s.case_id = "step";
-  s.dx = dx;
-  s.rho0 = rho0;
-  s.inflow_depth_m = depth1;
-  s.discharge_m2_s = q;
-  s.belanger_y2_m = depth2;
-  s.x_inflow_m = 0.0;
-  s.x_outflow_m = 1.0;
-  s.toe_search_from_m = 0.05;
-  s.drift_tolerance_m = 0.068;
-  s.average_start_s = 1.5;
-  s.average_end_s = 3.0;
-  s.sections = {{"upstream", 0.0525, "upstream"}, {"downstream", 0.8025, "downstream"}};
-  s.bed_elevation = [](double) { return 0.0; };
-  return s;
-}
 
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
