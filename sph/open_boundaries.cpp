@@ -147,10 +147,12 @@ double OutflowBuffer::advance(ParticleSet& particles, double dt) {
   const double strip = layers_ * dx_;
   // Depth-averaged velocity of the fluid strip just upstream of x_out (zero-gradient outflow).
   double momentum = 0.0, mass = 0.0;
+  double volume = 0.0;  // of the same strip, for the absorbing condition's depth
   for (Eigen::Index i = 0; i < n; ++i) {
     if (particles.type[i] == fluid_code && particles.x[i] < x_out_ && particles.x[i] >= x_out_ - strip) {
       momentum += particles.mass[i] * particles.u[i];
       mass += particles.mass[i];
+      volume += particles.mass[i] / particles.rho[i];
     }
   }
   double u_out = mass > 0.0 ? std::max(0.0, momentum / mass) : 0.0;
@@ -158,10 +160,6 @@ double OutflowBuffer::advance(ParticleSet& particles, double dt) {
   double spill_margin = 0.5 * dx_;
   if (absorbing_) {
     // h = water volume of the strip / strip length;  u_b = U_t + 2 (sqrt(g h) - sqrt(g y_t))
-    double volume = 0.0;
-    for (Eigen::Index i = 0; i < n; ++i)
-      if (particles.type[i] == fluid_code && particles.x[i] < x_out_ && particles.x[i] >= x_out_ - strip)
-        volume += particles.mass[i] / particles.rho[i];
     const double h = volume / strip;
     const double y_t = level_z_ - bed_z_;
     u_out = std::max(0.0, target_velocity_ + 2.0 * (std::sqrt(gravity_ * h) - std::sqrt(gravity_ * y_t)));
