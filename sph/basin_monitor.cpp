@@ -177,7 +177,7 @@ void BasinMonitor::record(const ParticleSet& particles, double t, double mass_in
   const std::vector<Column> sec_cols = columns(particles, xs, 2.0 * setup_.dx);
   for (std::size_t k = 0; k < xs.size(); ++k) {
     const double zb = setup_.bed_elevation(xs[k]);
-    s.depth.push_back(cols.empty() ? nan_value : sec_cols[k].depth);
+    s.depth.push_back(sec_cols[k].depth);
     s.surface.push_back(zb + sec_cols[k].depth);
     s.discharge.push_back(sec_cols[k].discharge);
   }
