@@ -12,6 +12,16 @@ constexpr auto inflow_code = static_cast<std::uint8_t>(ParticleType::inflow);
 constexpr auto outflow_code = static_cast<std::uint8_t>(ParticleType::outflow);
 constexpr auto fluid_code = static_cast<std::uint8_t>(ParticleType::fluid);
 
+// A buffer particle moves horizontally at the buffer's velocity u_b: x += u_b dt, v = (u_b, 0), and
+// its integrator state follows (the integrators leave buffer particles alone).
+void move_with_buffer(ParticleSet& particles, Eigen::Index i, double u_b, double dt) {
+  particles.x[i] += u_b * dt;
+  particles.u[i] = particles.u_old[i] = u_b;
+  particles.w[i] = particles.w_old[i] = 0.0;
+  particles.x_old[i] = particles.x[i];
+  particles.z_old[i] = particles.z[i];
+}
+
 }  // namespace
 
 int buffer_layers(double support, double dx, int requested) {
@@ -93,11 +103,7 @@ double InflowBuffer::advance(ParticleSet& particles, double dt, std::int64_t& ne
   std::vector<Eigen::Index> refill;
   for (Eigen::Index i = 0; i < n; ++i) {
     if (particles.type[i] != inflow_code) continue;
-    particles.x[i] += velocity_ * dt;
-    particles.u[i] = particles.u_old[i] = velocity_;
-    particles.w[i] = particles.w_old[i] = 0.0;
-    particles.x_old[i] = particles.x[i];
-    particles.z_old[i] = particles.z[i];
+    move_with_buffer(particles, i, velocity_, dt);
     if (particles.x[i] >= x_in_) {
       // Crossed the inflow section: it becomes fluid; a new buffer particle takes its place upstream.
       particles.type[i] = fluid_code;
@@ -184,11 +190,7 @@ double OutflowBuffer::advance(ParticleSet& particles, double dt) {
     } else if (t != outflow_code) {
       continue;
     }
-    particles.x[i] += u_out * dt;
-    particles.u[i] = particles.u_old[i] = u_out;
-    particles.w[i] = particles.w_old[i] = 0.0;
-    particles.x_old[i] = particles.x[i];
-    particles.z_old[i] = particles.z[i];
+    move_with_buffer(particles, i, u_out, dt);
     if (particles.x[i] >= x_end) {
       remove[static_cast<std::size_t>(i)] = 1;
       ++removed;
