@@ -32,4 +32,22 @@ struct JumpHydraulics {
 
 JumpHydraulics jump_hydraulics(double y1_m, double u1_m_s, double tailwater_m, double gravity_m_s2);
 
+// Sharp-crested (thin-plate) weir across the channel with Rehbock's discharge coefficient
+// (Henderson 1966, Open Channel Flow, sec. 6.7), H the head above the crest, P the crest height above
+// the upstream bed:
+//   q = 2/3 Cd sqrt(2 g) H^(3/2),   Cd = 0.611 + 0.08 H / P
+// Calibrated for H/P up to about 1 and usable, with growing error, to H/P ~ 2.5; beyond that the weir
+// is a low sill and the formula overestimates the discharge (rehbock_valid_head_ratio).
+constexpr double rehbock_valid_head_ratio = 2.5;
+double rehbock_weir_discharge(double head_m, double weir_height_m, double gravity_m_s2);
+
+// The head H that passes q over a weir of height P (the inverse of rehbock_weir_discharge, which
+// increases with H). Throws std::invalid_argument for q <= 0 or P <= 0.
+double rehbock_weir_head(double discharge_m2_s, double weir_height_m, double gravity_m_s2);
+
+// The weir (tailgate) height P that holds the upstream depth y = P + H(q, P) at discharge q
+// (P + H grows with P: solved by bisection on 0 < P < y). Throws std::invalid_argument when q <= 0
+// or y <= 0.
+double tailgate_height_for_depth(double discharge_m2_s, double upstream_depth_m, double gravity_m_s2);
+
 }  // namespace hydrojump::cases

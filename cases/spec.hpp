@@ -45,6 +45,9 @@ struct SphSettings {
   int boundary_layers = 0;                         // 0: enough layers for the kernel support
   int open_boundary_layers = 0;                    // inflow/outflow buffer columns; 0: ceil(2h/dx) + 1
   std::string outflow_condition = "hydrostatic_level";  // "hydrostatic_level" | "absorbing" (open_boundaries.hpp)
+                                                   // | "tailgate" (sph/tailgate.hpp)
+  double tailgate_height_m = 0.0;                  // "tailgate": crest above the local bed; 0: from the
+                                                   // tailwater depth by Rehbock's weir formula
   double max_density_variation = 0.05;             // |rho/rho0 - 1| above this stops the run
   double checkpoint_interval_wall_s = 300.0;       // wall-clock seconds between checkpoints
 };

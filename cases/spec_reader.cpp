@@ -290,7 +290,11 @@ void read_sph(TableReader& t, SphSettings& s) {
   s.verlet_euler_interval = t.integer_or("verlet_euler_interval", s.verlet_euler_interval, 1, 1000);
   s.boundary_layers = t.integer_or("boundary_layers", s.boundary_layers, 0, 20);
   s.open_boundary_layers = t.integer_or("open_boundary_layers", s.open_boundary_layers, 0, 50);
-  s.outflow_condition = t.choice("outflow_condition", s.outflow_condition, {"hydrostatic_level", "absorbing"});
+  s.outflow_condition = t.choice("outflow_condition", s.outflow_condition, {"hydrostatic_level", "absorbing", "tailgate"});
+  s.tailgate_height_m = t.number_or("tailgate_height_m", s.tailgate_height_m, non_negative("m, 0: from the tailwater depth", 100.0));
+  if (s.outflow_condition != "tailgate" && t.raw().get("tailgate_height_m"))
+    t.fail_at(t.raw().get("tailgate_height_m"), "tailgate_height_m",
+              "is only used with outflow_condition = \"tailgate\" (here \"" + s.outflow_condition + "\")");
   if (s.open_boundary_layers > 0) {
     // The buffers must cover the kernel support 2h = 2 sqrt(2) coef_h dx of the fluid next to them.
     const int needed = static_cast<int>(std::ceil(2.0 * std::sqrt(2.0) * s.coef_h - 1e-9)) + 1;
@@ -763,6 +767,7 @@ void write_sph(TomlWriter& w, const SphSettings& s) {
   w.integer("boundary_layers", s.boundary_layers);
   w.integer("open_boundary_layers", s.open_boundary_layers);
   w.str("outflow_condition", s.outflow_condition);
+  if (s.outflow_condition == "tailgate") w.num("tailgate_height_m", s.tailgate_height_m);
   w.num("max_density_variation", s.max_density_variation);
   w.num("checkpoint_interval_wall_s", s.checkpoint_interval_wall_s);
 }

@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 #include "cases/geometry.hpp"
+#include "cases/hydraulics.hpp"
 #include "cases/spec_reader.hpp"
 #include "sph/bench.hpp"
 #include "sph/checkpoint.hpp"
@@ -127,6 +128,21 @@ int run_sph_directory(const SphOptions& opt) {
             << omp_get_max_threads() << " thread(s), c0 = " << settings.eos.c0 << " m/s, "
             << (checkpoint ? "resuming at t = " + std::to_string(solver->time()) + " s" : std::string("from t = 0"))
             << "\n";
+  for (const Tailgate& gate : solver->open_boundaries().tailgates()) {
+    // The design head over the crest and Rehbock's range (tailgate.hpp).
+    double q = 0.0;
+    for (const auto& in : geometry.inflows) q += in.depth_m * in.velocity_m_s;
+    const double gravity = std::abs(settings.body_force_z);
+    const double head = cases::rehbock_weir_head(q, gate.crest_height(), gravity);
+    std::cerr << "hydrojump sph: tailgate at x = " << gate.section_x() << " m, crest " << gate.crest_height()
+              << " m above the bed; Rehbock's weir passes q = " << q << " m^2/s with a head of " << head
+              << " m (upstream depth " << gate.crest_height() + head << " m, H/P = " << head / gate.crest_height()
+              << ")\n";
+    if (head / gate.crest_height() > cases::rehbock_valid_head_ratio)
+      std::cerr << "hydrojump sph: warning: H/P = " << head / gate.crest_height() << " is beyond Rehbock's range (<= "
+                << cases::rehbock_valid_head_ratio
+                << "): the gate is a low sill and the tailwater it holds may differ; see y2 in summary.json\n";
+  }
 
   g_stop_requested.store(false);
   struct sigaction action {};

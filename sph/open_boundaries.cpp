@@ -143,7 +143,7 @@ OutflowBuffer::OutflowBuffer(const cases::OutflowBoundary& outflow, double bed_z
       layers_(buffer_layers(params.support, params.dx, params.layers)),
       eos_(params.eos) {
   if (!(outflow.tailwater_depth_m > 0.0)) throw std::invalid_argument("outflow buffer: tailwater depth must be positive");
-  absorbing_ = params.absorbing_outflow;
+  absorbing_ = params.outflow == OutflowCondition::absorbing;
   target_velocity_ = discharge_m2_s / outflow.tailwater_depth_m;
 }
 
@@ -215,7 +215,8 @@ BufferParameters buffer_parameters(const SolverSettings& settings) {
   p.eos = settings.eos;
   p.gravity = std::abs(settings.body_force_z);
   p.layers = settings.open_boundary_layers;
-  p.absorbing_outflow = settings.absorbing_outflow;
+  p.outflow = settings.outflow;
+  p.tailgate_height = settings.tailgate_height;
   return p;
 }
 
@@ -228,9 +229,13 @@ OpenBoundaries OpenBoundaries::from_geometry(const cases::CaseGeometry& geometry
   for (const auto& in : geometry.inflows) out.inflows_.emplace_back(in, geometry.bed.elevation(in.x_m), params);
   double discharge = 0.0;  // what the inflows bring: q = sum y1 U1
   for (const auto& in : geometry.inflows) discharge += in.depth_m * in.velocity_m_s;
-  for (const auto& o : geometry.outflows)
-    out.outflows_.emplace_back(o, geometry.bed.elevation(o.x_m), params, discharge);
   out.buffer_length_ = buffer_layers(params.support, params.dx, params.layers) * params.dx;
+  for (const auto& o : geometry.outflows) {
+    if (params.outflow == OutflowCondition::tailgate)
+      out.tailgates_.emplace_back(o, geometry.bed.elevation(o.x_m), params.tailgate_height, out.buffer_length_);
+    else
+      out.outflows_.emplace_back(o, geometry.bed.elevation(o.x_m), params, discharge);
+  }
   return out;
 }
 
@@ -245,6 +250,7 @@ OpenBoundaryTotals OpenBoundaries::advance(ParticleSet& particles, double dt) {
   std::int64_t next_id = next_particle_id(particles);
   for (auto& in : inflows_) step.mass_in += in.advance(particles, dt, next_id);
   for (auto& o : outflows_) step.mass_out += o.advance(particles, dt);
+  for (auto& gate : tailgates_) step.mass_out += gate.advance(particles);
   return step;
 }
 
@@ -257,6 +263,7 @@ double OpenBoundaries::mass_in() const {
 double OpenBoundaries::mass_out() const {
   double m = 0.0;
   for (const auto& o : outflows_) m += o.totals().mass_out;
+  for (const auto& gate : tailgates_) m += gate.mass_removed();
   return m;
 }
 

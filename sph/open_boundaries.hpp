@@ -55,6 +55,7 @@
 #include "sph/equation_of_state.hpp"
 #include "sph/particles.hpp"
 #include "sph/settings.hpp"
+#include "sph/tailgate.hpp"
 
 namespace hydrojump::sph {
 
@@ -65,7 +66,8 @@ struct BufferParameters {
   TaitEquationOfState eos;
   double gravity = 9.81;           // m/s^2
   int layers = 0;                  // 0: ceil(support / dx) + 1; otherwise at least that
-  bool absorbing_outflow = false;  // outflow: the absorbing (characteristic) condition
+  OutflowCondition outflow = OutflowCondition::hydrostatic_level;  // outflow buffers, or a tailgate
+  double tailgate_height = 0.0;    // "tailgate": crest height above the bed (m)
 };
 
 // Running totals of what crossed the open boundaries (kg per metre of width).
@@ -126,7 +128,8 @@ class OutflowBuffer {
   OpenBoundaryTotals totals_;
 };
 
-// The open boundaries of a case: its inflow and outflow buffers (none for closed cases). Their state
+// The open boundaries of a case: its inflow and outflow buffers, or a tailgate in place of the outflow
+// buffers (sph.outflow_condition = "tailgate"; none for closed cases). Their state
 // is derived from the particles (the buffer particles' types and positions), so a run resumed from
 // its particles continues exactly; only the running totals start again from zero.
 //
@@ -140,7 +143,7 @@ class OpenBoundaries {
   // One buffer per geometry inflow and outflow, at the bed elevation of its section.
   static OpenBoundaries from_geometry(const cases::CaseGeometry& geometry, const BufferParameters& params);
 
-  bool empty() const { return inflows_.empty() && outflows_.empty(); }
+  bool empty() const { return inflows_.empty() && outflows_.empty() && tailgates_.empty(); }
   // Appends the inflow buffers' particles, ids from max id + 1.
   void create(ParticleSet& particles) const;
   // Advances every inflow, then every outflow buffer by dt; new ids from max id + 1. Returns what
@@ -151,12 +154,14 @@ class OpenBoundaries {
   double mass_out() const;
   const std::vector<InflowBuffer>& inflows() const { return inflows_; }
   const std::vector<OutflowBuffer>& outflows() const { return outflows_; }
+  const std::vector<Tailgate>& tailgates() const { return tailgates_; }
   // Length of the buffer zones beyond the sections (m): layers dx.
   double buffer_length() const { return buffer_length_; }
 
  private:
   std::vector<InflowBuffer> inflows_;
   std::vector<OutflowBuffer> outflows_;
+  std::vector<Tailgate> tailgates_;
   double buffer_length_ = 0.0;
 };
 

@@ -122,9 +122,14 @@ ParticleSet generate_particles(const cases::CaseGeometry& g, const SolverSetting
     walls.push_back({"inflow_bed", {cases::Vec2(in.x_m - buffer_length, zb), cases::Vec2(in.x_m, zb)}});
   }
   for (const auto& out : g.outflows) {
+    if (!open.tailgates().empty()) break;
     const double zb = g.bed.elevation(out.x_m);
     walls.push_back({"outflow_bed", {cases::Vec2(out.x_m, zb), cases::Vec2(out.x_m + buffer_length, zb)}});
   }
+  // A tailgate (tailgate.hpp) closes the end of the bed instead of an outflow buffer: its plate is a
+  // wall from the bed's last point up to the crest and down again (no bed under it, whose "fluid
+  // above" side would leave the plate's lowest rows empty).
+  for (const auto& gate : open.tailgates()) walls.push_back(gate.plate());
   // Inside an inflow buffer (above the extended bed, below the inflow depth) there is no wall: the
   // lower end of the sluice gate would otherwise put boundary particles among the buffer particles.
   auto in_inflow_buffer = [&](double x, double z) {
@@ -136,8 +141,9 @@ ParticleSet generate_particles(const cases::CaseGeometry& g, const SolverSetting
     }
     return false;
   };
-  // Outflow buffers start filled with tailwater: x_out < x < x_out + buffer length.
+  // Outflow buffers start filled with tailwater: x_out < x < x_out + buffer length (a tailgate has none).
   auto outflow_at = [&](double x) -> const cases::OutflowBoundary* {
+    if (open.outflows().empty()) return nullptr;
     for (const auto& out : g.outflows)
       if (x > out.x_m && x < out.x_m + buffer_length) return &out;
     return nullptr;

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "cases/geometry.hpp"
+#include "cases/hydraulics.hpp"
 #include "cases/spec.hpp"
 #include "sph/kernel.hpp"
 
@@ -22,6 +23,14 @@ TimeIntegrator parse_time_integrator(const std::string& name) {
   if (name == "symplectic") return TimeIntegrator::symplectic;
   if (name == "verlet") return TimeIntegrator::verlet;
   throw std::invalid_argument("sph.time_integrator = \"" + name + "\" is not allowed: use \"symplectic\" or \"verlet\"");
+}
+
+OutflowCondition parse_outflow_condition(const std::string& name) {
+  if (name == "hydrostatic_level") return OutflowCondition::hydrostatic_level;
+  if (name == "absorbing") return OutflowCondition::absorbing;
+  if (name == "tailgate") return OutflowCondition::tailgate;
+  throw std::invalid_argument("sph.outflow_condition = \"" + name +
+                              "\" is not allowed: use \"hydrostatic_level\", \"absorbing\" or \"tailgate\"");
 }
 
 
@@ -91,10 +100,26 @@ SolverSettings make_settings(const cases::Case& c, const cases::FluidProperties&
   // Open boundaries: the buffer zones (layers dx upstream of the inflow, downstream of the outflow)
   // belong to the domain; their particles may be fluid for a step before their buffer takes them.
   out.open_boundary_layers = s.open_boundary_layers;
-  if (s.outflow_condition != "hydrostatic_level" && s.outflow_condition != "absorbing")
-    throw std::invalid_argument("sph.outflow_condition = \"" + s.outflow_condition +
-                                "\" is not allowed: use \"hydrostatic_level\" or \"absorbing\"");
-  out.absorbing_outflow = s.outflow_condition == "absorbing";
+  out.outflow = parse_outflow_condition(s.outflow_condition);
+  if (out.outflow == OutflowCondition::tailgate) {
+    if (g.outflows.empty() || g.inflows.empty())
+      throw std::invalid_argument("sph.outflow_condition = \"tailgate\" needs a case with an inflow and an outflow "
+                                  "(a stilling basin); case kind \"" + g.kind + "\" has none");
+    double q = 0.0;
+    for (const auto& in : g.inflows) q += in.depth_m * in.velocity_m_s;
+    const double y_t = g.outflows.front().tailwater_depth_m;
+    out.tailgate_height = s.tailgate_height_m > 0.0 ? s.tailgate_height_m
+                                                    : cases::tailgate_height_for_depth(q, y_t, gravity);
+    const double room = g.z_max_m - g.bed.elevation(g.outflows.front().x_m);
+    if (!(out.tailgate_height < room))
+      throw std::invalid_argument("sph.tailgate_height_m = " + std::to_string(out.tailgate_height) +
+                                  " m reaches above the domain (" + std::to_string(room) +
+                                  " m above the bed at the outflow section): use a lower gate");
+    if (out.tailgate_height < 2.0 * dx)
+      throw std::invalid_argument("sph tailgate: the crest height " + std::to_string(out.tailgate_height) +
+                                  " m is less than 2 particle spacings (dx = " + std::to_string(dx) +
+                                  " m): the gate cannot be resolved; use a finer resolution or sph.tailgate_height_m");
+  }
   const double buffer_length = buffer_layers(out.support(), out.dx, out.open_boundary_layers) * out.dx;
   if (!g.inflows.empty()) out.x_min -= buffer_length;
   if (!g.outflows.empty()) out.x_max += buffer_length;

@@ -20,6 +20,8 @@ namespace hydrojump::sph {
 
 enum class BoundaryMethod { dbc, mdbc };
 enum class TimeIntegrator { symplectic, verlet };
+// sph.outflow_condition: the outflow buffers of open_boundaries.hpp, or the weir of tailgate.hpp.
+enum class OutflowCondition { hydrostatic_level, absorbing, tailgate };
 
 struct SolverSettings {
   // Options (the strings of the spec, parsed).
@@ -47,7 +49,8 @@ struct SolverSettings {
   double max_density_variation = 0.05;
   double domain_margin = 0.0;        // tolerated excursion beyond the box (m)
   int open_boundary_layers = 0;      // inflow/outflow buffer columns (0: ceil(support/dx) + 1)
-  bool absorbing_outflow = false;    // sph.outflow_condition = "absorbing" (else "hydrostatic_level")
+  OutflowCondition outflow = OutflowCondition::hydrostatic_level;  // sph.outflow_condition
+  double tailgate_height = 0.0;      // "tailgate": crest above the bed at the outflow section (m), resolved
 
   double support() const { return 2.0 * h; }
   double eta2() const { return 0.01 * h * h; }
@@ -57,6 +60,7 @@ struct SolverSettings {
 
 BoundaryMethod parse_boundary(const std::string& name);
 TimeIntegrator parse_time_integrator(const std::string& name);
+OutflowCondition parse_outflow_condition(const std::string& name);
 
 // Settings of case `c` at particle spacing `dx` with the geometry `g` (domain, body force, H_max).
 SolverSettings make_settings(const cases::Case& c, const cases::FluidProperties& fluid,

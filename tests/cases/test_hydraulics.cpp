@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <stdexcept>
 
 #include "cases/hydraulics.hpp"
 #include "cases/spec_reader.hpp"
@@ -47,4 +48,28 @@ TEST_CASE("Smooth-bed eta of all five runs matches the study's table within 0.5 
     INFO("run " << row.id << ": eta* = " << 100 * j.eta_smooth);
     CHECK(std::abs(100.0 * j.eta_smooth - row.eta_smooth) < 0.5);
   }
+}
+
+TEST_CASE("Rehbock's sharp-crested weir: hand value, inverse and tailgate height", "[cases][hydraulics]") {
+  // P = 0.1 m, H = 0.05 m: Cd = 0.611 + 0.08 * 0.5 = 0.651, q = 2/3 * 0.651 * sqrt(19.62) * 0.05^1.5
+  // = 0.434 * 4.429447 * 0.0111803 = 0.0214929 m^2/s (by hand).
+  CHECK(rehbock_weir_discharge(0.05, 0.1, 9.81) == Approx(0.0214929).epsilon(1e-5));
+  CHECK(rehbock_weir_discharge(0.0, 0.1, 9.81) == 0.0);
+  for (const double p : {0.01, 0.05, 0.3}) {
+    for (const double head : {0.005, 0.05, 0.2}) {
+      const double q = rehbock_weir_discharge(head, p, 9.81);
+      CHECK(rehbock_weir_head(q, p, 9.81) == Approx(head).epsilon(1e-10));
+    }
+  }
+  // The tailgate that holds run A's smooth-bed tailwater y2* = 0.132 m at q = 0.0508 m^2/s.
+  const double q = 0.0508, y = 0.132;
+  const double p = tailgate_height_for_depth(q, y, 9.81);
+  const double head = rehbock_weir_head(q, p, 9.81);
+  CHECK(p + head == Approx(y).epsilon(1e-10));
+  CHECK(rehbock_weir_discharge(head, p, 9.81) == Approx(q).epsilon(1e-10));
+  CHECK(p > 0.0);
+  CHECK(p < y);
+  CHECK_THROWS_AS(rehbock_weir_head(0.0, 0.1, 9.81), std::invalid_argument);
+  CHECK_THROWS_AS(rehbock_weir_head(0.05, 0.0, 9.81), std::invalid_argument);
+  CHECK_THROWS_AS(tailgate_height_for_depth(0.05, -1.0, 9.81), std::invalid_argument);
 }

@@ -212,6 +212,19 @@ TEST_CASE("Non-physical values are rejected with the allowed range", "[cases][sp
     const auto msg = rejection(replaced(valid_spec, "[[case]]", "[sph]\nartificial_viscosity_wall_factor = 1.5\n\n[[case]]"));
     CHECK_THAT(msg, Catch::Contains("sph.artificial_viscosity_wall_factor = 1.5 is out of range"));
   }
+  SECTION("a tailgate height without the tailgate outflow") {
+    const auto text = replaced(valid_spec, "[[case]]", "[sph]\ntailgate_height_m = 0.03\n\n[[case]]");
+    const auto msg = rejection(text);
+    CHECK_THAT(msg, Catch::Contains("spec.toml:" + std::to_string(line_of(text, "tailgate_height_m"))));
+    CHECK_THAT(msg, Catch::Contains("sph.tailgate_height_m"));
+    CHECK_THAT(msg, Catch::Contains("only used with outflow_condition = \"tailgate\""));
+    CHECK_NOTHROW(parse_study(replaced(valid_spec, "[[case]]",
+                                       "[sph]\noutflow_condition = \"tailgate\"\ntailgate_height_m = 0.03\n\n[[case]]"),
+                              "spec.toml", "."));
+    const auto negative = rejection(replaced(valid_spec, "[[case]]",
+                                             "[sph]\noutflow_condition = \"tailgate\"\ntailgate_height_m = -0.03\n\n[[case]]"));
+    CHECK_THAT(negative, Catch::Contains("sph.tailgate_height_m = -0.03 is out of range"));
+  }
   SECTION("too few particles across y1") {
     const auto msg = rejection(replaced(valid_spec, "particle_spacing_m = 0.005", "particle_spacing_m = 0.0125"));
     CHECK_THAT(msg, Catch::Contains("inflow.depth_m = 0.0254"));

@@ -120,7 +120,7 @@ TEST_CASE("Outflow buffer removes what leaves and holds the level", "[sph][open_
 TEST_CASE("Absorbing outflow moves its buffer at the tailwater's Riemann invariant", "[sph][open_boundary]") {
   const double dx = 0.01, x_out = 1.0, tailwater = 0.1, q = 0.05, g = 9.81;
   BufferParameters params = parameters(dx);
-  params.absorbing_outflow = true;
+  params.outflow = OutflowCondition::absorbing;
   OutflowBuffer outflow({x_out, tailwater}, 0.0, params, q);
   // Fluid 0.15 m deep (above the tailwater) at rest upstream of the outlet, a column already in the buffer.
   ParticleSet p;
