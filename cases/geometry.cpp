@@ -120,6 +120,17 @@ CaseGeometry dam_break_geometry(const DamBreakCase& d, double g) {
   CaseGeometry geo = tank_geometry(d.tank_length_m, d.tank_height_m, d.column_width_m, d.column_height_m, g);
   geo.max_flow_speed_m_s = std::sqrt(2.0 * g * d.column_height_m);
   geo.dam_gate_x_m = d.column_width_m;
+  if (d.gate == "lifted") {
+    // The gate: a plate on the floor at x = L holding the column, 5 % taller than it, pulled straight
+    // up at the lift speed until its lower edge is 5 % above the column's top (then it rests).
+    const double top = 1.05 * d.column_height_m;
+    MovingWall gate;
+    gate.face = segment_wall("gate", Vec2(d.column_width_m, 0.0), Vec2(d.column_width_m, top));
+    gate.velocity_m_s = Vec2(0.0, d.gate_lift_speed_m_s);
+    gate.start_s = 0.0;
+    gate.end_s = top / d.gate_lift_speed_m_s;
+    geo.moving_walls.push_back(std::move(gate));
+  }
   return geo;
 }
 

@@ -50,6 +50,16 @@ struct InitialWater {
   double surface_at(double x) const;   // linear interpolation, clamped at the ends
 };
 
+// A wall that translates at a constant velocity during [start_s, end_s) and rests otherwise: a
+// dam-break gate lifted at a finite speed. `face` is its wetted face (fluid on the left, as for
+// WallPolyline); the solvers give it their own thickness behind the face.
+struct MovingWall {
+  WallPolyline face;
+  Vec2 velocity_m_s = Vec2::Zero();
+  double start_s = 0.0;
+  double end_s = 0.0;
+};
+
 struct CaseGeometry {
   std::string kind;                     // the Case's kind
   // Axis-aligned box that contains all fluid that may ever exist (walls lie on its boundary or
@@ -68,6 +78,7 @@ struct CaseGeometry {
   std::vector<Section> sections;        // the case's sections (given or derived)
   double expected_toe_x_m = 0.0;        // stilling basins: start of the basin
   double dam_gate_x_m = 0.0;            // dam break: the gate position (= column width)
+  std::vector<MovingWall> moving_walls; // dam break with gate.type = "lifted": the gate
 };
 
 // Computes the geometry of `c` with gravity from `fluid`. Pure function of its inputs.

@@ -17,8 +17,8 @@
 
 namespace hydrojump::sph {
 
-// Pair term of the boundary particle's continuity equation:  m_j (0 - v_j) . grad_b W_bj,
-// with grad_b W_bj = F (r_b - r_j) = F (dx, dz).
+// Pair term of the boundary particle's continuity equation:  m_j (v_b - v_j) . grad_b W_bj,
+// with grad_b W_bj = F (r_b - r_j) = F (dx, dz); u_j, w_j are v_j - v_b (v_b = 0 for a fixed wall).
 inline double dbc_density_rate_pair(double mass_j, double gradient_factor, double u_j, double w_j, double dx,
                                     double dz) {
   return mass_j * gradient_factor * (-u_j * dx - w_j * dz);

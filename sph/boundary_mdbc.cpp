@@ -12,7 +12,6 @@ namespace hydrojump::sph {
 
 namespace {
 
-constexpr auto kBoundary = static_cast<std::uint8_t>(ParticleType::boundary);
 
 // Below this Shepard sum sum_j V_j W_gj the ghost node lies mostly outside the fluid (e.g. the wall
 // above the free surface) and the boundary particle keeps rho0 (zero pressure); at or above it the
@@ -30,7 +29,7 @@ void mdbc_with(ParticleSet& ps, const CellList& cells, const SolverSettings& s, 
   const double period = s.x_max - s.x_min;
 #pragma omp parallel for schedule(dynamic, 64) if (use_threads(n))
   for (Eigen::Index i = 0; i < n; ++i) {
-    if (ps.type[i] != kBoundary) continue;  // walls only; buffers have imposed densities
+    if (!is_wall_type(ps.type[i])) continue;  // walls only; buffers have imposed densities
     double gx = ps.x[i] + ps.ghost_dx[i];
     const double gz = ps.z[i] + ps.ghost_dz[i];
     if (s.periodic_x) gx = s.x_min + std::fmod(std::fmod(gx - s.x_min, period) + period, period);
@@ -38,7 +37,7 @@ void mdbc_with(ParticleSet& ps, const CellList& cells, const SolverSettings& s, 
     Eigen::Vector3d rhs = Eigen::Vector3d::Zero(), rhs_u = Eigen::Vector3d::Zero(), rhs_w = Eigen::Vector3d::Zero();
     cells.for_each_neighbour_range(cells.cell_of_point(gx, gz), [&](int begin, int end, double shift) {
       for (int j = begin; j < end; ++j) {
-        if (ps.type[j] == kBoundary) continue;  // the fluid side: fluid and buffer particles
+        if (is_wall_type(ps.type[j])) continue;  // the fluid side: fluid and buffer particles
         const double rx = ps.x[j] + shift - gx, rz = ps.z[j] - gz;  // r_j - r_g
         const double r2 = rx * rx + rz * rz;
         if (r2 >= support2) continue;
@@ -76,8 +75,9 @@ void mdbc_with(ParticleSet& ps, const CellList& cells, const SolverSettings& s, 
       }
     }
     ps.rho[i] = std::max(rho_b, rho0);
-    ps.wall_u[i] = -u_g;
-    ps.wall_w[i] = -w_g;
+    // No slip: the velocity mirrored through the wall's own, 2 v_wall - v_ghost (v_wall = 0 if fixed).
+    ps.wall_u[i] = 2.0 * ps.u[i] - u_g;
+    ps.wall_w[i] = 2.0 * ps.w[i] - w_g;
   }
 }
 

@@ -29,6 +29,23 @@
 
 namespace hydrojump::sph {
 
+// The fingerprint that ties a checkpoint to its case: the case text and the program version, without
+// the run-control settings that never change the trajectory (the stability limit checked after each
+// step and the checkpoint interval), so a run stopped at the density limit can be resumed from its
+// last good checkpoint with a relaxed limit.
+std::string run_fingerprint(const std::string& case_text) {
+  std::istringstream in(case_text);
+  std::string kept;
+  for (std::string line; std::getline(in, line);) {
+    const auto start = line.find_first_not_of(" \t");
+    const std::string_view body = start == std::string::npos ? std::string_view{} : std::string_view(line).substr(start);
+    if (body.rfind("max_density_variation", 0) == 0 || body.rfind("checkpoint_interval_wall_s", 0) == 0) continue;
+    kept += line;
+    kept += '\n';
+  }
+  return cases::fingerprint(kept + "\nversion " + version_string);
+}
+
 namespace {
 
 // Set by SIGINT/SIGTERM; the run loop polls it, writes a checkpoint and returns. (A signal handler
@@ -60,9 +77,6 @@ int run_sph_directory(const SphOptions& opt) {
     throw std::runtime_error("'" + case_file.string() + "' defines " + std::to_string(c.resolutions.size()) +
                              " resolutions; a run directory holds exactly one");
   const cases::Resolution& resolution = c.resolutions.begin()->second;
-  if (const auto* d = c.dam_break(); d != nullptr && d->gate != "instant")
-    throw std::runtime_error("case \"" + c.id + "\": gate.type = \"" + d->gate +
-                             "\" is not modelled by the SPH solver (only \"instant\": the column is released at t = 0)");
   const cases::CaseGeometry geometry = cases::make_geometry(c, study.fluid);
   const SolverSettings settings = make_settings(c, study.fluid, geometry, resolution.particle_spacing_m);
 
@@ -72,7 +86,7 @@ int run_sph_directory(const SphOptions& opt) {
   ro.output_interval_s = c.run.output_interval_s;
   ro.checkpoint_interval_wall_s = c.sph.checkpoint_interval_wall_s;
   // The resolved case and the program version: a checkpoint only resumes the run it was written for.
-  ro.fingerprint = cases::fingerprint(cases::read_text_file(case_file) + "\nversion " + version_string);
+  ro.fingerprint = run_fingerprint(cases::read_text_file(case_file));
   for (const auto& section : geometry.sections) ro.gauges.push_back({section.name, section.x_m});
   if (ro.gauges.empty()) ro.gauges.push_back({"centre", 0.5 * (geometry.x_min_m + geometry.x_max_m)});
   ro.bed_elevation = [bed = geometry.bed](double x) { return bed.elevation(x); };
@@ -96,7 +110,8 @@ int run_sph_directory(const SphOptions& opt) {
     checkpoint = read_checkpoint(ck);
     if (checkpoint->fingerprint != ro.fingerprint)
       throw std::runtime_error("--resume: '" + case_file.string() +
-                               "' changed since the checkpoint was written; run with --restart to start over");
+                               "' changed since the checkpoint was written (other than sph.max_density_variation and "
+                               "sph.checkpoint_interval_wall_s, which may change); run with --restart to start over");
   } else if (std::filesystem::exists(ck) && !opt.restart) {
     throw std::runtime_error("'" + dir.string() +
                              "' already holds a run (checkpoint.bin): use --resume to continue it or --restart to "

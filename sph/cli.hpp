@@ -26,6 +26,11 @@ struct SphOptions {
 // unstable, std::runtime_error / cases::SpecError on bad input.
 int run_sph_directory(const SphOptions& opt);
 
+// The fingerprint stored in a run's checkpoints: of the case text (case.toml) and the program version,
+// ignoring sph.max_density_variation and sph.checkpoint_interval_wall_s (run control, not physics),
+// so that --resume accepts a relaxed stability limit.
+std::string run_fingerprint(const std::string& case_text);
+
 // Adds `hydrojump sph DIR` (run a generated case) and `hydrojump bench` to `app`.
 void register_commands(CLI::App& app);
 

@@ -15,7 +15,6 @@ namespace hydrojump::sph {
 namespace {
 
 constexpr std::uint8_t kFluid = static_cast<std::uint8_t>(ParticleType::fluid);
-constexpr std::uint8_t kBoundary = static_cast<std::uint8_t>(ParticleType::boundary);
 
 struct Range {
   int begin, end;
@@ -93,15 +92,16 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
         // buffer) neighbours only; it does not move. With mDBC its density comes from the ghost node
         // instead. Buffer particles get no rates: their buffer imposes their state.
         double d = 0.0;
-        if (dbc && type[i] == kBoundary) {
+        if (dbc && is_wall_type(type[i])) {
           for (int k = 0; k < n_ranges; ++k) {
             const Range rg = ranges[k];
             for (int j = rg.begin; j < rg.end; ++j) {
-              if (type[j] == kBoundary) continue;
+              if (is_wall_type(type[j])) continue;
               const double dx = xi - (x[j] + rg.shift), dz = zi - z[j];
               const double r2 = dx * dx + dz * dz;
               if (r2 >= support2) continue;
-              d += dbc_density_rate_pair(m[j], kernel.gradient_factor(std::sqrt(r2)), u[j], w[j], dx, dz);
+              // relative to the wall's own velocity (zero unless it is a moving wall)
+              d += dbc_density_rate_pair(m[j], kernel.gradient_factor(std::sqrt(r2)), u[j] - ui, w[j] - wi, dx, dz);
             }
           }
         }
@@ -127,7 +127,7 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
           // Continuity: m_j v_ij . grad_i W_ij
           d += mj * (du * gx + dw * gzw);
           // Inflow/outflow buffer neighbours act like fluid (their imposed velocity and density).
-          const bool fluid_j = type[j] != kBoundary;
+          const bool fluid_j = !is_wall_type(type[j]);
           if (diffusion && fluid_j) {
             double jump = rho[j] - rhoi;
             if (fourtakas) jump -= hydrostatic_density_difference(rho0, b, gz, -dz);

@@ -243,6 +243,30 @@ ParticleSet generate_particles(const cases::CaseGeometry& g, const SolverSetting
                        ghost.x(), ghost.y()});
     }
   }
+  // Moving walls (a lifted dam-break gate): a plate n_layers dx thick behind the (vertical) face,
+  // on the lattice, ghost nodes mirrored through the face.
+  for (const auto& moving : g.moving_walls) {
+    const auto& pts = moving.face.points;
+    if (pts.size() != 2 || std::abs(pts[0].x() - pts[1].x()) > 1e-12)
+      throw std::invalid_argument("moving wall \"" + moving.face.name + "\": the SPH generator supports one vertical face");
+    const double xf = pts[0].x(), z_lo = std::min(pts[0].y(), pts[1].y()), z_hi = std::max(pts[0].y(), pts[1].y());
+    const double side = pts[1].y() > pts[0].y() ? 1.0 : -1.0;  // fluid at x < face when going up
+    const long i0 = static_cast<long>(std::floor((xf - x0) / dx)) - n_layers - 1;
+    const long i1 = static_cast<long>(std::ceil((xf - x0) / dx)) + n_layers + 1;
+    for (long i = i0; i <= i1; ++i) {
+      const double x = lattice_x(i);
+      const double depth = side * (x - xf);  // behind the face
+      if (!(depth > 0.0 && depth < n_layers * dx)) continue;
+      for (long j = static_cast<long>(std::floor((z_lo - z0) / dx)); lattice_z(j) < z_hi; ++j) {
+        const double z = lattice_z(j);
+        if (z <= z_lo) continue;
+        // Hydrostatic with the water standing against the face (DBC walls start at the fluid's pressure).
+        const double held = water.x_end_m > water.x_begin_m ? water.surface_at(xf) - z : 0.0;
+        seeds.push_back({ParticleType::moving_wall, x, z, s.eos.hydrostatic_density(gravity, std::max(0.0, held)), 0.0,
+                         2.0 * (xf - x), 0.0});
+      }
+    }
+  }
   if (n_fluid == 0) throw std::invalid_argument("the initial water region holds no fluid particle at dx = " + std::to_string(dx) + " m");
 
   ParticleSet ps;

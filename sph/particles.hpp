@@ -14,7 +14,14 @@ namespace hydrojump::sph {
 // What a particle is. Stored as one byte per particle; written to VTK as "type".
 // inflow and outflow are the open-boundary buffers (sph/open_boundaries.hpp): neighbours of the fluid
 // with imposed velocity and density, moved by their buffer rather than by the integrator.
-enum class ParticleType : std::uint8_t { fluid = 0, boundary = 1, inflow = 2, outflow = 3 };
+// moving_wall: a wall particle moved by a prescribed motion (sph/wall_motion.hpp), e.g. a lifted
+// dam-break gate; otherwise a boundary particle like the others.
+enum class ParticleType : std::uint8_t { fluid = 0, boundary = 1, inflow = 2, outflow = 3, moving_wall = 4 };
+
+// Fixed and moving walls: the particles of the boundary conditions (DBC, mDBC).
+inline bool is_wall_type(std::uint8_t t) {
+  return t == static_cast<std::uint8_t>(ParticleType::boundary) || t == static_cast<std::uint8_t>(ParticleType::moving_wall);
+}
 
 using Vector = Eigen::VectorXd;
 using IdVector = Eigen::Matrix<std::int64_t, Eigen::Dynamic, 1>;

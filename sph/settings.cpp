@@ -123,6 +123,11 @@ SolverSettings make_settings(const cases::Case& c, const cases::FluidProperties&
   const double buffer_length = buffer_layers(out.support(), out.dx, out.open_boundary_layers) * out.dx;
   if (!g.inflows.empty()) out.x_min -= buffer_length;
   if (!g.outflows.empty()) out.x_max += buffer_length;
+  if (g.moving_walls.size() > 1)
+    throw std::invalid_argument("the SPH solver moves one wall per case; the geometry has " +
+                                std::to_string(g.moving_walls.size()));
+  for (const auto& wall : g.moving_walls)
+    out.wall_motion = WallMotion{wall.velocity_m_s.x(), wall.velocity_m_s.y(), wall.start_s, wall.end_s};
   out.validate();
   return out;
 }

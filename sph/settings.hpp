@@ -9,6 +9,7 @@
 #include "sph/kernel.hpp"
 #include "sph/equation_of_state.hpp"
 #include "sph/viscosity.hpp"
+#include "sph/wall_motion.hpp"
 
 namespace hydrojump::cases {
 struct Case;
@@ -51,6 +52,7 @@ struct SolverSettings {
   int open_boundary_layers = 0;      // inflow/outflow buffer columns (0: ceil(support/dx) + 1)
   OutflowCondition outflow = OutflowCondition::hydrostatic_level;  // sph.outflow_condition
   double tailgate_height = 0.0;      // "tailgate": crest above the bed at the outflow section (m), resolved
+  WallMotion wall_motion;            // the moving_wall particles' motion (a lifted dam-break gate)
 
   double support() const { return 2.0 * h; }
   double eta2() const { return 0.01 * h * h; }

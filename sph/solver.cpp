@@ -42,13 +42,18 @@ InteractionSummary Solver::interactions() {
 void Solver::step() {
   const InteractionSummary start = interactions();
   const double dt = variable_time_step(start, settings_);
+  const double t = clock_.time;
+  const WallMotion& walls = settings_.wall_motion;
   if (settings_.time_integrator == TimeIntegrator::symplectic) {
     symplectic_predictor(particles_, settings_, dt);
+    move_walls(particles_, walls, t, t + 0.5 * dt);
     interactions();
     symplectic_corrector(particles_, settings_, dt);
+    move_walls(particles_, walls, t + 0.5 * dt, t + dt);
   } else {
     const bool euler = clock_.steps % settings_.verlet_euler_interval == 0;
     verlet_update(particles_, settings_, dt, euler);
+    move_walls(particles_, walls, t, t + dt);
   }
   const OpenBoundaryTotals crossed = open_.advance(particles_, dt);
   clock_.inflow_mass += crossed.mass_in;

@@ -1,8 +1,10 @@
 // The SPH solver: particles, settings and the time step as a script.
 //
-//   symplectic:  interactions(); dt = time_step(); predictor(dt); interactions(); corrector(dt);
-//                open_boundaries(dt);
-//   verlet:      interactions(); dt = time_step(); verlet(dt); open_boundaries(dt);
+//   symplectic:  interactions(); dt = time_step(); predictor(dt); move_walls(t, t + dt/2);
+//                interactions(); corrector(dt); move_walls(t + dt/2, t + dt); open_boundaries(dt);
+//   verlet:      interactions(); dt = time_step(); verlet(dt); move_walls(t, t + dt); open_boundaries(dt);
+//
+// move_walls() moves the moving_wall particles by their prescribed motion (sph/wall_motion.hpp).
 //
 // open_boundaries() advances the inflow/outflow buffers (sph/open_boundaries.hpp) of a stilling
 // basin: it moves the buffer particles, turns inflow particles into fluid and fluid into outflow

@@ -10,9 +10,7 @@ namespace hydrojump::sph {
 
 namespace {
 // Walls get DBC density updates; inflow/outflow buffer particles are left to their buffers.
-inline bool is_wall(const ParticleSet& ps, Eigen::Index i) {
-  return ps.type[i] == static_cast<std::uint8_t>(ParticleType::boundary);
-}
+inline bool is_wall(const ParticleSet& ps, Eigen::Index i) { return is_wall_type(ps.type[i]); }
 }  // namespace
 
 double variable_time_step(const InteractionSummary& summary, const SolverSettings& s) {

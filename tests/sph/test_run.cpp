@@ -224,6 +224,24 @@ TEST_CASE("hydrojump sph runs a generated dam-break directory and resumes it", "
   std::string header;
   std::getline(gauges, header);
   CHECK_THAT(header, Catch::Contains("front_x_m"));
+  // A relaxed stability limit (run control) may be resumed with; a changed physical setting may not.
+  auto edit_case = [&](const std::regex& key, const std::string& line) {
+    std::ifstream in(dir / "case.toml");
+    std::stringstream text;
+    text << in.rdbuf();
+    in.close();
+    const std::string edited = std::regex_replace(text.str(), key, line);
+    REQUIRE(edited != text.str());
+    std::ofstream(dir / "case.toml") << edited;
+  };
+  edit_case(std::regex("max_density_variation = [^\\n]*"), "max_density_variation = 0.3");
+  opt.end_time = 0.05;
+  CHECK(run_sph_directory(opt) == 0);
+  edit_case(std::regex("cfl_number = [^\\n]*"), "cfl_number = 0.1");
+  opt.end_time = 0.06;
+  CHECK_THROWS_WITH(run_sph_directory(opt), Catch::Contains("changed since the checkpoint"));
+  CHECK(run_fingerprint("a = 1\nmax_density_variation = 0.1\n") == run_fingerprint("a = 1\nmax_density_variation = 0.3\n"));
+  CHECK(run_fingerprint("a = 1\n") != run_fingerprint("a = 2\n"));
   fs::remove_all(dir);
 }
 

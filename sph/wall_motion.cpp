@@ -1,0 +1,32 @@
+#include "sph/wall_motion.hpp"
+
+#include <algorithm>
+
+namespace hydrojump::sph {
+
+// |[t0, t1] n [start, end)|
+double WallMotion::moving_time(double t0, double t1) const {
+  return std::max(0.0, std::min(t1, end_s) - std::max(t0, start_s));
+}
+
+// x(t1) = x(t0) + v_wall |[t0, t1] n [start, end)|,  particle velocity (v(t1) . n) n
+void move_walls(ParticleSet& particles, const WallMotion& motion, double t0, double t1) {
+  if (!motion.any()) return;
+  constexpr auto moving = static_cast<std::uint8_t>(ParticleType::moving_wall);
+  const double tau = motion.moving_time(t0, t1);
+  const bool moving_at_t1 = t1 >= motion.start_s && t1 < motion.end_s;
+  const double u = moving_at_t1 ? motion.u_m_s : 0.0, w = moving_at_t1 ? motion.w_m_s : 0.0;
+  for (Eigen::Index i = 0; i < particles.size(); ++i) {
+    if (particles.type[i] != moving) continue;
+    particles.x[i] += motion.u_m_s * tau;
+    particles.z[i] += motion.w_m_s * tau;
+    // The velocity the fluid sees: the wall-normal part (v . n) n, n along the ghost offset.
+    const double nx = particles.ghost_dx[i], nz = particles.ghost_dz[i];
+    const double n2 = nx * nx + nz * nz;
+    const double vn = n2 > 0.0 ? (u * nx + w * nz) / n2 : 0.0;
+    particles.u[i] = vn * nx;
+    particles.w[i] = vn * nz;
+  }
+}
+
+}  // namespace hydrojump::sph
