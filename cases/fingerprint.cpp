@@ -16,7 +16,7 @@ std::string read_text_file(const std::filesystem::path& file) {
 
 // h_0 = 14695981039346656037;  h_{i+1} = (h_i xor byte_i) * 1099511628211  (mod 2^64)
 std::string fingerprint(std::string_view text) {
-  std::uint64_t h = 1469598103934665603ull;
+  std::uint64_t h = 14695981039346656037ull;
   for (unsigned char ch : text) {
     h ^= ch;
     h *= 1099511628211ull;

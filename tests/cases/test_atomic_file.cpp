@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "cases/atomic_file.hpp"
+#include "cases/fingerprint.hpp"
 
 using namespace hydrojump::cases;
 
@@ -37,4 +38,11 @@ TEST_CASE("Atomic writes replace whole files and leave no temporaries", "[cases]
   for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++entries;
   CHECK(entries == 1);
   std::filesystem::remove_all(dir.parent_path());
+}
+
+TEST_CASE("fingerprint is FNV-1a 64 (published test vectors)", "[cases][fingerprint]") {
+  // Fowler/Noll/Vo reference vectors for FNV-1a, 64 bit.
+  CHECK(hydrojump::cases::fingerprint("") == "cbf29ce484222325");
+  CHECK(hydrojump::cases::fingerprint("a") == "af63dc4c8601ec8c");
+  CHECK(hydrojump::cases::fingerprint("foobar") == "85944171f73967e8");
 }
