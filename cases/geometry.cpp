@@ -184,4 +184,52 @@ CaseGeometry make_geometry(const Case& c, const FluidProperties& fluid) {
   return geo;
 }
 
+PistonReservoir add_piston_reservoir(CaseGeometry& geo, const StillingBasinCase& b, double opening_m,
+                                     double length_m, double end_time_s, double t, double g) {
+  const double y1 = b.inflow_depth_m, u1 = b.inflow_velocity_m_s, q = y1 * u1;
+  PistonReservoir r;
+  // H_r + q^2 / (2 g H_r^2) = E1, the subcritical root: bisection on [y_c, E1], where E(H) grows.
+  const double e1 = specific_energy(y1, q, g);
+  double lo = std::cbrt(q * q / g), hi = e1;
+  for (int k = 0; k < 200 && hi - lo > 1e-14 * e1; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (specific_energy(mid, q, g) < e1 ? lo : hi) = mid;
+  }
+  r.depth_m = 0.5 * (lo + hi);
+  r.opening_m = opening_m > 0.0 ? opening_m : y1 / sluice_contraction_coefficient;
+  r.piston_speed_m_s = q / r.depth_m;
+  r.length_m = length_m > 0.0 ? length_m : r.piston_speed_m_s * end_time_s + 2.0 * r.depth_m;
+  if (!(r.opening_m < r.depth_m))
+    throw std::invalid_argument("piston reservoir: the sluice opening " + std::to_string(r.opening_m) +
+                                " m is not below the reservoir level " + std::to_string(r.depth_m) +
+                                " m (sph.sluice_opening_m)");
+  if (r.length_m < r.piston_speed_m_s * end_time_s + 2.0 * r.depth_m - 1e-12)
+    throw std::invalid_argument("piston reservoir: sph.reservoir_length_m = " + std::to_string(r.length_m) +
+                                " m is too short: the piston travels " + std::to_string(r.piston_speed_m_s * end_time_s) +
+                                " m in the run and must stop 2 H_r = " + std::to_string(2.0 * r.depth_m) +
+                                " m short of the gate");
+  r.piston_x_m = -t - r.length_m;
+  const double top = 1.5 * r.depth_m;
+  geo.x_min_m = r.piston_x_m;
+  geo.z_max_m = std::max(geo.z_max_m, top);
+  // The sluice gate as a plate (fluid on both sides), replacing the one-sided inlet gate.
+  std::erase_if(geo.walls, [](const WallPolyline& w) { return w.name == "inlet_gate"; });
+  geo.walls.push_back(WallPolyline{"sluice_gate", {Vec2(0.0, geo.z_max_m), Vec2(0.0, r.opening_m),
+                                                   Vec2(-t, r.opening_m), Vec2(-t, geo.z_max_m)}});
+  geo.walls.push_back(segment_wall("reservoir_bed", Vec2(r.piston_x_m - t, 0.0), Vec2(0.0, 0.0)));
+  MovingWall piston;
+  piston.face = segment_wall("piston", Vec2(r.piston_x_m, top), Vec2(r.piston_x_m, 0.0));
+  piston.velocity_m_s = Vec2(r.piston_speed_m_s, 0.0);
+  piston.start_s = 0.0;
+  piston.end_s = end_time_s;
+  geo.moving_walls.push_back(std::move(piston));
+  // Water at rest at H_r in the reservoir, down to the jet under the gate.
+  auto& w = geo.initial_water;
+  w.x_begin_m = r.piston_x_m;
+  w.surface_x_m.insert(w.surface_x_m.begin(), {r.piston_x_m, -t});
+  w.surface_z_m.insert(w.surface_z_m.begin(), {r.depth_m, r.depth_m});
+  geo.max_water_height_m = std::max(geo.max_water_height_m, r.depth_m);
+  return r;
+}
+
 }  // namespace hydrojump::cases

@@ -84,6 +84,36 @@ struct CaseGeometry {
 // Computes the geometry of `c` with gravity from `fluid`. Pure function of its inputs.
 CaseGeometry make_geometry(const Case& c, const FluidProperties& fluid);
 
+// The inflow of the corrugated-bed SPH study (Bo et al. 2019, shared/reference/study-notes.md) instead
+// of an inflow buffer at x = 0: a reservoir upstream of a sluice gate, pushed by a piston (push plate)
+// at the speed that carries the discharge, U_p = q / H_r, so that in a steady state the gate passes q.
+//
+//   sluice gate: a plate of thickness t over [-t, 0], lower edge at the opening a = y1 / Cc
+//                (Cc = 0.611, the contraction coefficient of a sharp-edged vertical sluice gate,
+//                Henderson 1966, sec. 7.4: the jet contracts to y1 just downstream)
+//   reservoir:   floor z = 0 over [x_p, 0], water at rest at H_r, the subcritical root of
+//                H_r + q^2 / (2 g H_r^2) = E1 = y1 + U1^2 / (2 g)     (no loss at the gate)
+//   piston:      a moving wall with its face at x_p = -t - L_r, 1.5 H_r high, moving at U_p until
+//                the run's end time; L_r = U_p T_end + 2 H_r unless given, so it stops 2 H_r short
+//                of the gate
+// The domain box grows to x_min = x_p, z_max >= 1.5 H_r; the inflow (x = 0, y1, U1) stays in
+// `inflows` as the section whose discharge is the target; the SPH solver makes no inflow buffer.
+constexpr double sluice_contraction_coefficient = 0.611;
+
+struct PistonReservoir {
+  double opening_m = 0.0;         // a
+  double depth_m = 0.0;           // H_r
+  double length_m = 0.0;          // L_r
+  double piston_speed_m_s = 0.0;  // U_p
+  double piston_x_m = 0.0;        // x_p at t = 0
+};
+
+// Adds the reservoir, the sluice plate and the piston to `geometry` (a stilling basin's, from
+// make_geometry). `opening_m` or `length_m` <= 0: the defaults above. Throws std::invalid_argument
+// when the opening is not below the reservoir level or the reservoir is shorter than 2 H_r.
+PistonReservoir add_piston_reservoir(CaseGeometry& geometry, const StillingBasinCase& basin, double opening_m,
+                                     double length_m, double end_time_s, double gate_thickness_m, double g);
+
 // Default comparison sections of a stilling basin, derived from y1 and the tailwater depth y2:
 //   "upstream"   x_toe - min(10 y1, upstream_length / 2)          (role "upstream", for E1)
 //   "toe"        x_toe                                              (role "toe")

@@ -44,6 +44,10 @@ struct SphSettings {
   int verlet_euler_interval = 40;                  // Verlet: an Euler step every N steps
   int boundary_layers = 0;                         // 0: enough layers for the kernel support
   int open_boundary_layers = 0;                    // inflow/outflow buffer columns; 0: ceil(2h/dx) + 1
+  std::string inflow_condition = "buffer";         // "buffer" (open_boundaries.hpp) | "piston" (a reservoir
+                                                   // pushed by a piston behind a sluice gate, geometry.hpp)
+  double sluice_opening_m = 0.0;                   // "piston": gate opening; 0: y1 / 0.611
+  double reservoir_length_m = 0.0;                 // "piston": 0: piston travel over the run + 2 H_r
   std::string outflow_condition = "hydrostatic_level";  // "hydrostatic_level" | "absorbing" (open_boundaries.hpp)
                                                    // | "tailgate" (sph/tailgate.hpp)
   double tailgate_height_m = 0.0;                  // "tailgate": crest above the local bed; 0: from the

@@ -290,6 +290,12 @@ void read_sph(TableReader& t, SphSettings& s) {
   s.verlet_euler_interval = t.integer_or("verlet_euler_interval", s.verlet_euler_interval, 1, 1000);
   s.boundary_layers = t.integer_or("boundary_layers", s.boundary_layers, 0, 20);
   s.open_boundary_layers = t.integer_or("open_boundary_layers", s.open_boundary_layers, 0, 50);
+  s.inflow_condition = t.choice("inflow_condition", s.inflow_condition, {"buffer", "piston"});
+  s.sluice_opening_m = t.number_or("sluice_opening_m", s.sluice_opening_m, non_negative("m, 0: y1 / 0.611", 100.0));
+  s.reservoir_length_m = t.number_or("reservoir_length_m", s.reservoir_length_m, non_negative("m, 0: from the run's length", 1000.0));
+  for (const char* key : {"sluice_opening_m", "reservoir_length_m"})
+    if (s.inflow_condition != "piston" && t.raw().get(key))
+      t.fail_at(t.raw().get(key), key, std::string("is only used with inflow_condition = \"piston\" (here \"") + s.inflow_condition + "\")");
   s.outflow_condition = t.choice("outflow_condition", s.outflow_condition, {"hydrostatic_level", "absorbing", "tailgate"});
   s.tailgate_height_m = t.number_or("tailgate_height_m", s.tailgate_height_m, non_negative("m, 0: from the tailwater depth", 100.0));
   if (s.outflow_condition != "tailgate" && t.raw().get("tailgate_height_m"))
@@ -766,6 +772,11 @@ void write_sph(TomlWriter& w, const SphSettings& s) {
   w.integer("verlet_euler_interval", s.verlet_euler_interval);
   w.integer("boundary_layers", s.boundary_layers);
   w.integer("open_boundary_layers", s.open_boundary_layers);
+  w.str("inflow_condition", s.inflow_condition);
+  if (s.inflow_condition == "piston") {
+    w.num("sluice_opening_m", s.sluice_opening_m);
+    w.num("reservoir_length_m", s.reservoir_length_m);
+  }
   w.str("outflow_condition", s.outflow_condition);
   if (s.outflow_condition == "tailgate") w.num("tailgate_height_m", s.tailgate_height_m);
   w.num("max_density_variation", s.max_density_variation);

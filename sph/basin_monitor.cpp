@@ -159,10 +159,12 @@ void BasinMonitor::record(const ParticleSet& particles, double t, double mass_in
   s.t = t;
   s.mass_in = mass_in;
   s.mass_out = mass_out;
-  // The water in the domain: fluid plus outflow-buffer particles (the outlet has not removed them yet).
+  // The water in the basin: fluid downstream of the inflow section (a piston reservoir's water is
+  // upstream of it) plus outflow-buffer particles (the outlet has not removed them yet).
   constexpr auto outflow_code = static_cast<std::uint8_t>(ParticleType::outflow);
   for (Eigen::Index i = 0; i < particles.size(); ++i)
-    if (particles.is_fluid(i) || particles.type[i] == outflow_code) s.fluid_mass += particles.mass[i];
+    if ((particles.is_fluid(i) && particles.x[i] >= setup_.x_inflow_m) || particles.type[i] == outflow_code)
+      s.fluid_mass += particles.mass[i];
   // zeta(x) = z_b(x) + h(x) - z_floor on columns of width dx, then the toe criterion.
   const std::vector<Column> cols = columns(particles, stations_, setup_.dx);
   std::vector<double> zeta(stations_.size());

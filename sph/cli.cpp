@@ -77,7 +77,7 @@ int run_sph_directory(const SphOptions& opt) {
     throw std::runtime_error("'" + case_file.string() + "' defines " + std::to_string(c.resolutions.size()) +
                              " resolutions; a run directory holds exactly one");
   const cases::Resolution& resolution = c.resolutions.begin()->second;
-  const cases::CaseGeometry geometry = cases::make_geometry(c, study.fluid);
+  const cases::CaseGeometry geometry = solver_geometry(c, study.fluid, resolution.particle_spacing_m);
   const SolverSettings settings = make_settings(c, study.fluid, geometry, resolution.particle_spacing_m);
 
   RunOptions ro;
@@ -143,6 +143,15 @@ int run_sph_directory(const SphOptions& opt) {
             << omp_get_max_threads() << " thread(s), c0 = " << settings.eos.c0 << " m/s, "
             << (checkpoint ? "resuming at t = " + std::to_string(solver->time()) + " s" : std::string("from t = 0"))
             << "\n";
+  if (settings.inflow == InflowCondition::piston) {
+    const auto& piston = geometry.moving_walls.front();
+    double opening = 0.0;
+    for (const auto& wall : geometry.walls)
+      if (wall.name == "sluice_gate") opening = wall.points[1].y();
+    std::cerr << "hydrojump sph: piston inflow: reservoir from x = " << geometry.x_min_m << " m, level H_r = "
+              << geometry.initial_water.surface_z_m.front() << " m, piston at " << piston.velocity_m_s.x()
+              << " m/s until t = " << piston.end_s << " s, sluice gate opening " << opening << " m\n";
+  }
   for (const Tailgate& gate : solver->open_boundaries().tailgates()) {
     // The design head over the crest and Rehbock's range (tailgate.hpp).
     double q = 0.0;
@@ -251,9 +260,9 @@ void write_sph_input(const cases::Study& study, const cases::Case& c, const std:
                      const std::filesystem::path& dir) {
   std::filesystem::create_directories(dir);
   cases::write_resolved_case(study, c, resolution, dir / "case.toml");
-  const cases::CaseGeometry geometry = cases::make_geometry(c, study.fluid);
-  const SolverSettings settings =
-      make_settings(c, study.fluid, geometry, c.resolution(resolution).particle_spacing_m);
+  const double dx = c.resolution(resolution).particle_spacing_m;
+  const cases::CaseGeometry geometry = solver_geometry(c, study.fluid, dx);
+  const SolverSettings settings = make_settings(c, study.fluid, geometry, dx);
   ParticleSet ps = generate_particles(geometry, settings, c.sph.boundary_layers);
   for (Eigen::Index i = 0; i < ps.size(); ++i) ps.p[i] = settings.eos.pressure(ps.rho[i]);
   write_particles_vtp(ps, dir / "initial_particles.vtp");

@@ -215,6 +215,7 @@ BufferParameters buffer_parameters(const SolverSettings& settings) {
   p.eos = settings.eos;
   p.gravity = std::abs(settings.body_force_z);
   p.layers = settings.open_boundary_layers;
+  p.inflow = settings.inflow;
   p.outflow = settings.outflow;
   p.tailgate_height = settings.tailgate_height;
   return p;
@@ -226,7 +227,10 @@ std::int64_t next_particle_id(const ParticleSet& particles) {
 
 OpenBoundaries OpenBoundaries::from_geometry(const cases::CaseGeometry& geometry, const BufferParameters& params) {
   OpenBoundaries out;
-  for (const auto& in : geometry.inflows) out.inflows_.emplace_back(in, geometry.bed.elevation(in.x_m), params);
+  for (const auto& in : geometry.inflows) {
+    if (params.inflow == InflowCondition::piston) out.crossings_.emplace_back(in.x_m);
+    else out.inflows_.emplace_back(in, geometry.bed.elevation(in.x_m), params);
+  }
   double discharge = 0.0;  // what the inflows bring: q = sum y1 U1
   for (const auto& in : geometry.inflows) discharge += in.depth_m * in.velocity_m_s;
   out.buffer_length_ = buffer_layers(params.support, params.dx, params.layers) * params.dx;
@@ -239,6 +243,10 @@ OpenBoundaries OpenBoundaries::from_geometry(const cases::CaseGeometry& geometry
   return out;
 }
 
+void OpenBoundaries::start(const ParticleSet& particles) {
+  for (auto& crossing : crossings_) crossing.start(particles);
+}
+
 void OpenBoundaries::create(ParticleSet& particles) const {
   std::int64_t next_id = next_particle_id(particles);
   for (const auto& in : inflows_) in.create(particles, next_id);
@@ -249,6 +257,7 @@ OpenBoundaryTotals OpenBoundaries::advance(ParticleSet& particles, double dt) {
   if (empty()) return step;
   std::int64_t next_id = next_particle_id(particles);
   for (auto& in : inflows_) step.mass_in += in.advance(particles, dt, next_id);
+  for (auto& crossing : crossings_) step.mass_in += crossing.advance(particles);
   for (auto& o : outflows_) step.mass_out += o.advance(particles, dt);
   for (auto& gate : tailgates_) step.mass_out += gate.advance(particles);
   return step;
@@ -257,6 +266,7 @@ OpenBoundaryTotals OpenBoundaries::advance(ParticleSet& particles, double dt) {
 double OpenBoundaries::mass_in() const {
   double m = 0.0;
   for (const auto& in : inflows_) m += in.totals().mass_in;
+  for (const auto& crossing : crossings_) m += crossing.mass_in();
   return m;
 }
 

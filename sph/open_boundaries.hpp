@@ -55,6 +55,7 @@
 #include "sph/equation_of_state.hpp"
 #include "sph/particles.hpp"
 #include "sph/settings.hpp"
+#include "sph/piston_inflow.hpp"
 #include "sph/tailgate.hpp"
 
 namespace hydrojump::sph {
@@ -66,6 +67,7 @@ struct BufferParameters {
   TaitEquationOfState eos;
   double gravity = 9.81;           // m/s^2
   int layers = 0;                  // 0: ceil(support / dx) + 1; otherwise at least that
+  InflowCondition inflow = InflowCondition::buffer;                // inflow buffers, or a piston reservoir
   OutflowCondition outflow = OutflowCondition::hydrostatic_level;  // outflow buffers, or a tailgate
   double tailgate_height = 0.0;    // "tailgate": crest height above the bed (m)
 };
@@ -129,7 +131,8 @@ class OutflowBuffer {
 };
 
 // The open boundaries of a case: its inflow and outflow buffers, or a tailgate in place of the outflow
-// buffers (sph.outflow_condition = "tailgate"; none for closed cases). Their state
+// buffers (sph.outflow_condition = "tailgate"), and a piston reservoir's gate crossing in place of the
+// inflow buffers (sph.inflow_condition = "piston"; none for closed cases). Their state
 // is derived from the particles (the buffer particles' types and positions), so a run resumed from
 // its particles continues exactly; only the running totals start again from zero.
 //
@@ -143,7 +146,9 @@ class OpenBoundaries {
   // One buffer per geometry inflow and outflow, at the bed elevation of its section.
   static OpenBoundaries from_geometry(const cases::CaseGeometry& geometry, const BufferParameters& params);
 
-  bool empty() const { return inflows_.empty() && outflows_.empty() && tailgates_.empty(); }
+  bool empty() const { return inflows_.empty() && outflows_.empty() && tailgates_.empty() && crossings_.empty(); }
+  // Takes the reference state the piston inflow's bookkeeping needs (the solver, at construction).
+  void start(const ParticleSet& particles);
   // Appends the inflow buffers' particles, ids from max id + 1.
   void create(ParticleSet& particles) const;
   // Advances every inflow, then every outflow buffer by dt; new ids from max id + 1. Returns what
@@ -162,6 +167,7 @@ class OpenBoundaries {
   std::vector<InflowBuffer> inflows_;
   std::vector<OutflowBuffer> outflows_;
   std::vector<Tailgate> tailgates_;
+  std::vector<GateCrossing> crossings_;   // piston inflows: the water crossing the inflow section
   double buffer_length_ = 0.0;
 };
 

@@ -118,6 +118,7 @@ ParticleSet generate_particles(const cases::CaseGeometry& g, const SolverSetting
   const double buffer_length = open.empty() ? 0.0 : open.buffer_length();
   std::vector<cases::WallPolyline> walls = g.walls;
   for (const auto& in : g.inflows) {
+    if (open.inflows().empty()) break;  // a piston reservoir has its own floor
     const double zb = g.bed.elevation(in.x_m);
     walls.push_back({"inflow_bed", {cases::Vec2(in.x_m - buffer_length, zb), cases::Vec2(in.x_m, zb)}});
   }
@@ -133,7 +134,7 @@ ParticleSet generate_particles(const cases::CaseGeometry& g, const SolverSetting
   // Inside an inflow buffer (above the extended bed, below the inflow depth) there is no wall: the
   // lower end of the sluice gate would otherwise put boundary particles among the buffer particles.
   auto in_inflow_buffer = [&](double x, double z) {
-    for (std::size_t k = 0; k < g.inflows.size(); ++k) {
+    for (std::size_t k = 0; k < g.inflows.size() && k < open.inflows().size(); ++k) {
       const auto& in = g.inflows[k];
       const double zb = g.bed.elevation(in.x_m);
       const double top = zb + std::max(in.depth_m, open.inflows()[k].rows() * dx);

@@ -25,6 +25,28 @@ TimeIntegrator parse_time_integrator(const std::string& name) {
   throw std::invalid_argument("sph.time_integrator = \"" + name + "\" is not allowed: use \"symplectic\" or \"verlet\"");
 }
 
+InflowCondition parse_inflow_condition(const std::string& name) {
+  if (name == "buffer") return InflowCondition::buffer;
+  if (name == "piston") return InflowCondition::piston;
+  throw std::invalid_argument("sph.inflow_condition = \"" + name + "\" is not allowed: use \"buffer\" or \"piston\"");
+}
+
+cases::CaseGeometry solver_geometry(const cases::Case& c, const cases::FluidProperties& fluid, double dx) {
+  cases::CaseGeometry g = cases::make_geometry(c, fluid);
+  if (parse_inflow_condition(c.sph.inflow_condition) == InflowCondition::piston) {
+    const auto* basin = c.stilling_basin();
+    if (basin == nullptr)
+      throw std::invalid_argument("sph.inflow_condition = \"piston\" needs a stilling basin; case \"" + c.id +
+                                  "\" is a " + c.kind);
+    // The boundary layers' thickness: c.sph.boundary_layers, or enough for the support 2h = 2 sqrt(2) coef_h dx.
+    const int layers = c.sph.boundary_layers > 0 ? c.sph.boundary_layers
+                                                  : static_cast<int>(std::ceil(2.0 * std::sqrt(2.0) * c.sph.coef_h - 1e-9));
+    cases::add_piston_reservoir(g, *basin, c.sph.sluice_opening_m, c.sph.reservoir_length_m, c.run.end_time_s,
+                                layers * dx, fluid.gravity_m_s2);
+  }
+  return g;
+}
+
 OutflowCondition parse_outflow_condition(const std::string& name) {
   if (name == "hydrostatic_level") return OutflowCondition::hydrostatic_level;
   if (name == "absorbing") return OutflowCondition::absorbing;
@@ -120,8 +142,9 @@ SolverSettings make_settings(const cases::Case& c, const cases::FluidProperties&
                                   " m is less than 2 particle spacings (dx = " + std::to_string(dx) +
                                   " m): the gate cannot be resolved; use a finer resolution or sph.tailgate_height_m");
   }
+  out.inflow = parse_inflow_condition(s.inflow_condition);
   const double buffer_length = buffer_layers(out.support(), out.dx, out.open_boundary_layers) * out.dx;
-  if (!g.inflows.empty()) out.x_min -= buffer_length;
+  if (!g.inflows.empty() && out.inflow == InflowCondition::buffer) out.x_min -= buffer_length;
   if (!g.outflows.empty()) out.x_max += buffer_length;
   if (g.moving_walls.size() > 1)
     throw std::invalid_argument("the SPH solver moves one wall per case; the geometry has " +

@@ -23,6 +23,9 @@ enum class BoundaryMethod { dbc, mdbc };
 enum class TimeIntegrator { symplectic, verlet };
 // sph.outflow_condition: the outflow buffers of open_boundaries.hpp, or the weir of tailgate.hpp.
 enum class OutflowCondition { hydrostatic_level, absorbing, tailgate };
+// sph.inflow_condition: the inflow buffer of open_boundaries.hpp, or a piston reservoir behind a sluice
+// gate (cases::add_piston_reservoir, sph/gate_crossing.hpp).
+enum class InflowCondition { buffer, piston };
 
 struct SolverSettings {
   // Options (the strings of the spec, parsed).
@@ -50,6 +53,7 @@ struct SolverSettings {
   double max_density_variation = 0.05;
   double domain_margin = 0.0;        // tolerated excursion beyond the box (m)
   int open_boundary_layers = 0;      // inflow/outflow buffer columns (0: ceil(support/dx) + 1)
+  InflowCondition inflow = InflowCondition::buffer;                // sph.inflow_condition
   OutflowCondition outflow = OutflowCondition::hydrostatic_level;  // sph.outflow_condition
   double tailgate_height = 0.0;      // "tailgate": crest above the bed at the outflow section (m), resolved
   WallMotion wall_motion;            // the moving_wall particles' motion (a lifted dam-break gate)
@@ -63,6 +67,12 @@ struct SolverSettings {
 BoundaryMethod parse_boundary(const std::string& name);
 TimeIntegrator parse_time_integrator(const std::string& name);
 OutflowCondition parse_outflow_condition(const std::string& name);
+InflowCondition parse_inflow_condition(const std::string& name);
+
+// The geometry the SPH solver runs: cases::make_geometry, plus the piston reservoir of
+// sph.inflow_condition = "piston" (cases::add_piston_reservoir, its sluice plate as thick as the
+// boundary layers at spacing dx). Every SPH entry point (run, generate, tests) uses this.
+cases::CaseGeometry solver_geometry(const cases::Case& c, const cases::FluidProperties& fluid, double dx);
 
 // Settings of case `c` at particle spacing `dx` with the geometry `g` (domain, body force, H_max).
 SolverSettings make_settings(const cases::Case& c, const cases::FluidProperties& fluid,

@@ -10,6 +10,7 @@ namespace hydrojump::sph {
 Solver::Solver(SolverSettings settings, ParticleSet particles, SolverClock clock, OpenBoundaries open)
     : settings_(std::move(settings)), particles_(std::move(particles)), clock_(clock), open_(std::move(open)) {
   settings_.validate();
+  open_.start(particles_);
   update_pressure();
 }
 

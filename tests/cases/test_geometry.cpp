@@ -1,6 +1,8 @@
 // The one geometry source: walls, initial water and boundaries derived from a case.
 #include <catch2/catch.hpp>
 
+#include <cmath>
+
 #include "cases/geometry.hpp"
 #include "cases/spec_reader.hpp"
 
@@ -44,4 +46,38 @@ TEST_CASE("Closed-tank walls enclose the water with inward normals", "[cases][ge
       CHECK(n.dot(centre - wall.points[i - 1]) > 0.0);
     }
   }
+}
+
+TEST_CASE("Piston reservoir of run A: level from E1, piston speed from q, length from the run", "[cases][geometry]") {
+  const Study s = load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/cases/ead2002.toml");
+  const Case& a = *s.find_case("A_smooth");
+  CaseGeometry geo = make_geometry(a, s.fluid);
+  const double t = 0.015, g = 9.81, y1 = 0.0254, q = 0.0254 * 2.0, end = 10.0;
+  const PistonReservoir r = add_piston_reservoir(geo, *a.stilling_basin(), 0.0, 0.0, end, t, g);
+  // H_r + q^2/(2 g H_r^2) = E1 = y1 + U1^2/(2 g) = 0.2293 m, subcritical (H_r > y_c = 0.064 m).
+  CHECK(r.depth_m + q * q / (2 * g * r.depth_m * r.depth_m) == Approx(0.0254 + 4.0 / (2 * g)).epsilon(1e-10));
+  CHECK(r.depth_m > std::cbrt(q * q / g));
+  CHECK(r.piston_speed_m_s * r.depth_m == Approx(q).epsilon(1e-12));
+  CHECK(r.opening_m == Approx(y1 / 0.611));
+  CHECK(r.length_m == Approx(r.piston_speed_m_s * end + 2 * r.depth_m));
+  CHECK(r.piston_x_m == Approx(-t - r.length_m));
+  CHECK(geo.x_min_m == r.piston_x_m);
+  CHECK(geo.z_max_m >= 1.5 * r.depth_m);
+  CHECK(geo.max_water_height_m >= r.depth_m);
+  REQUIRE(geo.moving_walls.size() == 1);
+  CHECK(geo.moving_walls[0].velocity_m_s.x() == r.piston_speed_m_s);
+  CHECK(geo.moving_walls[0].end_s == end);
+  bool sluice = false, inlet = false;
+  for (const auto& w : geo.walls) {
+    sluice = sluice || w.name == "sluice_gate";
+    inlet = inlet || w.name == "inlet_gate";
+  }
+  CHECK(sluice);
+  CHECK_FALSE(inlet);
+  CHECK(geo.initial_water.surface_at(r.piston_x_m + 0.01) == Approx(r.depth_m));
+  CHECK(geo.initial_water.surface_at(0.1) == Approx(y1));
+  // A reservoir too short for the run, an opening above the level.
+  CaseGeometry g2 = make_geometry(a, s.fluid);
+  CHECK_THROWS_WITH(add_piston_reservoir(g2, *a.stilling_basin(), 0.0, 1.0, end, t, g), Catch::Contains("too short"));
+  CHECK_THROWS_WITH(add_piston_reservoir(g2, *a.stilling_basin(), 0.5, 0.0, end, t, g), Catch::Contains("not below the reservoir level"));
 }

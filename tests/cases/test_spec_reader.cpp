@@ -225,6 +225,14 @@ TEST_CASE("Non-physical values are rejected with the allowed range", "[cases][sp
                                              "[sph]\noutflow_condition = \"tailgate\"\ntailgate_height_m = -0.03\n\n[[case]]"));
     CHECK_THAT(negative, Catch::Contains("sph.tailgate_height_m = -0.03 is out of range"));
   }
+  SECTION("piston settings without the piston inflow") {
+    const auto text = replaced(valid_spec, "[[case]]", "[sph]\nsluice_opening_m = 0.04\n\n[[case]]");
+    const auto msg = rejection(text);
+    CHECK_THAT(msg, Catch::Contains("sph.sluice_opening_m"));
+    CHECK_THAT(msg, Catch::Contains("only used with inflow_condition = \"piston\""));
+    CHECK_NOTHROW(parse_study(replaced(valid_spec, "[[case]]", "[sph]\ninflow_condition = \"piston\"\nsluice_opening_m = 0.04\n\n[[case]]"),
+                              "spec.toml", "."));
+  }
   SECTION("too few particles across y1") {
     const auto msg = rejection(replaced(valid_spec, "particle_spacing_m = 0.005", "particle_spacing_m = 0.0125"));
     CHECK_THAT(msg, Catch::Contains("inflow.depth_m = 0.0254"));

@@ -30,7 +30,7 @@ inline LoadedCase load_case(const std::string& file, double dx,
   out.study = hydrojump::cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/cases/" + file);
   out.spec = out.study.cases.front();
   if (adjust) adjust(out.spec);
-  out.geometry = hydrojump::cases::make_geometry(out.spec, out.study.fluid);
+  out.geometry = hydrojump::sph::solver_geometry(out.spec, out.study.fluid, dx);
   out.settings = hydrojump::sph::make_settings(out.spec, out.study.fluid, out.geometry, dx);
   out.particles = hydrojump::sph::generate_particles(out.geometry, out.settings, out.spec.sph.boundary_layers);
   return out;

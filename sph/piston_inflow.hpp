@@ -1,0 +1,48 @@
+// Piston inflow: the set-up of the corrugated-bed SPH study (Bo et al. 2019) instead of an inflow
+// buffer. A reservoir upstream of a sluice gate is pushed by a piston at U_p = q / H_r, so the gate
+// passes q once the reservoir level has settled; the jet contracts to about y1 below the gate. The
+// geometry (reservoir, gate plate, piston, level H_r from E1, opening y1 / 0.611, length) is
+// cases::add_piston_reservoir; the piston is a moving wall (sph/wall_motion.hpp). Nothing is created:
+// the water that enters the basin is the water that crosses the inflow section x_in (the downstream
+// face of the gate), measured as the decrease of the water upstream of it,
+//
+//   m_in(t) = M_up(0) - M_up(t),   M_up = sum of the fluid masses with x < x_in,
+//
+// which is exact bookkeeping (nothing else enters or leaves the reservoir). It is the run's inflow
+// mass (run_log.csv, basin.csv, summary.json: the inflow discharge is its rate, to be compared with q).
+//
+// Usage
+//   | key (section [sph])  | meaning                                                          |
+//   |----------------------|------------------------------------------------------------------|
+//   | inflow_condition     | "piston" (default "buffer")                                      |
+//   | sluice_opening_m     | gate opening (m); 0: y1 / 0.611                                  |
+//   | reservoir_length_m   | piston start to gate (m); 0: U_p T_end + 2 H_r                    |
+// Example (cases/*.toml):
+//   [case.sph]
+//   inflow_condition = "piston"
+// The reservoir costs particles: run A's is ~2.7 m x 0.23 m at 10 s (about 25,000 at dx = 5 mm,
+// twice the basin's).
+#pragma once
+
+#include "sph/particles.hpp"
+
+namespace hydrojump::sph {
+
+class GateCrossing {
+ public:
+  explicit GateCrossing(double x_in) : x_in_(x_in) {}
+  // Takes the water upstream of x_in now as the reference (at the start of a run or a resume).
+  void start(const ParticleSet& particles);
+  // The mass that crossed x_in since the last call (or start), kg/m.
+  double advance(const ParticleSet& particles);
+  double section_x() const { return x_in_; }
+  double mass_in() const { return mass_in_; }
+
+ private:
+  double upstream_mass(const ParticleSet& particles) const;
+  double x_in_;
+  double upstream_ = 0.0;
+  double mass_in_ = 0.0;
+};
+
+}  // namespace hydrojump::sph
