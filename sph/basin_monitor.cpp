@@ -286,6 +286,10 @@ std::string BasinMonitor::jump_state() const {
   if (samples_.empty()) return "none";
   const double toe = samples_.back().toe_x;
   if (!std::isfinite(toe)) return "swept_downstream";
+  // Past the "downstream" section (where y2 and E2 are read) the jump has left the basin's measuring
+  // reach, as the comparator reports it.
+  for (const auto& sec : setup_.sections)
+    if (sec.role == "downstream" && toe > sec.x_m) return "swept_downstream";
   if (toe <= setup_.toe_search_from_m + setup_.dx) return "at_inflow";
   return "in_basin";
 }
@@ -296,7 +300,9 @@ std::string BasinMonitor::status_line() const {
   std::ostringstream o;
   o << std::fixed << std::setprecision(3) << "toe ";
   const std::string state = jump_state();
-  if (state == "swept_downstream") o << "none (jump swept downstream: tailwater too low?)";
+  if (state == "swept_downstream")
+    o << (std::isfinite(s.toe_x) ? std::to_string(s.toe_x).substr(0, 5) + " m, past the downstream section"
+                                 : std::string("none")) << " (jump swept downstream: tailwater too low?)";
   else if (state == "at_inflow") o << s.toe_x << " m (jump drowned at the inflow: tailwater too high?)";
   else o << s.toe_x << " m";
   o << std::setprecision(4) << "  q_in " << s.q_in << "  q_out " << s.q_out << " m^2/s";

@@ -101,6 +101,19 @@ class RunState {
   }
 
   std::string status() const { return basin_ ? basin_->status_line() : std::string(); }
+  // What the run monitor knew when a run failed: a jump swept out of the basin or drowned at the
+  // inflow explains most "particle left the domain" stops of stilling basins (a bad tailwater).
+  std::string jump_note() const {
+    if (!basin_) return {};
+    const std::string state = basin_->jump_state();
+    if (state == "swept_downstream")
+      return "\n  Before this, the run monitor had found the jump swept downstream (" + basin_->status_line() +
+             "): the tailwater holds no jump here, and the supercritical stream reaching the outlet makes splashes.";
+    if (state == "at_inflow")
+      return "\n  Before this, the run monitor had found the jump drowned at the inflow (" + basin_->status_line() +
+             "): the tailwater is too high for this inflow.";
+    return {};
+  }
 
   void write_checkpoint_now() {
     Checkpoint c;
@@ -266,7 +279,7 @@ RunStatus run_case(Solver& solver, const RunOptions& o, const std::optional<Chec
       std::string kept = std::filesystem::exists(checkpoint_path(o.dir))
                              ? "the last good checkpoint " + checkpoint_path(o.dir).string() + " is kept"
                              : "no checkpoint had been written yet";
-      const std::string message = problem + "\n  The failing state is in " + (o.dir / "failure_state.vtp").string() +
+      const std::string message = problem + state.jump_note() + "\n  The failing state is in " + (o.dir / "failure_state.vtp").string() +
                                   "; " + kept + ", with the outputs written before.";
       try {
         Solver copy = solver;

@@ -51,6 +51,11 @@ TEST_CASE("the monitor finds the toe of a step and reads the sections", "[sph][b
   monitor.record(step_particles(2.0), 0.1, 0.0, 0.0);
   CHECK(monitor.jump_state() == "swept_downstream");
   CHECK(std::isnan(monitor.samples().back().toe_x));
+  // A toe past the "downstream" section (0.8025 m), where y2 is read: swept as well.
+  monitor.record(step_particles(0.9), 0.15, 0.0, 0.0);
+  CHECK(monitor.samples().back().toe_x == Approx(0.9).margin(2.5 * dx));
+  CHECK(monitor.jump_state() == "swept_downstream");
+  CHECK_THAT(monitor.status_line(), Catch::Contains("past the downstream section"));
   monitor.record(step_particles(0.0), 0.2, 0.0, 0.0);
   CHECK(monitor.jump_state() == "at_inflow");
   CHECK_THAT(monitor.summary_json(), Catch::Contains("\"jump_state\": \"at_inflow\""));
