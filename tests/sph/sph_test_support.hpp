@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <functional>
+#include <stdexcept>
 #include <string>
+#include <variant>
 
 #include "cases/geometry.hpp"
 #include "cases/spec_reader.hpp"
@@ -29,6 +31,26 @@ inline LoadedCase load_case(const std::string& file, double dx,
   LoadedCase out;
   out.study = hydrojump::cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/cases/" + file);
   out.spec = out.study.cases.front();
+  if (adjust) adjust(out.spec);
+  out.geometry = hydrojump::sph::solver_geometry(out.spec, out.study.fluid, dx);
+  out.settings = hydrojump::sph::make_settings(out.spec, out.study.fluid, out.geometry, dx);
+  out.particles = hydrojump::sph::generate_particles(out.geometry, out.settings, out.spec.sph.boundary_layers);
+  return out;
+}
+
+// Case A_smooth of cases/ead2002.toml (y1 = 25.4 mm, U1 = 2 m/s) on a shortened domain (0.1 m
+// upstream, 0.3 m basin, 0.1 m downstream) at spacing dx; `adjust` may change it further (its [sph]
+// settings, run length) before the solver geometry, settings and particles are derived.
+inline LoadedCase short_smooth_basin(double dx, const std::function<void(hydrojump::cases::Case&)>& adjust = {}) {
+  LoadedCase out;
+  out.study = hydrojump::cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/cases/ead2002.toml");
+  const hydrojump::cases::Case* found = out.study.find_case("A_smooth");
+  if (found == nullptr) throw std::logic_error("cases/ead2002.toml has no case A_smooth");
+  out.spec = *found;
+  auto& basin = std::get<hydrojump::cases::StillingBasinCase>(out.spec.data);
+  basin.upstream_length_m = 0.1;
+  basin.basin_length_m = 0.3;
+  basin.downstream_length_m = 0.1;
   if (adjust) adjust(out.spec);
   out.geometry = hydrojump::sph::solver_geometry(out.spec, out.study.fluid, dx);
   out.settings = hydrojump::sph::make_settings(out.spec, out.study.fluid, out.geometry, dx);

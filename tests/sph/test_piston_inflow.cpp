@@ -23,21 +23,10 @@ using namespace hydrojump;
 namespace {
 
 sph_test::LoadedCase piston_basin() {
-  sph_test::LoadedCase out;
-  out.study = cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/cases/ead2002.toml");
-  for (const auto& c : out.study.cases)
-    if (c.id == "A_smooth") out.spec = c;
-  REQUIRE(out.spec.id == "A_smooth");
-  auto& basin = std::get<cases::StillingBasinCase>(out.spec.data);
-  basin.upstream_length_m = 0.1;
-  basin.basin_length_m = 0.3;
-  basin.downstream_length_m = 0.1;
-  out.spec.run.end_time_s = 0.6;
-  out.spec.sph.inflow_condition = "piston";
-  out.geometry = sph::solver_geometry(out.spec, out.study.fluid, 0.005);
-  out.settings = sph::make_settings(out.spec, out.study.fluid, out.geometry, 0.005);
-  out.particles = sph::generate_particles(out.geometry, out.settings, out.spec.sph.boundary_layers);
-  return out;
+  return sph_test::short_smooth_basin(0.005, [](cases::Case& c) {
+    c.run.end_time_s = 0.6;
+    c.sph.inflow_condition = "piston";
+  });
 }
 
 // Fluid and outflow-buffer particles (the outlet has not removed those yet).

@@ -22,32 +22,13 @@ using namespace hydrojump;
 
 namespace {
 
-struct GateBasin {
-  cases::Study study;
-  cases::Case spec;
-  cases::CaseGeometry geometry;
-  sph::SolverSettings settings;
-  sph::ParticleSet particles;
-};
-
 // Case A_smooth (tailwater y2* = 0.132 m) on a shortened basin with a tailgate; `height` 0: from
 // the tailwater depth.
-GateBasin gate_basin(double height) {
-  GateBasin out;
-  out.study = cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/cases/ead2002.toml");
-  for (const auto& c : out.study.cases)
-    if (c.id == "A_smooth") out.spec = c;
-  REQUIRE(out.spec.id == "A_smooth");
-  auto& basin = std::get<cases::StillingBasinCase>(out.spec.data);
-  basin.upstream_length_m = 0.1;
-  basin.basin_length_m = 0.3;
-  basin.downstream_length_m = 0.1;
-  out.spec.sph.outflow_condition = "tailgate";
-  out.spec.sph.tailgate_height_m = height;
-  out.geometry = cases::make_geometry(out.spec, out.study.fluid);
-  out.settings = sph::make_settings(out.spec, out.study.fluid, out.geometry, 0.005);
-  out.particles = sph::generate_particles(out.geometry, out.settings, out.spec.sph.boundary_layers);
-  return out;
+sph_test::LoadedCase gate_basin(double height) {
+  return sph_test::short_smooth_basin(0.005, [&](cases::Case& c) {
+    c.sph.outflow_condition = "tailgate";
+    c.sph.tailgate_height_m = height;
+  });
 }
 
 double water_mass(const sph::ParticleSet& ps) {
@@ -60,7 +41,7 @@ double water_mass(const sph::ParticleSet& ps) {
 }  // namespace
 
 TEST_CASE("tailgate height: Rehbock's weir holds the tailwater, or the given height", "[sph][tailgate]") {
-  const GateBasin b = gate_basin(0.0);
+  const auto b = gate_basin(0.0);
   const double q = 0.0254 * 2.0, y_t = b.geometry.outflows.front().tailwater_depth_m;
   const double p = b.settings.tailgate_height;
   CHECK(b.settings.outflow == sph::OutflowCondition::tailgate);
@@ -84,7 +65,7 @@ TEST_CASE("tailgate height: Rehbock's weir holds the tailwater, or the given hei
 
 TEST_CASE("tailgate plate: boundary layers up to the crest, ghost nodes into the water, no outflow buffer",
           "[sph][tailgate]") {
-  const GateBasin b = gate_basin(0.04);
+  const auto b = gate_basin(0.04);
   const auto open = sph::OpenBoundaries::from_geometry(b.geometry, sph::buffer_parameters(b.settings));
   REQUIRE(open.tailgates().size() == 1);
   CHECK(open.outflows().empty());
@@ -141,7 +122,7 @@ TEST_CASE("tailgate removes only the water beyond its plate", "[sph][tailgate]")
 
 TEST_CASE("tailgate basin: a short coupled run spills over the crest, stays watertight and balances its mass",
           "[sph][tailgate]") {
-  GateBasin b = gate_basin(0.0);
+  auto b = gate_basin(0.0);
   const auto open = sph::OpenBoundaries::from_geometry(b.geometry, sph::buffer_parameters(b.settings));
   const sph::Tailgate gate = open.tailgates().front();
   sph::Solver solver(b.settings, std::move(b.particles), {}, open);
