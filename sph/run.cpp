@@ -208,7 +208,7 @@ std::string diagnose(const Solver& solver) {
     if (!std::isfinite(ps.x[i]) || !std::isfinite(ps.z[i]) || !std::isfinite(ps.u[i]) || !std::isfinite(ps.w[i]) ||
         !std::isfinite(ps.rho[i])) {
       report("non-finite state (NaN/Inf)", i);
-    } else if (ps.x[i] < s.x_min - m || ps.x[i] > s.x_max + m || ps.z[i] < s.z_min - m || ps.z[i] > s.z_max + m) {
+    } else if (ps.x[i] < s.x_min - m || ps.x[i] > s.x_max + m || ps.z[i] < s.z_min - m || ps.z[i] > s.fluid_ceiling + m) {
       report("left the domain", i);
     } else if (std::abs(ps.rho[i] / s.eos.rho0 - 1.0) > s.max_density_variation) {
       std::ostringstream w;
@@ -228,7 +228,7 @@ std::string diagnose(const Solver& solver) {
   head << "the SPH run went unstable at t = " << t << " s (step " << solver.clock().steps << "); " << reported
        << " problem(s)" << (reported > 5 ? ", the first 5:" : ":") << "\n"
        << out.str();
-  head << "  domain box [" << s.x_min << ", " << s.x_max << "] x [" << s.z_min << ", " << s.z_max << "] m (margin " << m
+  head << "  domain box [" << s.x_min << ", " << s.x_max << "] x [" << s.z_min << ", " << s.fluid_ceiling << "] m (margin " << m
        << " m). Try a smaller sph.cfl_number, a finer resolution, or check the geometry.";
   return head.str();
 }

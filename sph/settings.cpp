@@ -117,6 +117,9 @@ SolverSettings make_settings(const cases::Case& c, const cases::FluidProperties&
   out.z_min = g.z_min_m;
   out.z_max = g.z_max_m;
   out.periodic_x = g.periodic_x;
+  out.fluid_ceiling = out.z_max;
+  for (const auto& in : g.inflows)
+    out.fluid_ceiling = std::max(out.fluid_ceiling, g.bed.elevation(in.x_m) + cases::specific_energy(in.depth_m, in.depth_m * in.velocity_m_s, gravity));
   out.max_density_variation = s.max_density_variation;
   out.domain_margin = 4.0 * out.h;
   // Open boundaries: the buffer zones (layers dx upstream of the inflow, downstream of the outflow)

@@ -47,8 +47,12 @@ struct SolverSettings {
   double cfl = 0.2;
   int verlet_euler_interval = 40;
   double body_force_x = 0.0, body_force_z = -9.81;   // m/s^2
-  // Domain: fluid outside [x_min, x_max] x [z_min, z_max] (plus a margin) stops the run.
+  // Domain: fluid outside [x_min, x_max] x [z_min, fluid_ceiling] (plus a margin) stops the run.
   double x_min = 0.0, x_max = 1.0, z_min = 0.0, z_max = 1.0;
+  // The top above which fluid has escaped: z_max for closed tanks; for an open channel with an
+  // inflow the energy line z_b(x_in) + E1 if higher (spray of a roller flies above the air layer,
+  // but no water can rise above the total head of the inflow).
+  double fluid_ceiling = 1.0;
   bool periodic_x = false;           // period x_max - x_min
   double max_density_variation = 0.05;
   double domain_margin = 0.0;        // tolerated excursion beyond the box (m)

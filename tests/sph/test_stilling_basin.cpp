@@ -160,3 +160,25 @@ TEST_CASE("a stilling-basin run resumed from a checkpoint continues bit for bit"
   CHECK(pa.w == pb.w);
   CHECK(pa.rho == pb.rho);
 }
+
+TEST_CASE("open-channel spray may rise to the energy line, not above it", "[sph][stilling_basin][robustness]") {
+  // Run B_smooth (Fr1 = 6): E1 = y1 + U1^2/(2g) = 0.484 m, above the domain top y2* + air = 0.324 m.
+  const auto study = cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/cases/ead2002.toml");
+  const cases::Case& c = *study.find_case("B_smooth");
+  const auto geometry = sph::solver_geometry(c, study.fluid, 0.005);
+  const auto settings = sph::make_settings(c, study.fluid, geometry, 0.005);
+  const double e1 = 0.0254 + 3.0 * 3.0 / (2.0 * 9.81);
+  CHECK(settings.z_max == Approx(geometry.z_max_m));
+  CHECK(settings.fluid_ceiling == Approx(e1).epsilon(1e-9));
+  CHECK(settings.fluid_ceiling > settings.z_max);
+  // A drop of spray between the domain top and the energy line is no failure; one above it is.
+  sph::ParticleSet ps;
+  ps.resize(1);
+  ps.assign(0, sph::ParticleType::fluid, 1.0, 0.5 * (settings.z_max + e1), 1000.0, 0.025, 0);
+  CHECK(sph::diagnose(sph::Solver(settings, ps)).empty());
+  ps.z[0] = e1 + 2.0 * settings.domain_margin;
+  CHECK_THAT(sph::diagnose(sph::Solver(settings, ps)), Catch::Contains("left the domain"));
+  // A closed tank keeps its top.
+  const auto tank = sph_test::load_case("still_water.toml", 0.02);
+  CHECK(tank.settings.fluid_ceiling == tank.settings.z_max);
+}
