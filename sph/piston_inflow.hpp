@@ -20,8 +20,8 @@
 // Example (cases/*.toml):
 //   [case.sph]
 //   inflow_condition = "piston"
-// The reservoir costs particles: run A's is ~2.7 m x 0.23 m at 10 s (about 25,000 at dx = 5 mm,
-// twice the basin's).
+// The reservoir costs particles: run A's is 2.7 m x 0.23 m for 10 s (about 23,000 more at dx = 5 mm,
+// three times the basin's), and its depth raises c0 = coef sqrt(g H_max).
 #pragma once
 
 #include "sph/particles.hpp"
