@@ -67,8 +67,11 @@ CaseGeometry stilling_basin_geometry(const StillingBasinCase& b, double g) {
   // arc length by the particle generator; meshes use bed.polyline with their own tolerance).
   WallPolyline bed{"bed", geo.bed.polyline(0.0, x_end, 1e-5)};
   geo.walls.push_back(std::move(bed));
-  // The sluice gate above the inflow: a vertical wall at x = 0 from the top down to y1.
-  geo.walls.push_back(segment_wall("inlet_gate", Vec2(0.0, geo.z_max_m), Vec2(0.0, y1)));
+  // The sluice gate above the inflow: a vertical wall at x = 0 from the top down to y1. Its top is the
+  // domain top or the energy line E1 if higher: spray of a roller that has reached the gate may fly
+  // up to E1 (no higher) and must not pass over the gate into the inflow.
+  const double gate_top = std::max(geo.z_max_m, specific_energy(y1, y1 * b.inflow_velocity_m_s, g));
+  geo.walls.push_back(segment_wall("inlet_gate", Vec2(0.0, gate_top), Vec2(0.0, y1)));
   geo.inflows.push_back({0.0, y1, b.inflow_velocity_m_s});
   geo.outflows.push_back({x_end, y2});
 
