@@ -193,12 +193,7 @@ PistonReservoir add_piston_reservoir(CaseGeometry& geo, const StillingBasinCase&
   PistonReservoir r;
   // H_r + q^2 / (2 g H_r^2) = E1, the subcritical root: bisection on [y_c, E1], where E(H) grows.
   const double e1 = specific_energy(y1, q, g);
-  double lo = std::cbrt(q * q / g), hi = e1;
-  for (int k = 0; k < 200 && hi - lo > 1e-14 * e1; ++k) {
-    const double mid = 0.5 * (lo + hi);
-    (specific_energy(mid, q, g) < e1 ? lo : hi) = mid;
-  }
-  r.depth_m = 0.5 * (lo + hi);
+  r.depth_m = solve_increasing([&](double h) { return specific_energy(h, q, g); }, e1, std::cbrt(q * q / g), e1);
   r.opening_m = opening_m > 0.0 ? opening_m : y1 / sluice_contraction_coefficient;
   r.piston_speed_m_s = q / r.depth_m;
   r.length_m = length_m > 0.0 ? length_m : r.piston_speed_m_s * end_time_s + 2.0 * r.depth_m;

@@ -40,6 +40,16 @@ JumpHydraulics jump_hydraulics(double y1_m, double u1_m_s, double tailwater_m, d
   return j;
 }
 
+double solve_increasing(const std::function<double(double)>& f, double target, double lo, double hi,
+                        double rel_tol) {
+  const double width = hi - lo;
+  for (int k = 0; k < 200 && hi - lo > rel_tol * width; ++k) {
+    const double mid = 0.5 * (lo + hi);
+    (f(mid) < target ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
 // q = 2/3 (0.611 + 0.08 H/P) sqrt(2 g) H^(3/2)
 double rehbock_weir_discharge(double head_m, double weir_height_m, double gravity_m_s2) {
   if (!(head_m > 0.0)) return 0.0;
@@ -53,13 +63,9 @@ double rehbock_weir_head(double discharge_m2_s, double weir_height_m, double gra
     throw std::invalid_argument("weir head: discharge, weir height and gravity must be positive (q = " +
                                 std::to_string(discharge_m2_s) + " m^2/s, P = " + std::to_string(weir_height_m) + " m)");
   // Cd >= 0.611 bounds H from above: H <= (3 q / (2 0.611 sqrt(2 g)))^(2/3).
-  double lo = 0.0;
-  double hi = std::pow(1.5 * discharge_m2_s / (0.611 * std::sqrt(2.0 * gravity_m_s2)), 2.0 / 3.0);
-  for (int k = 0; k < 200 && hi - lo > 1e-15 * hi; ++k) {
-    const double mid = 0.5 * (lo + hi);
-    (rehbock_weir_discharge(mid, weir_height_m, gravity_m_s2) < discharge_m2_s ? lo : hi) = mid;
-  }
-  return 0.5 * (lo + hi);
+  const double hi = std::pow(1.5 * discharge_m2_s / (0.611 * std::sqrt(2.0 * gravity_m_s2)), 2.0 / 3.0);
+  return solve_increasing([&](double h) { return rehbock_weir_discharge(h, weir_height_m, gravity_m_s2); },
+                          discharge_m2_s, 0.0, hi);
 }
 
 // P with P + H(q, P) = y, by bisection on 0 < P < y.
@@ -67,12 +73,8 @@ double tailgate_height_for_depth(double discharge_m2_s, double upstream_depth_m,
   if (!(discharge_m2_s > 0.0) || !(upstream_depth_m > 0.0))
     throw std::invalid_argument("tailgate height: discharge and upstream depth must be positive (q = " +
                                 std::to_string(discharge_m2_s) + " m^2/s, y = " + std::to_string(upstream_depth_m) + " m)");
-  double lo = 0.0, hi = upstream_depth_m;
-  for (int k = 0; k < 200 && hi - lo > 1e-15 * upstream_depth_m; ++k) {
-    const double mid = 0.5 * (lo + hi);
-    (mid + rehbock_weir_head(discharge_m2_s, mid, gravity_m_s2) < upstream_depth_m ? lo : hi) = mid;
-  }
-  return 0.5 * (lo + hi);
+  return solve_increasing([&](double p) { return p + rehbock_weir_head(discharge_m2_s, p, gravity_m_s2); },
+                          upstream_depth_m, 0.0, upstream_depth_m);
 }
 
 }  // namespace hydrojump::cases

@@ -2,7 +2,14 @@
 // Used for derived spec quantities, default sections, and by the comparator for eta.
 #pragma once
 
+#include <functional>
+
 namespace hydrojump::cases {
+
+// The x in [lo, hi] with f(x) = target for f increasing on [lo, hi], by bisection to a relative width
+// `rel_tol` of the interval (the root finder of the weir, tailgate and reservoir-level equations).
+double solve_increasing(const std::function<double(double)>& f, double target, double lo, double hi,
+                        double rel_tol = 1e-15);
 
 // q = y U  [m^2/s]
 double unit_discharge(double depth_m, double velocity_m_s);
