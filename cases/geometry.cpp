@@ -187,6 +187,13 @@ CaseGeometry make_geometry(const Case& c, const FluidProperties& fluid) {
   return geo;
 }
 
+// q = sum y1 U1
+double inflow_discharge(const CaseGeometry& geometry) {
+  double q = 0.0;
+  for (const auto& in : geometry.inflows) q += unit_discharge(in.depth_m, in.velocity_m_s);
+  return q;
+}
+
 PistonReservoir add_piston_reservoir(CaseGeometry& geo, const StillingBasinCase& b, double opening_m,
                                      double length_m, double end_time_s, double t, double g) {
   const double y1 = b.inflow_depth_m, u1 = b.inflow_velocity_m_s, q = y1 * u1;

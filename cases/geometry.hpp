@@ -81,6 +81,9 @@ struct CaseGeometry {
   std::vector<MovingWall> moving_walls; // dam break with gate.type = "lifted": the gate
 };
 
+// What the inflows bring: q = sum y1 U1 over geometry.inflows (m^2/s; 0 for closed cases).
+double inflow_discharge(const CaseGeometry& geometry);
+
 // Computes the geometry of `c` with gravity from `fluid`. Pure function of its inputs.
 CaseGeometry make_geometry(const Case& c, const FluidProperties& fluid);
 

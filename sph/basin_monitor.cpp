@@ -301,8 +301,11 @@ std::string BasinMonitor::status_line() const {
   o << std::fixed << std::setprecision(3) << "toe ";
   const std::string state = jump_state();
   if (state == "swept_downstream")
-    o << (std::isfinite(s.toe_x) ? std::to_string(s.toe_x).substr(0, 5) + " m, past the downstream section"
-                                 : std::string("none")) << " (jump swept downstream: tailwater too low?)";
+  {
+    if (std::isfinite(s.toe_x)) o << s.toe_x << " m, past the downstream section";
+    else o << "none";
+    o << " (jump swept downstream: tailwater too low?)";
+  }
   else if (state == "at_inflow") o << s.toe_x << " m (jump drowned at the inflow: tailwater too high?)";
   else o << s.toe_x << " m";
   o << std::setprecision(4) << "  q_in " << s.q_in << "  q_out " << s.q_out << " m^2/s";
@@ -368,8 +371,8 @@ std::string BasinMonitor::summary_json() const {
   o << "  \"definitions\": "
     << json_string("depth h = sum V_i / w over fluid particles in a column of width w (dx for the toe profile, 2 dx "
                    "at sections); toe = cases/jump_toe.hpp criterion (running mean over 0.8 y1 of the surface "
-                   "above the floor exceeds 1.5 y1 for 2 y1); q_in, q_out = mass created/removed by the buffers per "
-                   "rho0 and time; steady = |q_in - q_out| < 2 % of q and toe drift over 1 s below the tolerance")
+                   "above the floor exceeds 1.5 y1 for 2 y1); q_in, q_out = mass entering the basin (inflow buffer, or "
+                   "under a piston reservoir's gate) / leaving it (outflow buffer, or over a tailgate) per rho0 and time; steady = |q_in - q_out| < 2 % of q and toe drift over 1 s below the tolerance")
     << ",\n";
   o << "  \"prescribed\": {\"inflow_depth_m\": " << json_number(y1)
     << ", \"discharge_m2_s\": " << json_number(setup_.discharge_m2_s) << ", \"froude1\": " << json_number(setup_.froude1)

@@ -154,8 +154,7 @@ int run_sph_directory(const SphOptions& opt) {
   }
   for (const Tailgate& gate : solver->open_boundaries().tailgates()) {
     // The design head over the crest and Rehbock's range (tailgate.hpp).
-    double q = 0.0;
-    for (const auto& in : geometry.inflows) q += in.depth_m * in.velocity_m_s;
+    const double q = cases::inflow_discharge(geometry);
     const double gravity = std::abs(settings.body_force_z);
     const double head = cases::rehbock_weir_head(q, gate.crest_height(), gravity);
     std::cerr << "hydrojump sph: tailgate at x = " << gate.section_x() << " m, crest " << gate.crest_height()

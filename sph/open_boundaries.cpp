@@ -231,8 +231,7 @@ OpenBoundaries OpenBoundaries::from_geometry(const cases::CaseGeometry& geometry
     if (params.inflow == InflowCondition::piston) out.crossings_.emplace_back(in.x_m);
     else out.inflows_.emplace_back(in, geometry.bed.elevation(in.x_m), params);
   }
-  double discharge = 0.0;  // what the inflows bring: q = sum y1 U1
-  for (const auto& in : geometry.inflows) discharge += in.depth_m * in.velocity_m_s;
+  const double discharge = cases::inflow_discharge(geometry);
   out.buffer_length_ = buffer_layers(params.support, params.dx, params.layers) * params.dx;
   for (const auto& o : geometry.outflows) {
     if (params.outflow == OutflowCondition::tailgate)

@@ -130,8 +130,7 @@ SolverSettings make_settings(const cases::Case& c, const cases::FluidProperties&
     if (g.outflows.empty() || g.inflows.empty())
       throw std::invalid_argument("sph.outflow_condition = \"tailgate\" needs a case with an inflow and an outflow "
                                   "(a stilling basin); case kind \"" + g.kind + "\" has none");
-    double q = 0.0;
-    for (const auto& in : g.inflows) q += in.depth_m * in.velocity_m_s;
+    const double q = cases::inflow_discharge(g);
     const double y_t = g.outflows.front().tailwater_depth_m;
     out.tailgate_height = s.tailgate_height_m > 0.0 ? s.tailgate_height_m
                                                     : cases::tailgate_height_for_depth(q, y_t, gravity);
