@@ -93,6 +93,8 @@ std::vector<MetricRow> metric_table(const JumpMetrics* sph, const JumpMetrics* v
   rows.push_back({"eta_crest_depth", "%", v(sph, &JumpMetrics::eta_crest_depth, 100.0),
                   v(vof, &JumpMetrics::eta_crest_depth, 100.0), o(lab.eta_percent), o(lab.published_sph_eta_percent),
                   o(lab.eta_smooth_percent)});
+  rows.push_back({"bed_force_fraction", "%", v(sph, &JumpMetrics::bed_force_fraction, 100.0),
+                  v(vof, &JumpMetrics::bed_force_fraction, 100.0), not_a_number, not_a_number, 0.0});
   rows.push_back({"velocity_settling_distance", "m", v(sph, &JumpMetrics::velocity_settling_distance_m),
                   v(vof, &JumpMetrics::velocity_settling_distance_m), not_a_number, not_a_number, not_a_number});
   return rows;

@@ -59,6 +59,10 @@ JumpMetrics compute_jump_metrics(const MethodStatistics& m, const JumpInputs& in
       return y + q * q / (2.0 * g * y * y);
     };
     r.eta_crest_depth = dissipation_rate(crest_energy(*up), crest_energy(*down));
+    // (M1 - M2)/M1 with M = h^2/2 + beta q^2/(g h)
+    r.specific_force_upstream_m2 = up->specific_force.mean;
+    r.specific_force_downstream_m2 = down->specific_force.mean;
+    r.bed_force_fraction = (r.specific_force_upstream_m2 - r.specific_force_downstream_m2) / r.specific_force_upstream_m2;
   }
 
   // Longitudinal analysis on the stations.

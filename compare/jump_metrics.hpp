@@ -23,6 +23,13 @@
 //                convention E = y + U^2/(2g)); eta_crest_depth with E = y + q^2/(2 g y^2), y the mean
 //                surface above the floor/crest level and q the section's mean discharge (how the
 //                experiments' values were computed; it differs from eta when a section lies over a trough).
+//   bed force    the momentum balance between the "upstream" and "downstream" sections: with the
+//                specific force M = h^2/2 + beta q^2/(g h) (time mean of each frame's value, h above
+//                the local bed), bed_force_fraction = (M1 - M2)/M1 is the share of the upstream force
+//                the bed (and the walls) took between the sections. Belanger's jump on a frictionless
+//                smooth bed has M1 = M2 (0); the corrugations' drag makes it positive, which is why
+//                they hold a jump at a lower tailwater. A jump that drifts upstream in a run shows
+//                M2 > M1 at the sections (negative): more force downstream than the inflow can carry.
 //   velocity decay  u_max(x)/U1 and U(x)/U1 along the stations from the toe; the settling distance is
 //                the first x - x_t from which u_max stays within 10 % of its value at the downstream
 //                section.
@@ -67,6 +74,9 @@ struct JumpMetrics {
   double eta = not_a_number;                   // fraction
   double eta_alpha1 = not_a_number;            // fraction, alpha = 1
   double eta_crest_depth = not_a_number;       // fraction, laboratory convention (see above)
+  double specific_force_upstream_m2 = not_a_number;    // M1
+  double specific_force_downstream_m2 = not_a_number;  // M2
+  double bed_force_fraction = not_a_number;    // (M1 - M2)/M1
   double velocity_settling_distance_m = not_a_number;
   std::vector<std::string> notes;              // why a metric is missing
 };

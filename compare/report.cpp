@@ -113,6 +113,9 @@ void metrics_json(Json& j, const JumpMetrics& m) {
       .field("eta", m.eta)
       .field("eta_alpha1", m.eta_alpha1)
       .field("eta_crest_depth", m.eta_crest_depth)
+      .field("specific_force_upstream_m2", m.specific_force_upstream_m2)
+      .field("specific_force_downstream_m2", m.specific_force_downstream_m2)
+      .field("bed_force_fraction", m.bed_force_fraction)
       .field("velocity_settling_distance_m", m.velocity_settling_distance_m);
   j.key("notes").begin_array();
   for (const auto& n : m.notes) j.value(n);
@@ -138,6 +141,8 @@ void method_json(Json& j, const MethodOutcome& m) {
       stats_json(j, "near_surface_velocity_m_s", s.near_surface_velocity);
       stats_json(j, "energy_coefficient", s.energy_coefficient);
       stats_json(j, "specific_energy_m", s.specific_energy);
+      stats_json(j, "momentum_coefficient", s.momentum_coefficient);
+      stats_json(j, "specific_force_m2", s.specific_force);
       j.end_object();
     }
     j.end_array();
@@ -249,7 +254,8 @@ void write_csvs(const CaseComparison& c, const fs::path& dir) {
   sec << "method,section,role,x_m,z_bed_m,n_times,n_wet,surface_mean_m,surface_std_m,surface_from_fraction_mean_m,"
          "depth_mean_m,depth_std_m,discharge_mean_m2_s,discharge_std_m2_s,mean_velocity_mean_m_s,"
          "mean_velocity_std_m_s,max_velocity_mean_m_s,max_velocity_std_m_s,energy_coefficient_mean,"
-         "specific_energy_mean_m,specific_energy_std_m\n";
+         "specific_energy_mean_m,specific_energy_std_m,momentum_coefficient_mean,specific_force_mean_m2,"
+         "specific_force_std_m2\n";
   prof << "method,section,x_m,z_m,u_mean_m_s,u_std_m_s,w_mean_m_s,wet_fraction\n";
   lon << "method,x_m,z_bed_m,surface_mean_m,surface_std_m,near_surface_velocity_mean_m_s,mean_velocity_mean_m_s,"
          "max_velocity_mean_m_s,discharge_mean_m2_s\n";
@@ -263,7 +269,8 @@ void write_csvs(const CaseComparison& c, const fs::path& dir) {
           << num(s.discharge.mean) << "," << num(s.discharge.std) << "," << num(s.mean_velocity.mean) << ","
           << num(s.mean_velocity.std) << "," << num(s.max_velocity.mean) << "," << num(s.max_velocity.std) << ","
           << num(s.energy_coefficient.mean) << "," << num(s.specific_energy.mean) << "," << num(s.specific_energy.std)
-          << "\n";
+          << "," << num(s.momentum_coefficient.mean) << "," << num(s.specific_force.mean) << ","
+          << num(s.specific_force.std) << "\n";
       for (std::size_t k = 0; k < s.z.size(); ++k)
         prof << m->method << "," << s.spec.name << "," << num(s.spec.x_m) << "," << num(s.z[k]) << "," << num(s.u_mean[k])
              << "," << num(s.u_std[k]) << "," << num(s.w_mean[k]) << "," << num(s.wet_fraction[k]) << "\n";
@@ -345,6 +352,7 @@ std::string pretty_quantity(const std::string& q) {
   if (q == "eta") return "eta = (E1-E2)/E1, with alpha (%)";
   if (q == "eta_alpha1") return "eta with alpha = 1 (%)";
   if (q == "eta_crest_depth") return "eta, lab convention y + q²/(2gy²), y above crests (%)";
+  if (q == "bed_force_fraction") return "bed force (M1-M2)/M1, M = h²/2 + βq²/(gh) (%)";
   if (q == "velocity_settling_distance") return "velocity settling distance (m)";
   return q;
 }
@@ -496,11 +504,12 @@ void write_report(const CaseComparison& c, const fs::path& out, bool plots, std:
       sr.push_back({s.spec.name + " (" + s.spec.role + ")", fix(s.spec.x_m, 3),
                     fix(s.surface.mean, 4) + " ± " + fix(s.surface.std, 4), fix(s.surface_from_fraction.mean, 4),
                     fix(s.mean_velocity.mean, 3), fix(s.max_velocity.mean, 3), fix(s.discharge.mean, 4),
-                    fix(s.energy_coefficient.mean, 3), fix(s.specific_energy.mean, 4)});
+                    fix(s.energy_coefficient.mean, 3), fix(s.specific_energy.mean, 4),
+                    fix(s.momentum_coefficient.mean, 3), fix(s.specific_force.mean, 5)});
     }
     d.heading(3, i == 0 ? "SPH" : "VOF");
     d.table({"section", "x (m)", "surface η (m)", "η from ∫fraction (m)", "U (m/s)", "u_max (m/s)", "q (m²/s)", "α",
-             "E (m)"},
+             "E (m)", "β", "M (m²)"},
             sr);
   }
   std::ostringstream qcheck;

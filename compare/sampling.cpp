@@ -48,6 +48,14 @@ void integrate_column(ColumnSample& c, double gravity) {
                                    (2.0 * gravity)
                              : 0.0;
   c.specific_energy_m = c.z_bed_m + h + kinetic;
+  // beta = int u^2 dz / (U^2 h)
+  std::vector<double> u2(c.u.size());
+  for (std::size_t k = 0; k < u2.size(); ++k) u2[k] = c.u[k] * c.u[k];
+  const double ubar2 = c.mean_velocity_m_s * c.mean_velocity_m_s;
+  const double u2_integral = simpson(u2, dz);
+  c.momentum_coefficient = ubar2 > 1e-30 ? u2_integral / (ubar2 * h) : not_a_number;
+  // M = h^2/2 + beta q^2/(g h) = h^2/2 + int u^2 dz / g  (the same, and defined when U = 0)
+  c.specific_force_m2 = 0.5 * h * h + u2_integral / gravity;
 }
 
 static void check_points(int n_points) {

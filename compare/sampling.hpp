@@ -11,6 +11,9 @@
 //   max vel.     u_max = max_k u(z_k)
 //   KE coeff.    alpha = int u^3 dz / (U^3 h)   (Coriolis coefficient)
 //   energy       E = z_b + h + alpha U^2 / (2 g)  (total head above the datum z = 0)
+//   mom. coeff.  beta = int u^2 dz / (U^2 h)    (Boussinesq coefficient)
+//   spec. force  M = h^2/2 + beta q^2 / (g h)   (momentum function per unit width, m^2: the
+//                hydrostatic force plus the momentum flux, divided by rho g; Belanger's jump has M1 = M2)
 //   near-surface velocity u_s = u(eta - 0.1 h)   (sign gives the direction of the surface flow)
 //
 // Free surface:
@@ -87,6 +90,8 @@ struct ColumnSample {
   double near_surface_velocity_m_s = not_a_number;
   double energy_coefficient = not_a_number;     // alpha
   double specific_energy_m = not_a_number;      // E
+  double momentum_coefficient = not_a_number;   // beta
+  double specific_force_m2 = not_a_number;      // M
   bool wet() const { return std::isfinite(surface_z_m) && depth_m > 0.0; }
 };
 
@@ -106,7 +111,7 @@ std::unique_ptr<FrameSampler> make_sph_sampler(const ParticleFrame& frame,
 std::unique_ptr<FrameSampler> make_vof_sampler(const CellFrame& frame, InterpolationScheme scheme);
 
 // Fills the integral quantities of `column` from its z, u profile (z evenly spaced, odd count) and
-// its surface: q, U, u_max, u_s, alpha, E. Exposed for tests and for hand-built sections.
+// its surface: q, U, u_max, u_s, alpha, E, beta, M. Exposed for tests and for hand-built sections.
 void integrate_column(ColumnSample& column, double gravity);
 
 // Composite Simpson rule over evenly spaced samples (odd count >= 3).

@@ -89,6 +89,8 @@ ColumnStatistics column_statistics(const ColumnSpec& spec, const std::vector<Col
   st.near_surface_velocity = collect(&ColumnSample::near_surface_velocity_m_s);
   st.energy_coefficient = collect(&ColumnSample::energy_coefficient);
   st.specific_energy = collect(&ColumnSample::specific_energy_m);
+  st.momentum_coefficient = collect(&ColumnSample::momentum_coefficient);
+  st.specific_force = collect(&ColumnSample::specific_force_m2);
   {
     std::vector<double> v;
     for (const auto& s : samples) v.push_back(s.surface_from_fraction_m);

@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "cases/hydraulics.hpp"
 #include "compare/jump_metrics.hpp"
 
 using namespace hydrojump::compare;
@@ -58,6 +59,39 @@ TEST_CASE("eta of a hand-built pair of sections matches (E1 - E2)/E1", "[compare
   const double alpha = (std::pow(1.5, 4) - std::pow(0.5, 4)) / 4.0;  // int_0^1 (0.5 + s)^3 ds
   CHECK(lin.energy_coefficient == Approx(alpha).epsilon(1e-12));
   CHECK(lin.specific_energy_m == Approx(y1 + alpha * u1 * u1 / (2 * g)).epsilon(1e-12));
+}
+
+TEST_CASE("Specific force of hand-built sections: Belanger's pair balances, a drag shows", "[compare][metrics]") {
+  // Run B inflow: y1 = 25.4 mm, Fr1 = 6; uniform sections at y1 and at Belanger's y2*.
+  const double y1 = 0.0254, u1 = 6.0 * std::sqrt(g * y1), q = y1 * u1;
+  const double y2 = hydrojump::cases::belanger_sequent_depth(y1, 6.0);
+  MethodStatistics m;
+  m.sections.push_back(as_statistics("upstream", "upstream", uniform_column(0.1, 0.0, y1, u1)));
+  m.sections.push_back(as_statistics("downstream", "downstream", uniform_column(1.5, 0.0, y2, q / y2)));
+  CHECK(m.sections[0].momentum_coefficient.mean == Approx(1.0).margin(1e-12));
+  const double m1 = 0.5 * y1 * y1 + q * q / (g * y1);
+  const double m2 = 0.5 * y2 * y2 + q * q / (g * y2);
+  JumpInputs in{y1, u1, 0.0, g, {}};
+  JumpMetrics r = compute_jump_metrics(m, in);
+  CHECK(r.specific_force_upstream_m2 == Approx(m1).epsilon(1e-12));
+  CHECK(r.specific_force_downstream_m2 == Approx(m2).epsilon(1e-12));
+  CHECK(std::abs(r.bed_force_fraction) < 1e-9);  // Belanger: M1 = M2
+  // A linear profile with the same q downstream carries more momentum (beta = 7/6 for u from U/2 to
+  // 3U/2): M2 grows by (beta - 1) q^2/(g y2) and the fraction turns negative by that share of M1.
+  ColumnSample lin = uniform_column(1.5, 0.0, y2, q / y2);
+  for (std::size_t k = 0; k < lin.u.size(); ++k) lin.u[k] = q / y2 * (0.5 + lin.z[k] / y2);
+  integrate_column(lin, g);
+  const double beta = (std::pow(1.5, 3) - std::pow(0.5, 3)) / 3.0;
+  CHECK(lin.momentum_coefficient == Approx(beta).epsilon(1e-12));
+  m.sections[1] = as_statistics("downstream", "downstream", lin);
+  r = compute_jump_metrics(m, in);
+  CHECK(r.bed_force_fraction == Approx(-(beta - 1.0) * q * q / (g * y2) / m1).epsilon(1e-9));
+  // A lower tailwater with the uniform profile: the bed took the difference.
+  m.sections[1] = as_statistics("downstream", "downstream", uniform_column(1.5, 0.0, 0.8 * y2, q / (0.8 * y2)));
+  r = compute_jump_metrics(m, in);
+  const double m2_low = 0.5 * 0.64 * y2 * y2 + q * q / (g * 0.8 * y2);
+  CHECK(r.bed_force_fraction == Approx((m1 - m2_low) / m1).epsilon(1e-12));
+  CHECK(r.bed_force_fraction > 0.1);
 }
 
 TEST_CASE("Toe and jump and roller lengths of a synthetic mean surface", "[compare][metrics]") {

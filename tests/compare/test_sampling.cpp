@@ -19,6 +19,10 @@ constexpr double g = 9.81;
 double cube_integral(double a, double b, double eta) {
   return (std::pow(a + b * eta, 4) - std::pow(a, 4)) / (4.0 * b);
 }
+// int_0^eta (a + b z)^2 dz
+double square_integral(double a, double b, double eta) {
+  return (std::pow(a + b * eta, 3) - std::pow(a, 3)) / (3.0 * b);
+}
 }  // namespace
 
 TEST_CASE("SPH kernels are normalised on a lattice and vanish at 2h", "[compare][kernel]") {
@@ -119,6 +123,9 @@ TEST_CASE("SPH linear velocity field gives exact section values", "[compare][sph
   const double alpha = cube_integral(a, b, h) / (std::pow(q / h, 3) * h);
   CHECK(c.energy_coefficient == Approx(alpha).margin(1e-6));
   CHECK(c.specific_energy_m == Approx(h + alpha * (q / h) * (q / h) / (2 * g)).margin(1e-6));
+  const double beta = square_integral(a, b, h) / (std::pow(q / h, 2) * h);
+  CHECK(c.momentum_coefficient == Approx(beta).margin(1e-6));
+  CHECK(c.specific_force_m2 == Approx(0.5 * h * h + beta * q * q / (g * h)).margin(1e-9));
 }
 
 TEST_CASE("SPH quadratic velocity field is within the MLS interpolation error bound",
