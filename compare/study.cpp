@@ -114,7 +114,7 @@ class StudyRunner {
     const auto dir = options_.out / c.id;
     std::string text = cases::resolved_case_text(study_, c, options_.resolution);
     text = text.substr(text.find('\n') + 1);  // the first line names the source file: not part of the case
-    const std::string fingerprint = cases::fingerprint(text + "\nversion " + version_string);
+    const std::string fingerprint = cases::fingerprint(text + "\ncode " + source_fingerprint);
 
     // Regenerate the case directories only when the case changed (keeps finished results).
     const auto generated_stamp = dir / "generate.stamp";

@@ -7,7 +7,7 @@
 // failing or crashing case is reported and does not stop the others.
 //
 // Caching: a stage that finished writes OUT/<case>/<stage>.stamp holding a hash of the resolved case
-// and the program version; a re-run skips stages whose stamp matches, so only what changed runs
+// and of the program's code (source_fingerprint, cmake/write_version.cmake); a re-run skips stages whose stamp matches, so only what changed runs
 // again, and an interrupted study resumes where it stopped (solvers resume from their checkpoints).
 #pragma once
 
