@@ -113,7 +113,7 @@ struct PistonReservoir {
 
 // Adds the reservoir, the sluice plate and the piston to `geometry` (a stilling basin's, from
 // make_geometry). `opening_m` or `length_m` <= 0: the defaults above. Throws std::invalid_argument
-// when the opening is not below the reservoir level or the reservoir is shorter than 2 H_r.
+// when the opening is not below the reservoir level or the reservoir is shorter than U_p T + 2 H_r.
 PistonReservoir add_piston_reservoir(CaseGeometry& geometry, const StillingBasinCase& basin, double opening_m,
                                      double length_m, double end_time_s, double gate_thickness_m, double g);
 

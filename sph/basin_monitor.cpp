@@ -82,9 +82,11 @@ std::string json_stats(const MeanStd& m) {
          ", \"samples\": " + std::to_string(m.count) + "}";
 }
 
+// Round-trip precision: the rows are also the checkpoint's copy of the samples, so a resumed run
+// continues with exactly the values it had (a 10-digit copy shifted its mass balance by ~1e-10).
 std::string csv_number(double v) {
   std::ostringstream o;
-  o << std::setprecision(10) << v;
+  o << std::setprecision(std::numeric_limits<double>::max_digits10) << v;
   return o.str();
 }
 

@@ -43,7 +43,7 @@ std::string run_fingerprint(const std::string& case_text) {
     kept += line;
     kept += '\n';
   }
-  return cases::fingerprint(kept + "\nversion " + version_string);
+  return cases::fingerprint(kept + "\ncode " + source_fingerprint);
 }
 
 namespace {
@@ -83,6 +83,12 @@ int run_sph_directory(const SphOptions& opt) {
   RunOptions ro;
   ro.dir = dir;
   ro.end_time_s = opt.end_time > 0.0 ? opt.end_time : c.run.end_time_s;
+  if (c.sph.inflow_condition == "piston" && ro.end_time_s > c.run.end_time_s)
+    throw std::runtime_error("'" + case_file.string() + "': --end-time " + std::to_string(ro.end_time_s) +
+                             " s runs past case.run.end_time_s = " + std::to_string(c.run.end_time_s) +
+                             " s, for which the piston's stroke and the reservoir's length were made (sph.inflow_condition = "
+                             "\"piston\"): the piston would stop and the inflow die. Raise case.run.end_time_s and "
+                             "generate the case again.");
   ro.output_interval_s = c.run.output_interval_s;
   ro.checkpoint_interval_wall_s = c.sph.checkpoint_interval_wall_s;
   // The resolved case and the program version: a checkpoint only resumes the run it was written for.

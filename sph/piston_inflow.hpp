@@ -1,6 +1,15 @@
 // Piston inflow: the set-up of the corrugated-bed SPH study (Bo et al. 2019) instead of an inflow
 // buffer. A reservoir upstream of a sluice gate is pushed by a piston at U_p = q / H_r, so the gate
-// passes q once the reservoir level has settled; the jet contracts to about y1 below the gate. The
+// passes q while the reservoir stands at H_r and the jet contracts to y1 below the gate. The level is
+// not self-correcting: with L the reservoir length and Q(H) the gate's discharge,
+//
+//   L dH/dt = U_p H - Q(H),
+//
+// and U_p H_r = Q(H_r) only if the jet contracts as assumed (Cc = 0.611); even then the balance is
+// unstable where U_p > dQ/dH (true at H_r: 0.224 vs 0.125 m/s for run A), so the level and the inflow
+// drift on a time scale L / (dQ/dH - U_p) that shrinks as the piston advances. At dx = 5 mm the jet
+// contracts to Cc = 0.86, the gate passes more than U_p H at every level and the inflow decays
+// (sph/README.md). The inflow buffer holds q exactly; the piston is the published set-up. The
 // geometry (reservoir, gate plate, piston, level H_r from E1, opening y1 / 0.611, length) is
 // cases::add_piston_reservoir; the piston is a moving wall (sph/wall_motion.hpp). Nothing is created:
 // the water that enters the basin is the water that crosses the inflow section x_in (the downstream

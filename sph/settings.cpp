@@ -3,6 +3,7 @@
 #include "sph/open_boundaries.hpp"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -41,8 +42,25 @@ cases::CaseGeometry solver_geometry(const cases::Case& c, const cases::FluidProp
     // The boundary layers' thickness: c.sph.boundary_layers, or enough for the support 2h = 2 sqrt(2) coef_h dx.
     const int layers = c.sph.boundary_layers > 0 ? c.sph.boundary_layers
                                                   : static_cast<int>(std::ceil(2.0 * std::sqrt(2.0) * c.sph.coef_h - 1e-9));
-    cases::add_piston_reservoir(g, *basin, c.sph.sluice_opening_m, c.sph.reservoir_length_m, c.run.end_time_s,
-                                layers * dx, fluid.gravity_m_s2);
+    const cases::PistonReservoir r = cases::add_piston_reservoir(
+        g, *basin, c.sph.sluice_opening_m, c.sph.reservoir_length_m, c.run.end_time_s, layers * dx, fluid.gravity_m_s2);
+    // As for y1 (at least 5 particles across the inflow depth): the jet under the gate must be resolved.
+    if (r.opening_m < 5.0 * dx - 1e-12)
+      throw std::invalid_argument("sph.sluice_opening_m: the sluice gate opening " + std::to_string(r.opening_m) +
+                                  " m holds fewer than 5 particle spacings (dx = " + std::to_string(dx) + " m) in case \"" +
+                                  c.id + "\"; allowed: >= " + std::to_string(5.0 * dx) +
+                                  " m (or 0 for y1/0.611); use a finer resolution or a wider opening");
+  }
+  // The gate above the inflow reaches the fluid ceiling (the energy line E1); a fluid particle counts
+  // as escaped only beyond the ceiling plus the domain margin 4h (diagnose in run.hpp). Raise the gate
+  // by that margin and one spacing, so spray in the band cannot fly over it into the inflow unseen.
+  const double raise = 4.0 * c.sph.coef_h * std::sqrt(2.0) * dx + dx;
+  for (auto& wall : g.walls) {
+    if (wall.name != "inlet_gate" && wall.name != "sluice_gate") continue;
+    double top = -std::numeric_limits<double>::infinity();
+    for (const auto& p : wall.points) top = std::max(top, p.y());
+    for (auto& p : wall.points)
+      if (p.y() >= top - 1e-12) p.y() += raise;
   }
   return g;
 }
@@ -136,9 +154,10 @@ SolverSettings make_settings(const cases::Case& c, const cases::FluidProperties&
                                                     : cases::tailgate_height_for_depth(q, y_t, gravity);
     const double room = g.z_max_m - g.bed.elevation(g.outflows.front().x_m);
     if (!(out.tailgate_height < room))
-      throw std::invalid_argument("sph.tailgate_height_m = " + std::to_string(out.tailgate_height) +
-                                  " m reaches above the domain (" + std::to_string(room) +
-                                  " m above the bed at the outflow section): use a lower gate");
+      throw std::invalid_argument(
+          (s.tailgate_height_m > 0.0 ? "sph.tailgate_height_m = " : "the tailgate height from the tailwater depth y_t (Rehbock), ") +
+          std::to_string(out.tailgate_height) + " m, reaches above the domain (" + std::to_string(room) +
+          " m above the bed at the outflow section): use a lower gate (sph.tailgate_height_m) or a higher case.domain.air_height_m");
     if (out.tailgate_height < 2.0 * dx)
       throw std::invalid_argument("sph tailgate: the crest height " + std::to_string(out.tailgate_height) +
                                   " m is less than 2 particle spacings (dx = " + std::to_string(dx) +

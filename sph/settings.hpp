@@ -24,7 +24,7 @@ enum class TimeIntegrator { symplectic, verlet };
 // sph.outflow_condition: the outflow buffers of open_boundaries.hpp, or the weir of tailgate.hpp.
 enum class OutflowCondition { hydrostatic_level, absorbing, tailgate };
 // sph.inflow_condition: the inflow buffer of open_boundaries.hpp, or a piston reservoir behind a sluice
-// gate (cases::add_piston_reservoir, sph/gate_crossing.hpp).
+// gate (cases::add_piston_reservoir, sph/piston_inflow.hpp).
 enum class InflowCondition { buffer, piston };
 
 struct SolverSettings {

@@ -26,6 +26,9 @@ void move_walls(ParticleSet& particles, const WallMotion& motion, double t0, dou
     const double vn = n2 > 0.0 ? (u * nx + w * nz) / n2 : 0.0;
     particles.u[i] = vn * nx;
     particles.w[i] = vn * nz;
+    // The no-slip velocity of the viscous terms: the same (mDBC replaces it with its mirrored value).
+    particles.wall_u[i] = particles.u[i];
+    particles.wall_w[i] = particles.w[i];
   }
 }
 

@@ -37,8 +37,13 @@ TEST_CASE("Stilling-basin geometry of run A", "[cases][geometry]") {
     const auto g = make_geometry(*s.find_case(id), s.fluid);
     const auto* basin = s.find_case(id)->stilling_basin();
     const double e1 = basin->inflow_depth_m + basin->inflow_velocity_m_s * basin->inflow_velocity_m_s / (2 * 9.81);
+    int gates = 0;
     for (const auto& w : g.walls)
-      if (w.name == "inlet_gate") CHECK(w.points.front().y() == Approx(std::max(g.z_max_m, e1)));
+      if (w.name == "inlet_gate") {
+        ++gates;
+        CHECK(w.points.front().y() == Approx(std::max(g.z_max_m, e1)));
+      }
+    CHECK(gates == 1);
   }
   CHECK(geo.max_flow_speed_m_s == Approx(2.0));
 }

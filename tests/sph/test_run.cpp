@@ -245,6 +245,22 @@ TEST_CASE("hydrojump sph runs a generated dam-break directory and resumes it", "
   fs::remove_all(dir);
 }
 
+TEST_CASE("hydrojump sph refuses to run a piston reservoir past the end it was made for", "[sph][cli][piston]") {
+  const fs::path dir = fresh_dir("cli_piston");
+  auto study = hydrojump::cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/cases/ead2002.toml");
+  REQUIRE(study.find_case("A_smooth") != nullptr);
+  hydrojump::cases::Case c = *study.find_case("A_smooth");
+  c.sph.inflow_condition = "piston";
+  write_sph_input(study, c, "quick", dir);
+  SphOptions opt;
+  opt.dir = dir.string();
+  opt.quiet = true;
+  opt.end_time = c.run.end_time_s + 2.0;
+  CHECK_THROWS_WITH(run_sph_directory(opt), Catch::Contains("case.run.end_time_s") && Catch::Contains("piston"));
+  CHECK_FALSE(fs::exists(dir / "checkpoint.bin"));
+  fs::remove_all(dir);
+}
+
 TEST_CASE("every combination of the SPH options runs the dam break stably", "[sph][options]") {
   // 2 kernels x 2 viscosities x 2 boundaries x 3 density diffusions x 2 integrators, 150 steps each
   // at dx = 0.05 m: no diagnosis (finite, inside the tank, |rho/rho0 - 1| < 5 %, dt not collapsed)

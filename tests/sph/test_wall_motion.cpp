@@ -58,6 +58,10 @@ TEST_CASE("wall motion: exact displacement over its interval, wall-normal veloci
   CHECK(p.u[1] == 0.0);
   CHECK(p.w[1] == Approx(2.0));
   CHECK(p.w[2] == 0.0);
+  // The viscous terms' no-slip velocity (used as is with DBC; mDBC mirrors it) is the wall's too.
+  CHECK(p.wall_w[1] == Approx(2.0));
+  CHECK(p.wall_u[0] == 0.0);
+  CHECK(p.wall_w[2] == 0.0);
 }
 
 TEST_CASE("lifted dam-break gate: a plate of moving wall particles behind the column", "[sph][wall_motion]") {
