@@ -60,7 +60,7 @@ std::string fix(double v, int decimals, bool sign = false) {
 
 StudySummary summarize_study(const std::vector<std::pair<std::string, fs::path>>& cases) {
   StudySummary out;
-  std::ostringstream eta, len, csv;
+  std::ostringstream eta, len, pos, csv;
   csv << "case,smooth_theory_percent,experiment_percent,published_sph_percent,sph_percent,vof_percent,"
          "sph_crest_depth_percent,vof_crest_depth_percent\n";
   eta << "| case | smooth bed (theory) | experiment | published SPH | this SPH | this VOF | SPH − exp. | VOF − exp. | "
@@ -68,12 +68,15 @@ StudySummary summarize_study(const std::vector<std::pair<std::string, fs::path>>
          "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   len << "| case | y2 exp. (m) | y2 SPH | y2 VOF | Lj exp. (m) | Lj SPH | Lj VOF | Lr SPH (m) | Lr VOF |\n"
          "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  pos << "| case | toe SPH (m) | toe VOF (m) | toe sd SPH (m) | toe sd VOF (m) | bed force SPH (%) | bed force VOF (%) |\n"
+         "|---|---:|---:|---:|---:|---:|---:|\n";
   for (const auto& [id, dir] : cases) {
     const fs::path eta_file = dir / "csv" / "eta.csv";
     const auto eta_rows = read_csv(eta_file);
     if (eta_rows.empty()) {
       eta << "| " << id << " | missing: no comparison | | | | | | | | | | |\n";
       len << "| " << id << " | missing | | | | | | | |\n";
+      pos << "| " << id << " | missing | | | | | |\n";
       continue;
     }
     out.eta_files.push_back(eta_file);
@@ -97,11 +100,20 @@ StudySummary summarize_study(const std::vector<std::pair<std::string, fs::path>>
         << " | " << fix(get("sequent_depth", "vof"), 3) << " | " << fix(get("jump_length", "experiment"), 3) << " | "
         << fix(get("jump_length", "sph"), 3) << " | " << fix(get("jump_length", "vof"), 3) << " | "
         << fix(get("roller_length", "sph"), 3) << " | " << fix(get("roller_length", "vof"), 3) << " |\n";
+    pos << "| " << id << " | " << fix(get("toe_position", "sph"), 3) << " | " << fix(get("toe_position", "vof"), 3) << " | "
+        << fix(get("toe_std", "sph"), 3) << " | " << fix(get("toe_std", "vof"), 3) << " | "
+        << fix(get("bed_force_fraction", "sph"), 1) << " | " << fix(get("bed_force_fraction", "vof"), 1) << " |\n";
   }
   out.markdown = "### Energy dissipation rate η (%)\n\nη = (E1 − E2)/E1 with E = z_b + h + αU²/(2g) at the upstream and "
                  "downstream sections; 'lab convention': E = y + q²/(2gy²) with y above the corrugation crests.\n\n" +
                  eta.str() + "\n### Sequent depth, jump and roller length\n\n" +
-                 len.str() + "\n";
+                 len.str() +
+                 "\n### Jump position and momentum balance\n\nToe: time-mean surface criterion and its standard "
+                 "deviation over the frames. Bed force (M1 − M2)/M1 with the specific force M = h²/2 + βq²/(gh) at the "
+                 "upstream and downstream sections: 0 for Bélanger's frictionless smooth bed, positive when the bed "
+                 "holds part of the jump's force (corrugations), negative when more force leaves than enters (a jump "
+                 "pushed upstream).\n\n" +
+                 pos.str() + "\n";
   // "—" is for people; the CSV keeps "nan" for missing values.
   std::string c = csv.str();
   for (std::size_t p = c.find("—"); p != std::string::npos; p = c.find("—")) c.replace(p, std::string("—").size(), "nan");

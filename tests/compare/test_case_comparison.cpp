@@ -202,6 +202,8 @@ TEST_CASE("compare_case_directory on a synthetic jump gives both methods with me
     CHECK(sum.eta_files.size() == 1u);
     CHECK_THAT(sum.markdown, Catch::Contains("| A | 39.") && Catch::Contains("| 48.43 | 47.08 |") &&
                                  Catch::Contains("| B | missing"));
+    const std::string positions = sum.markdown.substr(sum.markdown.find("### Jump position and momentum balance"));
+    CHECK_THAT(positions, Catch::Contains("| A | ") && Catch::Contains("| B | missing"));
     CHECK_THAT(sum.eta_csv, Catch::StartsWith("case,") && Catch::Contains("\nA,"));
     // eta bars across runs (the study-level figure) from the case directories
     CHECK(plot_study_eta_bars({fx.run(), fx.tmp.path() / "no-such-case"}, fx.tmp.path() / "eta_bars.png") == "");
