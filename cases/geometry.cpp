@@ -227,6 +227,8 @@ PistonReservoir add_piston_reservoir(CaseGeometry& geo, const StillingBasinCase&
   piston.velocity_m_s = Vec2(r.piston_speed_m_s, 0.0);
   piston.start_s = 0.0;
   piston.end_s = end_time_s;
+  piston.held_level_m = r.depth_m;
+  piston.reservoir_end_x_m = -t;
   geo.moving_walls.push_back(std::move(piston));
   // Water at rest at H_r in the reservoir, down to the jet under the gate.
   auto& w = geo.initial_water;

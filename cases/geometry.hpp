@@ -58,6 +58,9 @@ struct MovingWall {
   Vec2 velocity_m_s = Vec2::Zero();
   double start_s = 0.0;
   double end_s = 0.0;
+  // A piston that holds a reservoir's level (sph/wall_motion.hpp): 0 = none, the velocity above only.
+  double held_level_m = 0.0;          // H_r, above the reservoir bed at z = 0
+  double reservoir_end_x_m = 0.0;     // the reservoir's downstream end (the gate's upstream face)
 };
 
 struct CaseGeometry {

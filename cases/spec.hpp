@@ -48,6 +48,7 @@ struct SphSettings {
                                                    // pushed by a piston behind a sluice gate, geometry.hpp)
   double sluice_opening_m = 0.0;                   // "piston": gate opening; 0: y1 / 0.611
   double reservoir_length_m = 0.0;                 // "piston": 0: piston travel over the run + 2 H_r
+  double piston_level_gain_per_s = 10.0;           // "piston": K of u_p = q/H_r + K (H_r - H); 0: fixed speed
   std::string outflow_condition = "hydrostatic_level";  // "hydrostatic_level" | "absorbing" (open_boundaries.hpp)
                                                    // | "tailgate" (sph/tailgate.hpp)
   double tailgate_height_m = 0.0;                  // "tailgate": crest above the local bed; 0: from the

@@ -293,7 +293,9 @@ void read_sph(TableReader& t, SphSettings& s) {
   s.inflow_condition = t.choice("inflow_condition", s.inflow_condition, {"buffer", "piston"});
   s.sluice_opening_m = t.number_or("sluice_opening_m", s.sluice_opening_m, non_negative("m, 0: y1 / 0.611", 100.0));
   s.reservoir_length_m = t.number_or("reservoir_length_m", s.reservoir_length_m, non_negative("m, 0: from the run's length", 1000.0));
-  for (const char* key : {"sluice_opening_m", "reservoir_length_m"})
+  s.piston_level_gain_per_s = t.number_or("piston_level_gain_per_s", s.piston_level_gain_per_s,
+                                          non_negative("1/s, 0: the piston keeps the speed q/H_r", 1000.0));
+  for (const char* key : {"sluice_opening_m", "reservoir_length_m", "piston_level_gain_per_s"})
     if (s.inflow_condition != "piston" && t.raw().get(key))
       t.fail_at(t.raw().get(key), key, std::string("is only used with inflow_condition = \"piston\" (here \"") + s.inflow_condition + "\")");
   s.outflow_condition = t.choice("outflow_condition", s.outflow_condition, {"hydrostatic_level", "absorbing", "tailgate"});
@@ -776,6 +778,7 @@ void write_sph(TomlWriter& w, const SphSettings& s) {
   if (s.inflow_condition == "piston") {
     w.num("sluice_opening_m", s.sluice_opening_m);
     w.num("reservoir_length_m", s.reservoir_length_m);
+    w.num("piston_level_gain_per_s", s.piston_level_gain_per_s);
   }
   w.str("outflow_condition", s.outflow_condition);
   if (s.outflow_condition == "tailgate") w.num("tailgate_height_m", s.tailgate_height_m);

@@ -1,15 +1,17 @@
 // Piston inflow: the set-up of the corrugated-bed SPH study (Bo et al. 2019) instead of an inflow
-// buffer. A reservoir upstream of a sluice gate is pushed by a piston at U_p = q / H_r, so the gate
-// passes q while the reservoir stands at H_r and the jet contracts to y1 below the gate. The level is
-// not self-correcting: with L the reservoir length and Q(H) the gate's discharge,
+// buffer. A reservoir upstream of a sluice gate is pushed by a piston that keeps its level at H_r, so
+// the gate passes Q(H_r): q if the jet contracts to y1 below the gate as assumed (Cc = 0.611). With L
+// the reservoir length and Q(H) the gate's discharge,
 //
-//   L dH/dt = U_p H - Q(H),
+//   L dH/dt = u_p H - Q(H).
 //
-// and U_p H_r = Q(H_r) only if the jet contracts as assumed (Cc = 0.611); even then the balance is
-// unstable where U_p > dQ/dH (true at H_r: 0.224 vs 0.125 m/s for run A), so the level and the inflow
-// drift on a time scale L / (dQ/dH - U_p) that shrinks as the piston advances. At dx = 5 mm the jet
-// contracts to Cc = 0.86, the gate passes more than U_p H at every level and the inflow decays
-// (sph/README.md). The inflow buffer holds q exactly; the piston is the published set-up. The
+// At the constant speed U_p0 = q / H_r the level is not self-correcting (unstable where U_p0 > dQ/dH,
+// true at H_r: 0.224 vs 0.125 m/s for run A), so the piston's speed follows the level,
+// u_p = U_p0 + K (H_r - H) (wall_motion.hpp, sph.piston_level_gain_per_s = K, default 10 1/s; 0 for
+// the constant speed). The inflow is then what the gate passes at H_r: at dx = 5 mm the jet contracts
+// less than 0.611 (Cc = 0.75 in the 0.4 s test), so the default opening passes ~18 % more than q and
+// the reservoir runs out early (a clear stop); give sph.sluice_opening_m = y1 / Cc. The inflow buffer
+// holds q exactly; the piston is the published set-up. The
 // geometry (reservoir, gate plate, piston, level H_r from E1, opening y1 / 0.611, length) is
 // cases::add_piston_reservoir; the piston is a moving wall (sph/wall_motion.hpp). Nothing is created:
 // the water that enters the basin is the water that crosses the inflow section x_in (the downstream
@@ -26,6 +28,7 @@
 //   | inflow_condition     | "piston" (default "buffer")                                      |
 //   | sluice_opening_m     | gate opening (m); 0: y1 / 0.611                                  |
 //   | reservoir_length_m   | piston start to gate (m); 0: U_p T_end + 2 H_r                    |
+//   | piston_level_gain_per_s | K of the level control (1/s); default 10, 0: constant speed   |
 // Example (cases/*.toml):
 //   [case.sph]
 //   inflow_condition = "piston"

@@ -223,7 +223,23 @@ std::string diagnose(const Solver& solver) {
         << solver.acoustic_time_step() << " s (a particle is being accelerated without bound)\n";
     ++reported;
   }
-  if (reported == 0) return {};
+  if (reported == 0) {
+    // A level-holding piston that has nearly reached the gate: the reservoir is used up.
+    const WallMotion& piston = s.wall_motion;
+    if (piston.holds_level()) {
+      const double face = moving_face_x(ps);
+      if (piston.reservoir_end_x_m - face < piston.held_level_m) {
+        std::ostringstream e;
+        e << "the piston reservoir is used up at t = " << t << " s: the piston face is at x = " << face
+          << " m, less than H_r = " << piston.held_level_m << " m before the gate (x = " << piston.reservoir_end_x_m
+          << " m). Holding the level, the piston pushes what the gate passes; when that is more than q the jet "
+             "contracts less than the opening assumes (Cc = 0.611): give a smaller sph.sluice_opening_m (y1/Cc with "
+             "the Cc this resolution gives) or a longer sph.reservoir_length_m.";
+        return e.str();
+      }
+    }
+    return {};
+  }
   std::ostringstream head;
   head << "the SPH run went unstable at t = " << t << " s (step " << solver.clock().steps << "); " << reported
        << " problem(s)" << (reported > 5 ? ", the first 5:" : ":") << "\n"

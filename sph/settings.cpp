@@ -171,7 +171,9 @@ SolverSettings make_settings(const cases::Case& c, const cases::FluidProperties&
     throw std::invalid_argument("the SPH solver moves one wall per case; the geometry has " +
                                 std::to_string(g.moving_walls.size()));
   for (const auto& wall : g.moving_walls)
-    out.wall_motion = WallMotion{wall.velocity_m_s.x(), wall.velocity_m_s.y(), wall.start_s, wall.end_s};
+    out.wall_motion = WallMotion{wall.velocity_m_s.x(), wall.velocity_m_s.y(), wall.start_s, wall.end_s,
+                                 wall.held_level_m, wall.reservoir_end_x_m,
+                                 wall.held_level_m > 0.0 ? s.piston_level_gain_per_s : 0.0};
   out.validate();
   return out;
 }

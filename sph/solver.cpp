@@ -44,7 +44,7 @@ void Solver::step() {
   const InteractionSummary start = interactions();
   const double dt = variable_time_step(start, settings_);
   const double t = clock_.time;
-  const WallMotion& walls = settings_.wall_motion;
+  const WallMotion walls = settings_.wall_motion.for_step(particles_);
   if (settings_.time_integrator == TimeIntegrator::symplectic) {
     symplectic_predictor(particles_, settings_, dt);
     move_walls(particles_, walls, t, t + 0.5 * dt);

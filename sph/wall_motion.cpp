@@ -1,12 +1,39 @@
 #include "sph/wall_motion.hpp"
 
 #include <algorithm>
+#include <limits>
 
 namespace hydrojump::sph {
 
 // |[t0, t1] n [start, end)|
 double WallMotion::moving_time(double t0, double t1) const {
   return std::max(0.0, std::min(t1, end_s) - std::max(t0, start_s));
+}
+
+double moving_face_x(const ParticleSet& particles) {
+  constexpr auto moving = static_cast<std::uint8_t>(ParticleType::moving_wall);
+  double face = -std::numeric_limits<double>::infinity();
+  for (Eigen::Index i = 0; i < particles.size(); ++i)
+    if (particles.type[i] == moving) face = std::max(face, particles.x[i] + 0.5 * particles.ghost_dx[i]);
+  return face;
+}
+
+// H = sum_{fluid i, x_i < x_end} (m_i / rho_i) / (x_end - x_face)
+double reservoir_level(const ParticleSet& particles, double x_face, double x_end) {
+  double volume = 0.0;
+  for (Eigen::Index i = 0; i < particles.size(); ++i)
+    if (particles.is_fluid(i) && particles.x[i] < x_end) volume += particles.mass[i] / particles.rho[i];
+  return x_end > x_face ? volume / (x_end - x_face) : std::numeric_limits<double>::infinity();
+}
+
+// u_p = max(0, U_p0 + K (H_r - H))
+WallMotion WallMotion::for_step(const ParticleSet& particles) const {
+  if (!holds_level()) return *this;
+  WallMotion m = *this;
+  const double level = reservoir_level(particles, moving_face_x(particles), reservoir_end_x_m);
+  m.u_m_s = std::max(0.0, u_m_s + level_gain_per_s * (held_level_m - level));
+  m.w_m_s = 0.0;
+  return m;
 }
 
 // x(t1) = x(t0) + v_wall |[t0, t1] n [start, end)|,  particle velocity (v(t1) . n) n

@@ -1,17 +1,19 @@
 // The piston inflow (sph/piston_inflow.hpp, cases::add_piston_reservoir): a reservoir behind a sluice
 // gate pushed by a piston, the set-up of the corrugated-bed SPH study. Case A_smooth on a shortened
 // basin (0.1 + 0.3 + 0.1 m), a run of 0.6 s (so a short reservoir), dx = 5 mm, simulated to 0.4 s.
-// Checks: the generated reservoir, gate and piston; the piston advancing U_p t; no water lost or
+// Checks: the generated reservoir, gate and piston; the piston holding the level; no water lost or
 // created (reservoir + basin + outflow buffer + what left over the outlet); the water entering the
 // basin under the gate; and the contraction of the jet implied by its rate over 0.2-0.4 s,
 //   q_gate = Cc a sqrt(2 g (H - Cc a))      (Torricelli below a sluice gate, H the reservoir level),
 // which must lie between the sharp-edged gate's 0.611 (less contraction is possible, more is not)
-// and 1 (no contraction): 0.55 < Cc < 1.0. Measured: Cc = 0.86 at dx = 5 mm (an opening of 8 particle
-// spacings contracts less than the laboratory's), so the default opening y1/0.611 passes ~30 % more
-// than q at first (0.067 vs 0.0508 m^2/s over 0.2-0.4 s), until the reservoir level has dropped.
+// and 1 (no contraction): 0.55 < Cc < 1.0. Measured: Cc = 0.75 at dx = 5 mm with the level held (an
+// opening of 8 particle spacings contracts less than the laboratory's), so the default opening
+// y1/0.611 passes 18 % more than q (0.060 vs 0.0508 m^2/s over 0.2-0.4 s).
 #include <catch2/catch.hpp>
 
+#include <array>
 #include <cmath>
+#include <vector>
 #include <iostream>
 #include <set>
 #include <string>
@@ -39,7 +41,7 @@ double water_mass(const sph::ParticleSet& ps) {
 }
 
 // The reservoir level: the highest fluid particle over the middle of the reservoir, plus dx/2.
-double reservoir_level(const sph::ParticleSet& ps, double x0, double x1, double dx) {
+double reservoir_surface(const sph::ParticleSet& ps, double x0, double x1, double dx) {
   double top = 0.0;
   for (Eigen::Index i = 0; i < ps.size(); ++i)
     if (ps.is_fluid(i) && ps.x[i] > x0 && ps.x[i] < x1) top = std::max(top, ps.z[i]);
@@ -94,6 +96,38 @@ TEST_CASE("piston inflow: reservoir, gate and piston are generated", "[sph][pist
   CHECK(static_cast<double>(columns.size()) == Approx(thickness / dx));
 }
 
+TEST_CASE("piston inflow: the level-holding speed u_p = U_p0 + K (H_r - H) from the water in front", "[sph][piston]") {
+  // A piston plate (two moving-wall columns, face at x = -1.0) and a lattice of water 0.8 m long and
+  // 0.2 m deep in front of it, ending at the gate face x_end = -0.2; some water beyond x_end.
+  const double dx = 0.01, rho = 1000.0;
+  sph::ParticleSet p;
+  std::vector<std::array<double, 3>> seeds;  // type, x, z
+  for (int k = 0; k < 2; ++k)
+    for (int j = 0; j < 30; ++j) seeds.push_back({4.0, -1.0 - (k + 0.5) * dx, (j + 0.5) * dx});
+  for (int i = 0; i < 80; ++i)
+    for (int j = 0; j < 20; ++j) seeds.push_back({0.0, -1.0 + (i + 0.5) * dx, (j + 0.5) * dx});
+  for (int i = 0; i < 10; ++i) seeds.push_back({0.0, -0.2 + (i + 0.5) * dx, 0.5 * dx});
+  p.resize(static_cast<Eigen::Index>(seeds.size()));
+  for (std::size_t n = 0; n < seeds.size(); ++n) {
+    const auto i = static_cast<Eigen::Index>(n);
+    p.assign(i, static_cast<sph::ParticleType>(static_cast<int>(seeds[n][0])), seeds[n][1], seeds[n][2], rho, rho * dx * dx,
+             static_cast<std::int64_t>(n));
+    if (seeds[n][0] == 4.0) p.ghost_dx[i] = 2.0 * (-1.0 - seeds[n][1]);
+  }
+  CHECK(sph::moving_face_x(p) == Approx(-1.0).epsilon(1e-12));
+  CHECK(sph::reservoir_level(p, -1.0, -0.2) == Approx(0.2).epsilon(1e-12));
+  sph::WallMotion m{0.25, 0.0, 0.0, 10.0, 0.22, -0.2, 10.0};
+  REQUIRE(m.holds_level());
+  CHECK(m.for_step(p).u_m_s == Approx(0.25 + 10.0 * (0.22 - 0.2)).epsilon(1e-12));  // low level: faster
+  m.held_level_m = 0.15;
+  CHECK(m.for_step(p).u_m_s == 0.0);  // 0.25 - 10 x 0.05 would pull back: the piston stops
+  m.held_level_m = 0.18;
+  CHECK(m.for_step(p).u_m_s == Approx(0.05).epsilon(1e-12));
+  m.level_gain_per_s = 0.0;  // no control: the constant speed
+  CHECK_FALSE(m.holds_level());
+  CHECK(m.for_step(p).u_m_s == 0.25);
+}
+
 TEST_CASE("piston inflow: an opening of fewer than 5 particle spacings is refused", "[sph][piston]") {
   auto study = cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/cases/ead2002.toml");
   REQUIRE(study.find_case("A_smooth") != nullptr);
@@ -130,7 +164,14 @@ TEST_CASE("piston inflow: a short run pushes water under the gate, contracting a
   double x_plate = 1e9;
   for (Eigen::Index i = 0; i < ps.size(); ++i)
     if (ps.type[i] == static_cast<std::uint8_t>(sph::ParticleType::moving_wall)) x_plate = std::min(x_plate, ps.x[i]);
-  CHECK(x_plate - x_plate0 == Approx(u_p * solver.time()).epsilon(1e-9));
+  // The piston holds the level: the reservoir stands within 5 % of H_r, and since this gate passes
+  // more than q (Cc above 0.611) the piston runs faster than U_p0 = q/H_r to feed it.
+  const auto& motion = c.settings.wall_motion;
+  REQUIRE(motion.holds_level());
+  const double held = sph::reservoir_level(ps, sph::moving_face_x(ps), motion.reservoir_end_x_m);
+  CHECK(std::abs(held - motion.held_level_m) < 0.05 * motion.held_level_m);
+  CHECK(x_plate - x_plate0 > u_p * solver.time());
+  CHECK(motion.for_step(ps).u_m_s > u_p);
   // Nothing created: the water now in the domain plus what left over the outlet is the initial water.
   const double m1 = water_mass(ps);
   CHECK(std::abs(m1 + solver.clock().outflow_mass - m0) <= 1e-9 * m0);
@@ -138,10 +179,11 @@ TEST_CASE("piston inflow: a short run pushes water under the gate, contracting a
   double opening = 0.0;
   for (const auto& wall : c.geometry.walls)
     if (wall.name == "sluice_gate") opening = wall.points[1].y();
-  const double level = reservoir_level(ps, x_p + 0.2 * (0.0 - x_p) + u_p * solver.time(), 0.5 * x_p, c.settings.dx);
+  const double level = reservoir_surface(ps, x_p + 0.2 * (0.0 - x_p) + u_p * solver.time(), 0.5 * x_p, c.settings.dx);
   const double cc = contraction(q_gate, opening, level, 9.81);
   std::cout << "piston inflow A_smooth (short): U_p " << u_p << " m/s, t = " << solver.time()
-            << " s, water under the gate " << solver.clock().inflow_mass << " kg/m, q over 0.2-0.4 s " << q_gate
+            << " s, piston travel " << x_plate - x_plate0 << " m (U_p0 t = " << u_p * solver.time() << "), reservoir level held "
+            << held << " m (H_r " << motion.held_level_m << "), water under the gate " << solver.clock().inflow_mass << " kg/m, q over 0.2-0.4 s " << q_gate
             << " m^2/s (q = " << q << "), reservoir level " << level << " m, opening " << opening << " m: Cc = " << cc << "\n";
   CHECK(solver.clock().inflow_mass > 0.0);
   CHECK(cc > 0.55);
