@@ -8,6 +8,8 @@ namespace hydrojump::cases {
 
 // The x in [lo, hi] with f(x) = target for f increasing on [lo, hi], by bisection to a relative width
 // `rel_tol` of the interval (the root finder of the weir, tailgate and reservoir-level equations).
+// The ends are never evaluated (f may be undefined there, as the weir head at P = 0); the caller
+// must bracket the root: with f < target on all of (lo, hi) the result is hi, with f > target it is lo.
 double solve_increasing(const std::function<double(double)>& f, double target, double lo, double hi,
                         double rel_tol = 1e-15);
 
