@@ -269,7 +269,7 @@ CaseComparison compare_case(const cases::Study& study, const fs::path& run_dir, 
     r.profiles = profile_differences(r.sph.stats, r.vof.stats, r.inflow_velocity_m_s);
   }
   r.metrics = metric_table(r.sph.available ? &r.sph.metrics : nullptr, r.vof.available ? &r.vof.metrics : nullptr,
-                           r.lab, r.inflow_depth_m);
+                           r.lab, r.inflow_depth_m, r.inflow_velocity_m_s, r.gravity_m_s2);
   return r;
 }
 

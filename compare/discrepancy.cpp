@@ -68,7 +68,7 @@ std::vector<ProfileDifference> profile_differences(const MethodStatistics& sph, 
 }
 
 std::vector<MetricRow> metric_table(const JumpMetrics* sph, const JumpMetrics* vof, const MeasuredReference& lab,
-                                    double inflow_depth_m) {
+                                    double inflow_depth_m, double inflow_velocity_m_s, double gravity_m_s2) {
   auto v = [](const JumpMetrics* m, double JumpMetrics::*f, double scale = 1.0) {
     return m ? m->*f * scale : not_a_number;
   };
@@ -93,8 +93,15 @@ std::vector<MetricRow> metric_table(const JumpMetrics* sph, const JumpMetrics* v
   rows.push_back({"eta_crest_depth", "%", v(sph, &JumpMetrics::eta_crest_depth, 100.0),
                   v(vof, &JumpMetrics::eta_crest_depth, 100.0), o(lab.eta_percent), o(lab.published_sph_eta_percent),
                   o(lab.eta_smooth_percent)});
+  // M = h^2/2 + q^2/(g h) of uniform sections at y1 and at the measured y2
+  double lab_bed_force = not_a_number;
+  if (lab.sequent_depth_m && inflow_depth_m > 0.0 && gravity_m_s2 > 0.0) {
+    const double q = inflow_depth_m * inflow_velocity_m_s;
+    const double m1 = specific_force(inflow_depth_m, q, gravity_m_s2);
+    lab_bed_force = 100.0 * (m1 - specific_force(*lab.sequent_depth_m, q, gravity_m_s2)) / m1;
+  }
   rows.push_back({"bed_force_fraction", "%", v(sph, &JumpMetrics::bed_force_fraction, 100.0),
-                  v(vof, &JumpMetrics::bed_force_fraction, 100.0), not_a_number, not_a_number, 0.0});
+                  v(vof, &JumpMetrics::bed_force_fraction, 100.0), lab_bed_force, not_a_number, 0.0});
   rows.push_back({"velocity_settling_distance", "m", v(sph, &JumpMetrics::velocity_settling_distance_m),
                   v(vof, &JumpMetrics::velocity_settling_distance_m), not_a_number, not_a_number, not_a_number});
   return rows;

@@ -52,7 +52,10 @@ SurfaceDifference surface_difference(const MethodStatistics& sph, const MethodSt
                                      double x_to);
 std::vector<ProfileDifference> profile_differences(const MethodStatistics& sph, const MethodStatistics& vof,
                                                    double u1);
+// The inflow (y1, U1) and g give the experiment's bed force: (M1 - M2)/M1 with uniform sections at y1
+// and at the measured y2 (M = h^2/2 + q^2/(g h)), the force balance Ead & Rajaratnam's shear-force
+// coefficient comes from.
 std::vector<MetricRow> metric_table(const JumpMetrics* sph, const JumpMetrics* vof, const MeasuredReference& lab,
-                                    double inflow_depth_m);
+                                    double inflow_depth_m, double inflow_velocity_m_s, double gravity_m_s2);
 
 }  // namespace hydrojump::compare

@@ -18,6 +18,11 @@ double section_energy(const ColumnStatistics& s, double gravity, bool alpha_one)
 
 double dissipation_rate(double e1, double e2) { return (e1 - e2) / e1; }
 
+// M = h^2/2 + q^2/(g h)
+double specific_force(double depth_m, double discharge_m2_s, double gravity_m_s2) {
+  return 0.5 * depth_m * depth_m + discharge_m2_s * discharge_m2_s / (gravity_m_s2 * depth_m);
+}
+
 std::size_t find_toe(const std::vector<double>& x, const std::vector<double>& zeta, double x_from,
                      const JumpInputs& in) {
   const cases::ToeCriterion criterion{in.options.toe_threshold_y1, in.options.toe_window_y1,

@@ -87,6 +87,9 @@ double section_energy(const ColumnStatistics& s, double gravity, bool alpha_one)
 // eta = (E1 - E2) / E1
 double dissipation_rate(double e1, double e2);
 
+// M = h^2/2 + q^2/(g h): the specific force of a uniform section (beta = 1), m^2.
+double specific_force(double depth_m, double discharge_m2_s, double gravity_m_s2);
+
 // Index of the toe station by the criterion above (cases/jump_toe.hpp) on the surface zeta(x) above the floor (x evenly
 // spaced), searching from x_from on; x.size() when there is none.
 std::size_t find_toe(const std::vector<double>& x, const std::vector<double>& zeta, double x_from,

@@ -68,15 +68,16 @@ StudySummary summarize_study(const std::vector<std::pair<std::string, fs::path>>
          "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   len << "| case | y2 exp. (m) | y2 SPH | y2 VOF | Lj exp. (m) | Lj SPH | Lj VOF | Lr SPH (m) | Lr VOF |\n"
          "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
-  pos << "| case | toe SPH (m) | toe VOF (m) | toe sd SPH (m) | toe sd VOF (m) | bed force SPH (%) | bed force VOF (%) |\n"
-         "|---|---:|---:|---:|---:|---:|---:|\n";
+  pos << "| case | toe SPH (m) | toe VOF (m) | toe sd SPH (m) | toe sd VOF (m) | bed force exp. (%) | bed force SPH (%) | "
+         "bed force VOF (%) |\n"
+         "|---|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const auto& [id, dir] : cases) {
     const fs::path eta_file = dir / "csv" / "eta.csv";
     const auto eta_rows = read_csv(eta_file);
     if (eta_rows.empty()) {
       eta << "| " << id << " | missing: no comparison | | | | | | | | | | |\n";
       len << "| " << id << " | missing | | | | | | | |\n";
-      pos << "| " << id << " | missing | | | | | |\n";
+      pos << "| " << id << " | missing | | | | | | |\n";
       continue;
     }
     out.eta_files.push_back(eta_file);
@@ -102,7 +103,7 @@ StudySummary summarize_study(const std::vector<std::pair<std::string, fs::path>>
         << fix(get("roller_length", "sph"), 3) << " | " << fix(get("roller_length", "vof"), 3) << " |\n";
     pos << "| " << id << " | " << fix(get("toe_position", "sph"), 3) << " | " << fix(get("toe_position", "vof"), 3) << " | "
         << fix(get("toe_std", "sph"), 3) << " | " << fix(get("toe_std", "vof"), 3) << " | "
-        << fix(get("bed_force_fraction", "sph"), 1) << " | " << fix(get("bed_force_fraction", "vof"), 1) << " |\n";
+        << fix(get("bed_force_fraction", "experiment"), 1) << " | " << fix(get("bed_force_fraction", "sph"), 1) << " | " << fix(get("bed_force_fraction", "vof"), 1) << " |\n";
   }
   out.markdown = "### Energy dissipation rate η (%)\n\nη = (E1 − E2)/E1 with E = z_b + h + αU²/(2g) at the upstream and "
                  "downstream sections; 'lab convention': E = y + q²/(2gy²) with y above the corrugation crests.\n\n" +
@@ -112,7 +113,7 @@ StudySummary summarize_study(const std::vector<std::pair<std::string, fs::path>>
                  "deviation over the frames. Bed force (M1 − M2)/M1 with the specific force M = h²/2 + βq²/(gh) at the "
                  "upstream and downstream sections: 0 for Bélanger's frictionless smooth bed, positive when the bed "
                  "holds part of the jump's force (corrugations), negative when more force leaves than enters (a jump "
-                 "pushed upstream).\n\n" +
+                 "pushed upstream). The experiment's value uses uniform sections at y1 and the measured y2.\n\n" +
                  pos.str() + "\n";
   // "—" is for people; the CSV keeps "nan" for missing values.
   std::string c = csv.str();

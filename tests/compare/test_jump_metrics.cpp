@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "cases/hydraulics.hpp"
+#include "compare/discrepancy.hpp"
 #include "compare/jump_metrics.hpp"
 
 using namespace hydrojump::compare;
@@ -92,6 +93,32 @@ TEST_CASE("Specific force of hand-built sections: Belanger's pair balances, a dr
   const double m2_low = 0.5 * 0.64 * y2 * y2 + q * q / (g * 0.8 * y2);
   CHECK(r.bed_force_fraction == Approx((m1 - m2_low) / m1).epsilon(1e-12));
   CHECK(r.bed_force_fraction > 0.1);
+}
+
+TEST_CASE("The experiment's bed force from y1, U1 and the measured y2", "[compare][metrics]") {
+  // Run B: y1 = 25.4 mm, U1 = 3.0 m/s (q = 0.0762 m^2/s), measured y2 = 0.145 m. By hand:
+  // M1 = 0.0254^2/2 + 0.0762^2/(9.81 0.0254) = 0.000322580 + 0.023302752 = 0.023625332 m^2,
+  // M2 = 0.145^2/2 + 0.0762^2/(9.81 0.145) = 0.0105125 + 0.004081999 = 0.014594499 m^2,
+  // (M1 - M2)/M1 = 38.2252 %.
+  MeasuredReference lab;
+  lab.sequent_depth_m = 0.145;
+  auto rows = metric_table(nullptr, nullptr, lab, 0.0254, 3.0, 9.81);
+  const MetricRow* bed = nullptr;
+  for (const auto& r : rows)
+    if (r.quantity == "bed_force_fraction") bed = &r;
+  REQUIRE(bed != nullptr);
+  CHECK(bed->experiment == Approx(38.2252).margin(1e-4));
+  CHECK(bed->smooth_theory == 0.0);
+  CHECK(std::isnan(bed->sph));
+  // At Belanger's sequent depth the force balances.
+  lab.sequent_depth_m = hydrojump::cases::belanger_sequent_depth(0.0254, 3.0 / std::sqrt(9.81 * 0.0254));
+  rows = metric_table(nullptr, nullptr, lab, 0.0254, 3.0, 9.81);
+  for (const auto& r : rows)
+    if (r.quantity == "bed_force_fraction") CHECK(std::abs(r.experiment) < 1e-9);
+  // Without a measured y2 there is no experimental value.
+  rows = metric_table(nullptr, nullptr, MeasuredReference{}, 0.0254, 3.0, 9.81);
+  for (const auto& r : rows)
+    if (r.quantity == "bed_force_fraction") CHECK(std::isnan(r.experiment));
 }
 
 TEST_CASE("Toe and jump and roller lengths of a synthetic mean surface", "[compare][metrics]") {
