@@ -109,6 +109,7 @@ BasinMonitorSetup BasinMonitorSetup::from_case(const cases::Case& c, const cases
   s.belanger_y2_m = cases::belanger_sequent_depth(b->inflow_depth_m, s.froude1);
   s.floor_z_m = geometry.bed.elevation(geometry.inflows.front().x_m);
   s.x_inflow_m = geometry.inflows.front().x_m;
+  s.reservoir_upstream = c.sph.inflow_condition == "piston";
   s.x_outflow_m = geometry.outflows.front().x_m;
   s.toe_search_from_m = s.x_inflow_m;
   for (const auto& sec : geometry.sections)
@@ -161,11 +162,12 @@ void BasinMonitor::record(const ParticleSet& particles, double t, double mass_in
   s.t = t;
   s.mass_in = mass_in;
   s.mass_out = mass_out;
-  // The water in the basin: fluid downstream of the inflow section (a piston reservoir's water is
-  // upstream of it) plus outflow-buffer particles (the outlet has not removed them yet).
+  // The water in the basin: the fluid (downstream of the inflow section only when a piston
+  // reservoir's water is upstream of it) plus outflow-buffer particles (not removed yet).
   constexpr auto outflow_code = static_cast<std::uint8_t>(ParticleType::outflow);
   for (Eigen::Index i = 0; i < particles.size(); ++i)
-    if ((particles.is_fluid(i) && particles.x[i] >= setup_.x_inflow_m) || particles.type[i] == outflow_code)
+    if ((particles.is_fluid(i) && (!setup_.reservoir_upstream || particles.x[i] >= setup_.x_inflow_m)) ||
+        particles.type[i] == outflow_code)
       s.fluid_mass += particles.mass[i];
   // zeta(x) = z_b(x) + h(x) - z_floor on columns of width dx, then the toe criterion.
   const std::vector<Column> cols = columns(particles, stations_, setup_.dx);

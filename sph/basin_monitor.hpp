@@ -63,6 +63,9 @@ struct BasinMonitorSetup {
   double belanger_y2_m = 0.0;
   double floor_z_m = 0.0;           // upstream floor = crest level
   double x_inflow_m = 0.0, x_outflow_m = 0.0;
+  // A piston reservoir's water lies upstream of x_inflow and is not the basin's; with an inflow
+  // buffer all fluid is (a particle the roller pushes back upstream of x_inflow still counts).
+  bool reservoir_upstream = false;
   double toe_search_from_m = 0.0;   // the "upstream" section (or the inflow)
   double drift_tolerance_m = 0.0;   // wavelength (corrugated) or 2 y1 (smooth)
   double average_start_s = 0.0, average_end_s = 0.0;

@@ -4,7 +4,10 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <cstdlib>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "basin_fixture.hpp"
 #include "sph/basin_monitor.hpp"
@@ -109,4 +112,27 @@ TEST_CASE("a resumed monitor continues from the checkpoint's rows", "[sph][basin
   resumed.record(ps, 0.5, rho0 * q * 0.5, 0.0);
   CHECK(resumed.samples().size() == first.samples().size());
   CHECK_THROWS(resumed.restore({"0,1,2"}));
+}
+
+TEST_CASE("the water in the basin: all fluid with an inflow buffer, not a piston reservoir's", "[sph][basin]") {
+  // One particle of the step pushed back upstream of the inflow section (x_in = 0): with an inflow
+  // buffer it is still basin water (it entered and has not left); upstream of a piston's gate the
+  // water is the reservoir's.
+  hydrojump::sph::ParticleSet ps = step_particles(0.5);
+  ps.x[0] = -0.01;
+  const double total = ps.mass.sum();
+  auto fluid_mass = [&](bool reservoir_upstream) {
+    auto s = setup();
+    s.reservoir_upstream = reservoir_upstream;
+    hydrojump::sph::BasinMonitor monitor(s);
+    monitor.record(ps, 0.0, 0.0, 0.0);
+    const std::string row = monitor.csv_rows().back();
+    std::vector<double> v;
+    std::stringstream in(row);
+    for (std::string cell; std::getline(in, cell, ',');) v.push_back(std::strtod(cell.c_str(), nullptr));
+    REQUIRE(v.size() > 6);
+    return v[6];  // t, toe, q_in, q_out, mass_in, mass_out, fluid_mass, ...
+  };
+  CHECK(fluid_mass(false) == Approx(total).epsilon(1e-12));
+  CHECK(fluid_mass(true) == Approx(total - ps.mass[0]).epsilon(1e-12));
 }
