@@ -14,6 +14,12 @@
 
 namespace hydrojump::sph {
 
+namespace {
+// The excursion beyond the domain box tolerated before a fluid particle counts as escaped (diagnose
+// in run.hpp); the gate above the inflow is raised by it too.
+double escape_margin(double h) { return 4.0 * h; }
+}  // namespace
+
 BoundaryMethod parse_boundary(const std::string& name) {
   if (name == "dbc") return BoundaryMethod::dbc;
   if (name == "mdbc") return BoundaryMethod::mdbc;
@@ -54,7 +60,7 @@ cases::CaseGeometry solver_geometry(const cases::Case& c, const cases::FluidProp
   // The gate above the inflow reaches the fluid ceiling (the energy line E1); a fluid particle counts
   // as escaped only beyond the ceiling plus the domain margin 4h (diagnose in run.hpp). Raise the gate
   // by that margin and one spacing, so spray in the band cannot fly over it into the inflow unseen.
-  const double raise = 4.0 * c.sph.coef_h * std::sqrt(2.0) * dx + dx;
+  const double raise = escape_margin(smoothing_length(c.sph.coef_h, dx)) + dx;
   for (auto& wall : g.walls) {
     if (wall.name != "inlet_gate" && wall.name != "sluice_gate") continue;
     double top = -std::numeric_limits<double>::infinity();
@@ -139,7 +145,7 @@ SolverSettings make_settings(const cases::Case& c, const cases::FluidProperties&
   for (const auto& in : g.inflows)
     out.fluid_ceiling = std::max(out.fluid_ceiling, g.bed.elevation(in.x_m) + cases::specific_energy(in.depth_m, in.depth_m * in.velocity_m_s, gravity));
   out.max_density_variation = s.max_density_variation;
-  out.domain_margin = 4.0 * out.h;
+  out.domain_margin = escape_margin(out.h);
   // Open boundaries: the buffer zones (layers dx upstream of the inflow, downstream of the outflow)
   // belong to the domain; their particles may be fluid for a step before their buffer takes them.
   out.open_boundary_layers = s.open_boundary_layers;
