@@ -85,14 +85,9 @@ std::vector<BedParticle> corrugated_bed_layers(const cases::BedProfile& bed, dou
   return out;
 }
 
-int boundary_layer_count(const SolverSettings& settings, int layers) {
-  if (layers > 0) return layers;
-  return static_cast<int>(std::ceil(settings.support() / settings.dx - 1e-9));
-}
-
 ParticleSet generate_particles(const cases::CaseGeometry& g, const SolverSettings& s, int layers) {
   const double dx = s.dx;
-  const int n_layers = boundary_layer_count(s, layers);
+  const int n_layers = boundary_layer_count(s.h, dx, layers);
   // The lattice corner: the domain box corner, moved (down and left, by less than dx) so that with an
   // inflow the rows and columns line up with the inflow buffer's (rows at z_b(x_in) + (k + 1/2) dx,
   // columns at x_in - (k + 1/2) dx) even when the corrugation troughs lie below the upstream floor.

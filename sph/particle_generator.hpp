@@ -50,7 +50,4 @@ std::vector<BedParticle> corrugated_bed_layers(const cases::BedProfile& bed, dou
 
 ParticleSet generate_particles(const cases::CaseGeometry& geometry, const SolverSettings& settings, int layers = 0);
 
-// Number of boundary layers used for `layers` (0 = from the kernel support).
-int boundary_layer_count(const SolverSettings& settings, int layers);
-
 }  // namespace hydrojump::sph

@@ -38,6 +38,11 @@ InflowCondition parse_inflow_condition(const std::string& name) {
   throw std::invalid_argument("sph.inflow_condition = \"" + name + "\" is not allowed: use \"buffer\" or \"piston\"");
 }
 
+int boundary_layer_count(double h, double dx, int requested) {
+  if (requested > 0) return requested;
+  return static_cast<int>(std::ceil(2.0 * h / dx - 1e-9));
+}
+
 cases::CaseGeometry solver_geometry(const cases::Case& c, const cases::FluidProperties& fluid, double dx) {
   cases::CaseGeometry g = cases::make_geometry(c, fluid);
   if (parse_inflow_condition(c.sph.inflow_condition) == InflowCondition::piston) {
@@ -45,9 +50,8 @@ cases::CaseGeometry solver_geometry(const cases::Case& c, const cases::FluidProp
     if (basin == nullptr)
       throw std::invalid_argument("sph.inflow_condition = \"piston\" needs a stilling basin; case \"" + c.id +
                                   "\" is a " + c.kind);
-    // The boundary layers' thickness: c.sph.boundary_layers, or enough for the support 2h = 2 sqrt(2) coef_h dx.
-    const int layers = c.sph.boundary_layers > 0 ? c.sph.boundary_layers
-                                                  : static_cast<int>(std::ceil(2.0 * std::sqrt(2.0) * c.sph.coef_h - 1e-9));
+    // The walls are as thick as the generator makes them.
+    const int layers = boundary_layer_count(smoothing_length(c.sph.coef_h, dx), dx, c.sph.boundary_layers);
     const cases::PistonReservoir r = cases::add_piston_reservoir(
         g, *basin, c.sph.sluice_opening_m, c.sph.reservoir_length_m, c.run.end_time_s, layers * dx, fluid.gravity_m_s2);
     // As for y1 (at least 5 particles across the inflow depth): the jet under the gate must be resolved.

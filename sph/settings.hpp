@@ -73,6 +73,11 @@ TimeIntegrator parse_time_integrator(const std::string& name);
 OutflowCondition parse_outflow_condition(const std::string& name);
 InflowCondition parse_inflow_condition(const std::string& name);
 
+// Number of boundary-particle layers: `requested` if positive, else enough layers of spacing dx to
+// cover the kernel support 2h (n = ceil(2h/dx)). Used by the generator for every wall and by
+// solver_geometry for the sluice plate's thickness.
+int boundary_layer_count(double h, double dx, int requested);
+
 // The geometry the SPH solver runs: cases::make_geometry, plus the piston reservoir of
 // sph.inflow_condition = "piston" (cases::add_piston_reservoir, its sluice plate as thick as the
 // boundary layers at spacing dx). Every SPH entry point (run, generate, tests) uses this.
