@@ -1,5 +1,6 @@
 #include "compare/study.hpp"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdint>
@@ -71,9 +72,17 @@ int run_child(const std::vector<std::string>& args, const std::filesystem::path&
   return 1;
 }
 
+// The fingerprint of case `c` at `resolution`: its resolved settings and this program's code. Every
+// stage stamp of the case holds it.
+std::string case_fingerprint(const cases::Study& study, const cases::Case& c, const std::string& resolution) {
+  std::string text = cases::resolved_case_text(study, c, resolution);
+  text = text.substr(text.find('\n') + 1);  // the first line names the source file: not part of the case
+  return cases::fingerprint(text + "\ncode " + source_fingerprint);
+}
+
 struct StageResult {
   std::string stage;
-  std::string state;     // "done", "cached", "failed", "skipped"
+  std::string state;     // "done", "cached", "failed", "skipped", "earlier run"
   double seconds = 0.0;
   int exit_status = 0;
   std::string message;   // why a stage failed before it could run
@@ -112,9 +121,7 @@ class StudyRunner {
   CaseResult run_case_stages(const cases::Case& c) {
     CaseResult result{c.id, {}};
     const auto dir = options_.out / c.id;
-    std::string text = cases::resolved_case_text(study_, c, options_.resolution);
-    text = text.substr(text.find('\n') + 1);  // the first line names the source file: not part of the case
-    const std::string fingerprint = cases::fingerprint(text + "\ncode " + source_fingerprint);
+    const std::string fingerprint = case_fingerprint(study_, c, options_.resolution);
 
     // Regenerate the case directories only when the case changed (keeps finished results).
     const auto generated_stamp = dir / "generate.stamp";
@@ -210,6 +217,31 @@ class StudyRunner {
   std::mutex mutex_;
 };
 
+// The cases of the report: the ones run now, and, in the spec's order among them, every other case of
+// the study whose comparison in options.out is current (its compare stamp matches the case's
+// fingerprint: same settings, same resolution, same code), so that a long study run a few cases at a
+// time (`--cases A,B`, then `--cases C`) ends with one report across all of them.
+std::vector<CaseResult> with_earlier_runs(const StudyOptions& options, const cases::Study& study,
+                                          const std::vector<CaseResult>& run_now) {
+  std::vector<CaseResult> out;
+  for (const auto* c : select_cases(study, {})) {
+    const auto now = std::find_if(run_now.begin(), run_now.end(), [&](const CaseResult& r) { return r.id == c->id; });
+    if (now != run_now.end()) {
+      out.push_back(*now);
+      continue;
+    }
+    std::string fingerprint;
+    try {
+      fingerprint = case_fingerprint(study, *c, options.resolution);
+    } catch (const std::exception&) {
+      continue;  // not valid at this resolution: it cannot have run
+    }
+    if (cases::read_text_file(options.out / c->id / "compare.stamp") == fingerprint)
+      out.push_back(CaseResult{c->id, {{"compare", "earlier run", 0.0, 0, {}}}});
+  }
+  return out;
+}
+
 void write_study_report(const StudyOptions& options, const cases::Study& study,
                         const std::vector<CaseResult>& results, std::ostream& log) {
   std::ostringstream md;
@@ -236,7 +268,14 @@ void write_study_report(const StudyOptions& options, const cases::Study& study,
     log << "study: eta bars not plotted: " << plot_problem << std::endl;
   }
 
-  md << "## Runs\n\n| case | stage | state | wall time | report |\n|---|---|---|---|---|\n";
+  md << "## Runs\n\n";
+  const bool any_earlier = std::any_of(results.begin(), results.end(), [](const CaseResult& r) {
+    return !r.stages.empty() && r.stages.front().state == "earlier run";
+  });
+  if (any_earlier)
+    md << "\"earlier run\": a case not asked for this time whose comparison in this directory is current "
+          "(same case settings, resolution and code), from an earlier `hydrojump study` into the same directory.\n\n";
+  md << "| case | stage | state | wall time | report |\n|---|---|---|---|---|\n";
   for (const auto& r : results) {
     for (const auto& s : r.stages) {
       const bool has_report = std::filesystem::exists(options.out / r.id / "report.md");
@@ -277,7 +316,7 @@ int run_study(const StudyOptions& options, std::ostream& log) {
   for (int j = 0; j < jobs; ++j) pool.emplace_back(worker);
   for (auto& t : pool) t.join();
 
-  write_study_report(options, study, results, log);
+  write_study_report(options, study, with_earlier_runs(options, study, results), log);
   int failed = 0;
   for (const auto& r : results) failed += r.failed() ? 1 : 0;
   log << "study report: " << (options.out / "study_report.md").string() << "; " << failed << " of "

@@ -128,6 +128,52 @@ TEST_CASE("Study runner: failures are isolated, results cached, changes re-run",
   fs::remove_all(dir);
 }
 
+TEST_CASE("Study runner: the report covers cases run earlier into the same directory while they are current",
+          "[study]") {
+  const fs::path dir = fs::temp_directory_path() / ("hydrojump_test_study_earlier_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path fake = dir / "fake_hydrojump";  // every stage succeeds
+  write(fake, "#!/bin/sh\nexit 0\n");
+  fs::permissions(fake, fs::perms::owner_all);
+  write(dir / "mini.toml", with_tailwater("0.104"));
+
+  StudyOptions options;
+  options.spec = (dir / "mini.toml").string();
+  options.out = dir / "out";
+  options.executable = fake;
+  std::ostringstream log;
+  const auto report_rows = [&](const std::string& id) {  // the case's rows of the "Runs" table
+    std::vector<std::string> rows;
+    bool in_runs = false;
+    for (const auto& line : lines_of(options.out / "study_report.md")) {
+      if (line.rfind("## ", 0) == 0) in_runs = line == "## Runs";
+      if (in_runs && line.rfind("| " + id + " | ", 0) == 0) rows.push_back(line);
+    }
+    return rows;
+  };
+
+  options.cases = {"A"};
+  REQUIRE(run_study(options, log) == 0);
+  CHECK(report_rows("A").size() == 3);  // sph, vof, compare
+  CHECK(report_rows("B").empty());      // never run
+
+  // B alone: A's comparison is current, so the report lists it as an earlier run.
+  options.cases = {"B"};
+  REQUIRE(run_study(options, log) == 0);
+  CHECK(report_rows("B").size() == 3);
+  const auto a_rows = report_rows("A");
+  REQUIRE(a_rows.size() == 1);
+  CHECK_THAT(a_rows[0], Catch::StartsWith("| A | compare | earlier run |"));
+
+  // A changed case's old comparison is stale: not reported.
+  write(dir / "mini.toml", with_tailwater("0.11"));
+  REQUIRE(run_study(options, log) == 0);
+  CHECK(report_rows("A").empty());
+  CHECK(report_rows("B").size() == 3);
+  fs::remove_all(dir);
+}
+
 TEST_CASE("Study runner validates before running anything", "[study]") {
   const fs::path dir = fs::temp_directory_path() / ("hydrojump_test_study_invalid_" + std::to_string(::getpid()));
   fs::remove_all(dir);
