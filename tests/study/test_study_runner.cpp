@@ -79,25 +79,32 @@ std::string with_tailwater(const std::string& value) {
   return s;
 }
 
-}  // namespace
-
-TEST_CASE("Study runner: failures are isolated, results cached, changes re-run", "[study]") {
-  const fs::path dir = fs::temp_directory_path() / ("hydrojump_test_study_" + std::to_string(::getpid()));
+// A fresh directory `dir` with the mini study (tailwater 0.104 m) and a stand-in for the hydrojump
+// executable running the shell script `script`; options to run that study into dir/out with it.
+StudyOptions mini_study_with_stand_in(const fs::path& dir, const std::string& script) {
   fs::remove_all(dir);
   fs::create_directories(dir);
-  const fs::path calls = dir / "calls.txt";
-  // A stand-in for the hydrojump executable: records each call; the SPH run of case B fails.
   const fs::path fake = dir / "fake_hydrojump";
-  // It leaves a checkpoint behind, as the real solver does.
-  write(fake, "#!/bin/sh\necho \"$*\" >> '" + calls.string() +
-                  "'\ncase \"$1 $2\" in\n  \"sph \"*/B/sph) touch \"$2/checkpoint.bin\"; echo 'B diverged' ; exit 3 ;;\nesac\nexit 0\n");
+  write(fake, "#!/bin/sh\n" + script);
   fs::permissions(fake, fs::perms::owner_all);
   write(dir / "mini.toml", with_tailwater("0.104"));
-
   StudyOptions options;
   options.spec = (dir / "mini.toml").string();
   options.out = dir / "out";
   options.executable = fake;
+  return options;
+}
+
+}  // namespace
+
+TEST_CASE("Study runner: failures are isolated, results cached, changes re-run", "[study]") {
+  const fs::path dir = fs::temp_directory_path() / ("hydrojump_test_study_" + std::to_string(::getpid()));
+  const fs::path calls = dir / "calls.txt";
+  // A stand-in for the hydrojump executable: records each call; the SPH run of case B fails, leaving a
+  // checkpoint behind as the real solver does.
+  StudyOptions options = mini_study_with_stand_in(
+      dir, "echo \"$*\" >> '" + calls.string() +
+               "'\ncase \"$1 $2\" in\n  \"sph \"*/B/sph) touch \"$2/checkpoint.bin\"; echo 'B diverged' ; exit 3 ;;\nesac\nexit 0\n");
   std::ostringstream log;
 
   // First run: every stage runs; B's SPH fails but B's VOF and comparison still run.
@@ -131,17 +138,7 @@ TEST_CASE("Study runner: failures are isolated, results cached, changes re-run",
 TEST_CASE("Study runner: the report covers cases run earlier into the same directory while they are current",
           "[study]") {
   const fs::path dir = fs::temp_directory_path() / ("hydrojump_test_study_earlier_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  const fs::path fake = dir / "fake_hydrojump";  // every stage succeeds
-  write(fake, "#!/bin/sh\nexit 0\n");
-  fs::permissions(fake, fs::perms::owner_all);
-  write(dir / "mini.toml", with_tailwater("0.104"));
-
-  StudyOptions options;
-  options.spec = (dir / "mini.toml").string();
-  options.out = dir / "out";
-  options.executable = fake;
+  StudyOptions options = mini_study_with_stand_in(dir, "exit 0\n");  // every stage succeeds
   std::ostringstream log;
   const auto report_rows = [&](const std::string& id) {  // the case's rows of the "Runs" table
     std::vector<std::string> rows;
