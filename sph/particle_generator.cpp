@@ -32,9 +32,14 @@ struct Seed {
 }  // namespace
 
 std::vector<BedParticle> corrugated_bed_layers(const cases::BedProfile& bed, double dx, int layers) {
+  return corrugated_bed_layers(bed, dx, layers, bed.reach_start_m(), bed.reach_end_m());
+}
+
+std::vector<BedParticle> corrugated_bed_layers(const cases::BedProfile& bed, double dx, int layers, double x_from,
+                                               double x_to) {
   std::vector<BedParticle> out;
-  if (!bed.corrugated() || !(dx > 0.0) || layers <= 0) return out;
-  const double xa = bed.reach_start_m(), xb = bed.reach_end_m();
+  if (!bed.corrugated() || !(dx > 0.0) || layers <= 0 || !(x_to > x_from)) return out;
+  const double xa = x_from, xb = x_to;
   // Dense samples of the bed: positions and normals.
   const double fine = dx / 40.0;
   const auto n_fine = static_cast<std::size_t>(std::ceil((xb - xa) / fine));
@@ -221,26 +226,33 @@ ParticleSet generate_particles(const cases::CaseGeometry& g, const SolverSetting
     return rho;
   };
   // A corrugated reach gets its own layers, spaced evenly along the bed (corrugated_bed_layers); the
-  // lattice gives the straight walls and floors.
+  // lattice gives the straight walls and floors. The layers span the reach widened to the lattice's
+  // column edges around it [layers_from, layers_to], and a lattice point whose nearest wall point lies
+  // in that span is left to them: the layers end half a spacing inside it and the lattice columns
+  // half a spacing outside, so the wall has no slit where the reach ends between two lattice columns
+  // (the reach itself left one up to 1.5 dx wide: 1.4 dx at the end of run C's reach, through which
+  // fluid seeped into the floor and out of the domain).
   const bool corrugated = g.bed.corrugated();
-  auto on_corrugated_reach = [&](const Eigen::Vector2d& q) {
-    return corrugated && q.x() > g.bed.reach_start_m() + 1e-9 * dx && q.x() < g.bed.reach_end_m() - 1e-9 * dx;
+  const double layers_from = x0 + std::floor((g.bed.reach_start_m() - x0) / dx + 1e-9) * dx;
+  const double layers_to = x0 + std::ceil((g.bed.reach_end_m() - x0) / dx - 1e-9) * dx;
+  const std::vector<BedParticle> bed_layers =
+      corrugated ? corrugated_bed_layers(g.bed, dx, n_layers, layers_from, layers_to) : std::vector<BedParticle>{};
+  auto left_to_bed_layers = [&](const Eigen::Vector2d& q) {
+    return corrugated && q.x() > layers_from + 1e-9 * dx && q.x() < layers_to - 1e-9 * dx;
   };
   for (const auto& [ij, c] : near_wall) {
     const Eigen::Vector2d p(lattice_x(ij.first), lattice_z(ij.second));
     if (!in_period(p.x())) continue;
     if ((!c.inside_plate() && (p - c.nearest).dot(c.normal_sum) >= 0.0) || c.distance < 0.25 * dx) continue;  // fluid side
     if (in_inflow_buffer(p.x(), p.y())) continue;
-    if (on_corrugated_reach(c.nearest)) continue;
+    if (left_to_bed_layers(c.nearest)) continue;
     const Eigen::Vector2d ghost = 2.0 * (c.nearest - p);
     seeds.push_back({ParticleType::boundary, p.x(), p.y(), boundary_density(p), 0.0, ghost.x(), ghost.y()});
   }
-  if (corrugated) {
-    for (const BedParticle& b : corrugated_bed_layers(g.bed, dx, n_layers)) {
-      const Eigen::Vector2d ghost = 2.0 * (b.nearest - b.position);
-      seeds.push_back({ParticleType::boundary, b.position.x(), b.position.y(), boundary_density(b.position), 0.0,
-                       ghost.x(), ghost.y()});
-    }
+  for (const BedParticle& b : bed_layers) {
+    const Eigen::Vector2d ghost = 2.0 * (b.nearest - b.position);
+    seeds.push_back({ParticleType::boundary, b.position.x(), b.position.y(), boundary_density(b.position), 0.0,
+                     ghost.x(), ghost.y()});
   }
   // Moving walls (a lifted dam-break gate): a plate n_layers dx thick behind the (vertical) face,
   // on the lattice, ghost nodes mirrored through the face.
