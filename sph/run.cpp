@@ -208,7 +208,13 @@ std::string diagnose(const Solver& solver) {
     if (!std::isfinite(ps.x[i]) || !std::isfinite(ps.z[i]) || !std::isfinite(ps.u[i]) || !std::isfinite(ps.w[i]) ||
         !std::isfinite(ps.rho[i])) {
       report("non-finite state (NaN/Inf)", i);
-    } else if (ps.x[i] < s.x_min - m || ps.x[i] > s.x_max + m || ps.z[i] < s.z_min - m || ps.z[i] > s.fluid_ceiling + m) {
+    } else if (ps.z[i] < s.z_min - m) {
+      // Below every wall: it went through the boundary particles, not over them.
+      report("left the domain through the bottom (it passed through the bed's boundary particles: look for a gap in "
+             "the wall near this x in initial_particles.vtp, or a wall too soft for the impact: a larger "
+             "sph.sound_speed_coefficient or sph.boundary_layers)",
+             i);
+    } else if (ps.x[i] < s.x_min - m || ps.x[i] > s.x_max + m || ps.z[i] > s.fluid_ceiling + m) {
       report("left the domain", i);
     } else if (std::abs(ps.rho[i] / s.eos.rho0 - 1.0) > s.max_density_variation) {
       std::ostringstream w;

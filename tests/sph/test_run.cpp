@@ -187,6 +187,14 @@ TEST_CASE("a particle leaving the domain and a density blow-up are diagnosed", "
     Solver s(loaded.settings, ps);
     CHECK_THAT(diagnose(s), Catch::Contains("left the domain"));
   }
+  {  // through the floor: named as such, with where to look
+    ParticleSet ps = loaded.particles;
+    Eigen::Index i = 0;
+    while (!ps.is_fluid(i)) ++i;
+    ps.z[i] = loaded.settings.z_min - 2.0 * loaded.settings.domain_margin;
+    Solver s(loaded.settings, ps);
+    CHECK_THAT(diagnose(s), Catch::Contains("left the domain through the bottom") && Catch::Contains("gap in the wall"));
+  }
   {
     ParticleSet ps = loaded.particles;
     Eigen::Index i = 0;
