@@ -31,10 +31,6 @@ struct Seed {
 
 }  // namespace
 
-std::vector<BedParticle> corrugated_bed_layers(const cases::BedProfile& bed, double dx, int layers) {
-  return corrugated_bed_layers(bed, dx, layers, bed.reach_start_m(), bed.reach_end_m());
-}
-
 std::vector<BedParticle> corrugated_bed_layers(const cases::BedProfile& bed, double dx, int layers, double x_from,
                                                double x_to) {
   std::vector<BedParticle> out;

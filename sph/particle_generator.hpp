@@ -42,14 +42,13 @@ namespace hydrojump::sph {
 // the offset curve folds; points closer to another part of the bed than their own depth (by dx/4) and
 // points within dx/2 of one already placed are dropped. `nearest` is the bed point each was offset
 // from (its mDBC ghost node lies at 2 nearest - position).
-// The layers cover [x_from, x_to] (by default the reach itself); the generator widens that to the
-// floor lattice's column edges around the reach, so that the layers end where the lattice begins
-// (no slit in the wall wherever the reach ends fall between lattice columns).
+// The layers cover [x_from, x_to]: the reach, which the generator widens to the floor lattice's
+// column edges around it, so that the layers end where the lattice begins (no slit in the wall
+// wherever the reach ends fall between lattice columns).
 struct BedParticle {
   Eigen::Vector2d position;
   Eigen::Vector2d nearest;
 };
-std::vector<BedParticle> corrugated_bed_layers(const cases::BedProfile& bed, double dx, int layers);
 std::vector<BedParticle> corrugated_bed_layers(const cases::BedProfile& bed, double dx, int layers, double x_from,
                                                double x_to);
 

@@ -33,7 +33,7 @@ TEST_CASE("corrugated bed layers lie at their depth, evenly spaced, mirrored thr
   // radius 10.6 mm < the third layer's 12.5 mm: its offset curve folds at the crests).
   for (const double height : {0.013, 0.022}) {
     const cases::BedProfile bed = cases::BedProfile::sinusoidal(0.068, height, 0.2, 0.2 + 5 * 0.068);
-    const auto particles = sph::corrugated_bed_layers(bed, dx, layers);
+    const auto particles = sph::corrugated_bed_layers(bed, dx, layers, bed.reach_start_m(), bed.reach_end_m());
     REQUIRE(!particles.empty());
     double min_gap = 1e300;
     for (std::size_t a = 0; a < particles.size(); ++a) {
