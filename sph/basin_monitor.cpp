@@ -10,6 +10,7 @@
 
 #include "cases/hydraulics.hpp"
 #include "cases/jump_toe.hpp"
+#include "sph/settings.hpp"
 
 namespace hydrojump::sph {
 namespace {
@@ -109,7 +110,7 @@ BasinMonitorSetup BasinMonitorSetup::from_case(const cases::Case& c, const cases
   s.belanger_y2_m = cases::belanger_sequent_depth(b->inflow_depth_m, s.froude1);
   s.floor_z_m = geometry.bed.elevation(geometry.inflows.front().x_m);
   s.x_inflow_m = geometry.inflows.front().x_m;
-  s.reservoir_upstream = c.sph.inflow_condition == "piston";
+  s.reservoir_upstream = parse_inflow_condition(c.sph.inflow_condition) == InflowCondition::piston;
   s.x_outflow_m = geometry.outflows.front().x_m;
   s.toe_search_from_m = s.x_inflow_m;
   for (const auto& sec : geometry.sections)
