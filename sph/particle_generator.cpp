@@ -18,9 +18,13 @@ struct Candidate {
   double distance = 1e300;
   Eigen::Vector2d nearest = Eigen::Vector2d::Zero();
   Eigen::Vector2d normal_sum = Eigen::Vector2d::Zero();  // normals of the segments at that distance
-  // A point equally far from the two opposite faces of a plate (the middle column of an odd number
-  // of layers) has opposite normals that cancel: it is inside the plate, never on the fluid side.
-  bool inside_plate() const { return normal_sum.squaredNorm() < 1e-12; }
+  // Which side of the wall p is on: > 0 the fluid side, < 0 behind the wall, 0 on the wall line. A
+  // point equally far from the two opposite faces of a plate (the middle column of an odd number of
+  // layers) has opposite normals that cancel: it is inside the plate, never on the fluid side.
+  double side(const Eigen::Vector2d& p) const {
+    if (normal_sum.squaredNorm() < 1e-12) return -1.0;
+    return (p - nearest).dot(normal_sum);
+  }
 };
 
 struct Seed {
@@ -203,8 +207,7 @@ ParticleSet generate_particles(const cases::CaseGeometry& g, const SolverSetting
         const double z = lattice_z(j);
         if (z <= bed + 0.25 * dx || z >= surface) continue;
         auto it = near_wall.find({i, j});
-        if (it != near_wall.end() && (it->second.distance < 0.25 * dx || it->second.inside_plate() ||
-                                      (Eigen::Vector2d(x, z) - it->second.nearest).dot(it->second.normal_sum) <= 0.0))
+        if (it != near_wall.end() && (it->second.distance < 0.25 * dx || it->second.side({x, z}) <= 0.0))
           continue;  // on or behind a wall
         seeds.push_back({type, x, z, s.eos.hydrostatic_density(gravity, surface - z), u, 0.0, 0.0});
       }
@@ -239,7 +242,7 @@ ParticleSet generate_particles(const cases::CaseGeometry& g, const SolverSetting
   for (const auto& [ij, c] : near_wall) {
     const Eigen::Vector2d p(lattice_x(ij.first), lattice_z(ij.second));
     if (!in_period(p.x())) continue;
-    if ((!c.inside_plate() && (p - c.nearest).dot(c.normal_sum) >= 0.0) || c.distance < 0.25 * dx) continue;  // fluid side
+    if (c.side(p) >= 0.0 || c.distance < 0.25 * dx) continue;  // on the wall line or the fluid side
     if (in_inflow_buffer(p.x(), p.y())) continue;
     if (left_to_bed_layers(c.nearest)) continue;
     const Eigen::Vector2d ghost = 2.0 * (c.nearest - p);
