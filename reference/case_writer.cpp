@@ -329,6 +329,22 @@ foam::Dictionary smooth_solver(double tolerance) {
   return d;
 }
 
+// interFoam's phase fraction: 2 MULES correctors, no sub-cycling, interface compression cAlpha = 1,
+// semi-implicit MULES with 5 limiter iterations, then a smoothSolver to 1e-8.
+foam::Dictionary mules_alpha_solver() {
+  foam::Dictionary d;
+  d.set("nAlphaCorr", 2);
+  d.set("nAlphaSubCycles", 1);
+  d.set("cAlpha", 1);
+  d.set("MULESCorr", foam::yes_no(true));
+  d.set("nLimiterIter", 5);
+  d.set("solver", foam::word("smoothSolver"));
+  d.set("smoother", foam::word("symGaussSeidel"));
+  d.set("tolerance", 1e-8);
+  d.set("relTol", 0);
+  return d;
+}
+
 foam::Dictionary decompose_par_dict(int subdomains) {
   if (subdomains < 1) throw std::invalid_argument("decomposeParDict: subdomains must be >= 1");
   Dictionary d;
@@ -735,17 +751,7 @@ VofCase build_vof_case(const cases::Study& study, const cases::Case& c, const st
 
     Dictionary sol;
     Dictionary& solvers = sol.subdict("solvers");
-    Dictionary alpha_s;
-    alpha_s.set("nAlphaCorr", 2);
-    alpha_s.set("nAlphaSubCycles", 1);
-    alpha_s.set("cAlpha", 1);
-    alpha_s.set("MULESCorr", foam::yes_no(true));
-    alpha_s.set("nLimiterIter", 5);
-    alpha_s.set("solver", foam::word("smoothSolver"));
-    alpha_s.set("smoother", foam::word("symGaussSeidel"));
-    alpha_s.set("tolerance", 1e-8);
-    alpha_s.set("relTol", 0);
-    solvers.set("\"alpha.water.*\"", alpha_s);
+    solvers.set("\"alpha.water.*\"", mules_alpha_solver());
     Dictionary pcorr;
     pcorr.set("solver", foam::word("PCG"));
     pcorr.set("preconditioner", foam::word("DIC"));

@@ -99,6 +99,9 @@ foam::Dictionary decompose_par_dict(int subdomains);
 // A symmetric Gauss-Seidel smoothSolver entry of fvSolution with the given tolerance and relTol 0.
 foam::Dictionary smooth_solver(double tolerance);
 
+// The "alpha.water.*" entry of fvSolution: interFoam's MULES settings and a smoothSolver to 1e-8.
+foam::Dictionary mules_alpha_solver();
+
 // The transported turbulence fields of a vof.turbulence_model: none for "laminar", k and omega for
 // "kOmegaSST", k and epsilon for "kEpsilon" and "RNGkEpsilon". Throws std::invalid_argument naming the
 // allowed values for any other name.

@@ -284,17 +284,7 @@ void write_self_test_case(const fs::path& dir, double shear_m) {
 
   Dictionary sol;
   Dictionary& solvers = sol.subdict("solvers");
-  Dictionary alpha;
-  alpha.set("nAlphaCorr", 2);
-  alpha.set("nAlphaSubCycles", 1);
-  alpha.set("cAlpha", 1);
-  alpha.set("MULESCorr", foam::word("yes"));
-  alpha.set("nLimiterIter", 5);
-  alpha.set("solver", foam::word("smoothSolver"));
-  alpha.set("smoother", foam::word("symGaussSeidel"));
-  alpha.set("tolerance", 1e-8);
-  alpha.set("relTol", 0);
-  solvers.set("\"alpha.water.*\"", alpha);
+  solvers.set("\"alpha.water.*\"", mules_alpha_solver());
   Dictionary pcg;
   pcg.set("solver", foam::word("PCG"));
   pcg.set("preconditioner", foam::word("DIC"));
