@@ -29,6 +29,8 @@ struct SphSettings {
   std::string kernel = "wendland_c2";              // "wendland_c2" | "cubic_spline"
   std::string viscosity = "artificial";            // "artificial" | "laminar_sps"
   double artificial_viscosity_alpha = 0.01;        // Monaghan alpha
+  double artificial_viscosity_nu_m2_s = 0.0;       // > 0: alpha = 8 nu / (h c0) instead, the same viscosity
+                                                   // at every resolution (2D: nu = alpha h c0 / 8)
   double artificial_viscosity_wall_factor = 1.0;   // alpha between fluid and wall particles = factor * alpha
   double sps_smagorinsky_constant = 0.12;          // Cs
   double sps_blin_constant = 0.0066;               // CI

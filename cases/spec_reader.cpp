@@ -275,6 +275,16 @@ void read_sph(TableReader& t, SphSettings& s) {
   s.kernel = t.choice("kernel", s.kernel, {"wendland_c2", "cubic_spline"});
   s.viscosity = t.choice("viscosity", s.viscosity, {"artificial", "laminar_sps"});
   s.artificial_viscosity_alpha = t.number_or("artificial_viscosity_alpha", s.artificial_viscosity_alpha, between(0.0, 1.0));
+  // nu or alpha: both in one table is an error; alpha given here overrides a nu inherited from [sph].
+  if (t.has("artificial_viscosity_nu_m2_s") && t.has("artificial_viscosity_alpha"))
+    t.fail_at(t.raw().get("artificial_viscosity_nu_m2_s"), "artificial_viscosity_nu_m2_s",
+              "and artificial_viscosity_alpha are both given: set one (nu fixes alpha = 8 nu / (h c0) at each resolution)");
+  if (t.has("artificial_viscosity_alpha")) s.artificial_viscosity_nu_m2_s = 0.0;
+  s.artificial_viscosity_nu_m2_s = t.number_or("artificial_viscosity_nu_m2_s", s.artificial_viscosity_nu_m2_s,
+                                                non_negative("m^2/s, 0: use artificial_viscosity_alpha", 1.0));
+  if (t.has("artificial_viscosity_nu_m2_s") && s.viscosity != "artificial")
+    t.fail_at(t.raw().get("artificial_viscosity_nu_m2_s"), "artificial_viscosity_nu_m2_s",
+              std::string("is only used with viscosity = \"artificial\" (here \"") + s.viscosity + "\")");
   s.artificial_viscosity_wall_factor = t.number_or("artificial_viscosity_wall_factor", s.artificial_viscosity_wall_factor, between(0.0, 1.0));
   s.sps_smagorinsky_constant = t.number_or("sps_smagorinsky_constant", s.sps_smagorinsky_constant, between(0.0, 1.0));
   s.sps_blin_constant = t.number_or("sps_blin_constant", s.sps_blin_constant, between(0.0, 1.0));
@@ -758,7 +768,8 @@ class TomlWriter {
 void write_sph(TomlWriter& w, const SphSettings& s) {
   w.str("kernel", s.kernel);
   w.str("viscosity", s.viscosity);
-  w.num("artificial_viscosity_alpha", s.artificial_viscosity_alpha);
+  if (s.artificial_viscosity_nu_m2_s > 0.0) w.num("artificial_viscosity_nu_m2_s", s.artificial_viscosity_nu_m2_s);
+  else w.num("artificial_viscosity_alpha", s.artificial_viscosity_alpha);
   w.num("artificial_viscosity_wall_factor", s.artificial_viscosity_wall_factor);
   w.num("sps_smagorinsky_constant", s.sps_smagorinsky_constant);
   w.num("sps_blin_constant", s.sps_blin_constant);

@@ -130,7 +130,14 @@ SolverSettings make_settings(const cases::Case& c, const cases::FluidProperties&
                         : std::max(s.sound_speed_coefficient * std::sqrt(gravity * g.max_water_height_m),
                                    s.sound_speed_min_flow_ratio * g.max_flow_speed_m_s);
   out.eos = TaitEquationOfState(fluid.density_kg_m3, c0);
-  out.artificial_alpha = s.artificial_viscosity_alpha;
+  // nu = alpha h c0 / 8 (Monaghan 2005, Rep. Prog. Phys. 68:1703, in 2D), so alpha = 8 nu / (h c0).
+  out.artificial_alpha = s.artificial_viscosity_nu_m2_s > 0.0 ? 8.0 * s.artificial_viscosity_nu_m2_s / (out.h * c0)
+                                                               : s.artificial_viscosity_alpha;
+  if (!(out.artificial_alpha <= 1.0))
+    throw std::invalid_argument("sph.artificial_viscosity_nu_m2_s = " + std::to_string(s.artificial_viscosity_nu_m2_s) +
+                                " m^2/s needs alpha = 8 nu / (h c0) = " + std::to_string(out.artificial_alpha) +
+                                " at h = " + std::to_string(out.h) + " m, c0 = " + std::to_string(c0) +
+                                " m/s: allowed up to alpha = 1, i.e. nu <= h c0 / 8 = " + std::to_string(out.h * c0 / 8.0) + " m^2/s");
   out.artificial_wall_factor = s.artificial_viscosity_wall_factor;
   out.kinematic_viscosity = fluid.kinematic_viscosity_m2_s;
   out.smagorinsky = s.sps_smagorinsky_constant;

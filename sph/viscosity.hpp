@@ -15,7 +15,9 @@
 // Usage:
 //   | sph.viscosity  | parameters                                                        |
 //   |----------------|-------------------------------------------------------------------|
-//   | "artificial"   | sph.artificial_viscosity_alpha (default 0.01);                    |
+//   | "artificial"   | sph.artificial_viscosity_alpha (default 0.01), or instead          |
+//   |                | sph.artificial_viscosity_nu_m2_s: alpha = 8 nu / (h c0), the same  |
+//   |                | viscosity nu = alpha h c0 / 8 (2D) at every resolution;           |
 //   |                | sph.artificial_viscosity_wall_factor (default 1): alpha times this|
 //   |                | between fluid and wall particles (DualSPHysics' ViscoBoundFactor; |
 //   |                | 0 = no viscous wall friction, e.g. a jump as Belanger assumes it) |

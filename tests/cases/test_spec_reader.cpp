@@ -304,3 +304,36 @@ TEST_CASE("A resolved case reloads to the same case", "[cases][spec]") {
   }
   std::filesystem::remove_all(dir);
 }
+
+TEST_CASE("The artificial viscosity is given as alpha or as nu, not both", "[cases][spec][reject]") {
+  const std::string with_sph = replaced(valid_spec, "[[case]]", "[sph]\nartificial_viscosity_nu_m2_s = 0.002\n\n[[case]]");
+  SECTION("nu alone is read and survives a resolved reload") {
+    const Study s = parse_study(with_sph, "spec.toml", ".");
+    CHECK(s.cases[0].sph.artificial_viscosity_nu_m2_s == 0.002);
+    const auto file = std::filesystem::temp_directory_path() / "hydrojump_test_nu.toml";
+    write_resolved_case(s, s.cases[0], "quick", file);
+    const Study r = load_study(file);
+    CHECK(r.cases[0].sph.artificial_viscosity_nu_m2_s == 0.002);
+    std::filesystem::remove(file);
+  }
+  SECTION("both in one table") {
+    const auto text = replaced(with_sph, "artificial_viscosity_nu_m2_s = 0.002", "artificial_viscosity_nu_m2_s = 0.002\nartificial_viscosity_alpha = 0.1");
+    const auto msg = rejection(text);
+    CHECK_THAT(msg, Catch::Contains("spec.toml:" + std::to_string(line_of(text, "artificial_viscosity_nu_m2_s"))));
+    CHECK_THAT(msg, Catch::Contains("sph.artificial_viscosity_nu_m2_s and artificial_viscosity_alpha are both given"));
+  }
+  SECTION("a case's alpha overrides the study's nu") {
+    const auto text = replaced(with_sph, "[case.run]", "[case.sph]\nartificial_viscosity_alpha = 0.2\n[case.run]");
+    const Study s = parse_study(text, "spec.toml", ".");
+    CHECK(s.cases[0].sph.artificial_viscosity_nu_m2_s == 0.0);
+    CHECK(s.cases[0].sph.artificial_viscosity_alpha == 0.2);
+  }
+  SECTION("nu with the laminar + SPS viscosity is unused") {
+    const auto msg = rejection(replaced(with_sph, "[sph]\n", "[sph]\nviscosity = \"laminar_sps\"\n"));
+    CHECK_THAT(msg, Catch::Contains("artificial_viscosity_nu_m2_s is only used with viscosity = \"artificial\""));
+  }
+  SECTION("negative nu") {
+    const auto msg = rejection(replaced(with_sph, "= 0.002", "= -0.002"));
+    CHECK_THAT(msg, Catch::Contains("artificial_viscosity_nu_m2_s = -0.002 is out of range"));
+  }
+}

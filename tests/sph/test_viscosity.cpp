@@ -56,3 +56,24 @@ TEST_CASE("the artificial viscosity's wall factor scales the drag of the walls",
   // Linear in the factor: half the factor, half the drag.
   CHECK(bottom_row_drag(0.5) == Approx(0.5 * no_slip).epsilon(1e-9));
 }
+
+TEST_CASE("a viscosity given as nu sets alpha = 8 nu / (h c0) at each resolution", "[sph][viscosity]") {
+  const double nu = 2.0e-3;
+  for (const double dx : {0.02, 0.01}) {
+    auto c = sph_test::load_case("still_water.toml", dx, [&](cases::Case& k) {
+      k.sph.viscosity = "artificial";
+      k.sph.artificial_viscosity_nu_m2_s = nu;
+    });
+    INFO("dx " << dx << ": h " << c.settings.h << " m, c0 " << c.settings.eos.c0 << " m/s");
+    // nu = alpha h c0 / 8 back from the alpha the solver uses
+    CHECK(c.settings.artificial_alpha * c.settings.h * c.settings.eos.c0 / 8.0 == Approx(nu).epsilon(1e-12));
+  }
+  // A nu that would need alpha > 1 is refused, naming the key and the largest allowed nu.
+  try {
+    sph_test::load_case("still_water.toml", 0.02, [&](cases::Case& k) { k.sph.artificial_viscosity_nu_m2_s = 1.0; });
+    FAIL("nu = 1 m^2/s was accepted");
+  } catch (const std::invalid_argument& e) {
+    CHECK_THAT(e.what(), Catch::Contains("sph.artificial_viscosity_nu_m2_s = 1"));
+    CHECK_THAT(e.what(), Catch::Contains("nu <= h c0 / 8"));
+  }
+}
