@@ -143,6 +143,7 @@ void method_json(Json& j, const MethodOutcome& m) {
       stats_json(j, "specific_energy_m", s.specific_energy);
       stats_json(j, "momentum_coefficient", s.momentum_coefficient);
       stats_json(j, "specific_force_m2", s.specific_force);
+      stats_json(j, "void_fraction", s.void_fraction);
       j.end_object();
     }
     j.end_array();
@@ -255,10 +256,10 @@ void write_csvs(const CaseComparison& c, const fs::path& dir) {
          "depth_mean_m,depth_std_m,discharge_mean_m2_s,discharge_std_m2_s,mean_velocity_mean_m_s,"
          "mean_velocity_std_m_s,max_velocity_mean_m_s,max_velocity_std_m_s,energy_coefficient_mean,"
          "specific_energy_mean_m,specific_energy_std_m,momentum_coefficient_mean,specific_force_mean_m2,"
-         "specific_force_std_m2\n";
+         "specific_force_std_m2,void_fraction_mean\n";
   prof << "method,section,x_m,z_m,u_mean_m_s,u_std_m_s,w_mean_m_s,wet_fraction\n";
   lon << "method,x_m,z_bed_m,surface_mean_m,surface_std_m,near_surface_velocity_mean_m_s,mean_velocity_mean_m_s,"
-         "max_velocity_mean_m_s,discharge_mean_m2_s\n";
+         "max_velocity_mean_m_s,discharge_mean_m2_s,void_fraction_mean\n";
   for (int i = 0; i < 2; ++i) {
     const MethodOutcome* m = methods_of(c, i);
     if (!m->available) continue;
@@ -270,7 +271,7 @@ void write_csvs(const CaseComparison& c, const fs::path& dir) {
           << num(s.mean_velocity.std) << "," << num(s.max_velocity.mean) << "," << num(s.max_velocity.std) << ","
           << num(s.energy_coefficient.mean) << "," << num(s.specific_energy.mean) << "," << num(s.specific_energy.std)
           << "," << num(s.momentum_coefficient.mean) << "," << num(s.specific_force.mean) << ","
-          << num(s.specific_force.std) << "\n";
+          << num(s.specific_force.std) << "," << num(s.void_fraction.mean) << "\n";
       for (std::size_t k = 0; k < s.z.size(); ++k)
         prof << m->method << "," << s.spec.name << "," << num(s.spec.x_m) << "," << num(s.z[k]) << "," << num(s.u_mean[k])
              << "," << num(s.u_std[k]) << "," << num(s.w_mean[k]) << "," << num(s.wet_fraction[k]) << "\n";
@@ -278,7 +279,7 @@ void write_csvs(const CaseComparison& c, const fs::path& dir) {
     for (const auto& s : m->stats.stations)
       lon << m->method << "," << num(s.spec.x_m) << "," << num(s.spec.z_bed_m) << "," << num(s.surface.mean) << ","
           << num(s.surface.std) << "," << num(s.near_surface_velocity.mean) << "," << num(s.mean_velocity.mean) << ","
-          << num(s.max_velocity.mean) << "," << num(s.discharge.mean) << "\n";
+          << num(s.max_velocity.mean) << "," << num(s.discharge.mean) << "," << num(s.void_fraction.mean) << "\n";
     const FieldSnapshot& f = m->stats.snapshot;
     if (!f.empty()) {
       std::ostringstream snap;

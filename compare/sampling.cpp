@@ -29,17 +29,35 @@ static double profile_at(const std::vector<double>& z, const std::vector<double>
 void integrate_column(ColumnSample& c, double gravity) {
   if (!c.wet() || c.z.size() < 3) return;
   const double h = c.depth_m;
-  const double dz = h / static_cast<double>(c.z.size() - 1);
-  // q = int u dz
-  c.discharge_m2_s = simpson(c.u, dz);
+  const std::size_t n = c.z.size();
+  const double dz = h / static_cast<double>(n - 1);
+  // chi_k = 0 in a void: c < 0.5 with water (c >= 0.5) below it; the surface point and the points
+  // below the lowest water point (a bed cell that is partly solid) count as water.
+  std::vector<double> chi(n, 1.0);
+  if (c.fraction.size() == n) {
+    std::size_t first_water = 0;
+    while (first_water + 1 < n && c.fraction[first_water] < 0.5) ++first_water;
+    for (std::size_t k = first_water; k + 1 < n; ++k) chi[k] = c.fraction[k] >= 0.5 ? 1.0 : 0.0;
+  }
+  std::vector<double> u1(n), u2(n), u3(n);
+  double u_max = -std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < n; ++k) {
+    u1[k] = chi[k] * c.u[k];
+    u2[k] = u1[k] * c.u[k];
+    u3[k] = u2[k] * c.u[k];
+    if (chi[k] > 0.0) u_max = std::max(u_max, c.u[k]);
+  }
+  c.water = chi;
+  // h_w = int chi dz;  void fraction = 1 - h_w / h
+  c.void_fraction = std::clamp(1.0 - simpson(chi, dz) / h, 0.0, 1.0);
+  // q = int chi u dz
+  c.discharge_m2_s = simpson(u1, dz);
   // U = q / h
   c.mean_velocity_m_s = c.discharge_m2_s / h;
-  c.max_velocity_m_s = *std::max_element(c.u.begin(), c.u.end());
+  c.max_velocity_m_s = u_max;
   // u_s = u(eta - 0.1 h)
   c.near_surface_velocity_m_s = profile_at(c.z, c.u, c.surface_z_m - 0.1 * h);
-  // alpha = int u^3 dz / (U^3 h)
-  std::vector<double> u3(c.u.size());
-  for (std::size_t k = 0; k < u3.size(); ++k) u3[k] = c.u[k] * c.u[k] * c.u[k];
+  // alpha = int chi u^3 dz / (U^3 h)
   const double ubar3 = c.mean_velocity_m_s * c.mean_velocity_m_s * c.mean_velocity_m_s;
   c.energy_coefficient = std::abs(ubar3) > 1e-30 ? simpson(u3, dz) / (ubar3 * h) : not_a_number;
   // E = z_b + h + alpha U^2 / (2 g);  with U = 0 the kinetic term is 0 whatever alpha is.
@@ -48,13 +66,11 @@ void integrate_column(ColumnSample& c, double gravity) {
                                    (2.0 * gravity)
                              : 0.0;
   c.specific_energy_m = c.z_bed_m + h + kinetic;
-  // beta = int u^2 dz / (U^2 h)
-  std::vector<double> u2(c.u.size());
-  for (std::size_t k = 0; k < u2.size(); ++k) u2[k] = c.u[k] * c.u[k];
+  // beta = int chi u^2 dz / (U^2 h)
   const double ubar2 = c.mean_velocity_m_s * c.mean_velocity_m_s;
   const double u2_integral = simpson(u2, dz);
   c.momentum_coefficient = ubar2 > 1e-30 ? u2_integral / (ubar2 * h) : not_a_number;
-  // M = h^2/2 + beta q^2/(g h) = h^2/2 + int u^2 dz / g  (the same, and defined when U = 0)
+  // M = h^2/2 + beta q^2/(g h) = h^2/2 + int chi u^2 dz / g  (the same, and defined when U = 0)
   c.specific_force_m2 = 0.5 * h * h + u2_integral / gravity;
 }
 
@@ -205,11 +221,12 @@ class SphSampler final : public FrameSampler {
 
   void fill_profile(ColumnSample& c, int n_points) const {
     const std::size_t n = static_cast<std::size_t>(n_points);
-    c.z.resize(n); c.u.resize(n); c.w.resize(n); c.pressure.resize(n);
+    c.z.resize(n); c.u.resize(n); c.w.resize(n); c.pressure.resize(n); c.fraction.resize(n);
     for (std::size_t k = 0; k < n; ++k) {
       const double z = c.z_bed_m + c.depth_m * static_cast<double>(k) / static_cast<double>(n - 1);
       const Stencil st = stencil(c.x_m, z);
       c.z[k] = z;
+      c.fraction[k] = fraction(c.x_m, z);
       c.u[k] = st.empty() ? 0.0 : st.apply(u_);
       c.w[k] = st.empty() ? 0.0 : st.apply(w_);
       c.pressure[k] = st.empty() ? not_a_number : st.apply(p_);
@@ -359,12 +376,19 @@ class VofSampler final : public FrameSampler {
     c.depth_m = c.surface_z_m - z_bed;
     if (!(c.depth_m > 0.0)) { c.surface_z_m = not_a_number; c.depth_m = not_a_number; return c; }
     const std::size_t n = static_cast<std::size_t>(n_points);
-    c.z.resize(n); c.u.resize(n); c.w.resize(n); c.pressure.resize(n);
+    // alpha along the column as the surface search sees it: linear between the cell centres
+    std::vector<double> zc_col(col.size()), alpha_col(col.size());
+    for (std::size_t k = 0; k < col.size(); ++k) {
+      zc_col[k] = f_.zc[col[k]];
+      alpha_col[k] = std::clamp(f_.alpha[col[k]], 0.0, 1.0);
+    }
+    c.z.resize(n); c.u.resize(n); c.w.resize(n); c.pressure.resize(n); c.fraction.resize(n);
     for (std::size_t k = 0; k < n; ++k) {
       const double z = z_bed + c.depth_m * static_cast<double>(k) / static_cast<double>(n - 1);
       const double size = local_size(col, x, z);
       const Stencil st = stencil(x, z, size, true);
       c.z[k] = z;
+      c.fraction[k] = profile_at(zc_col, alpha_col, z);
       c.u[k] = st.empty() ? 0.0 : st.apply(f_.u);
       c.w[k] = st.empty() ? 0.0 : st.apply(f_.w);
       c.pressure[k] = st.empty() ? not_a_number : st.apply(f_.pressure);

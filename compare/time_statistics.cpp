@@ -42,7 +42,8 @@ void MethodAccumulator::add_frame(const FrameSampler& frame, bool take_snapshot,
   }
   for (std::size_t i = 0; i < sec.size(); ++i) section_samples_[i].push_back(std::move(sec[i]));
   for (std::size_t i = 0; i < sta.size(); ++i) {
-    sta[i].z.clear(); sta[i].u.clear(); sta[i].w.clear(); sta[i].pressure.clear();  // keep memory flat
+    sta[i].z.clear(); sta[i].u.clear(); sta[i].w.clear(); sta[i].pressure.clear(); sta[i].fraction.clear();
+    sta[i].water.clear();  // keep memory flat
     station_samples_[i].push_back(std::move(sta[i]));
   }
   // Snapshot of the latest frame.
@@ -91,6 +92,7 @@ ColumnStatistics column_statistics(const ColumnSpec& spec, const std::vector<Col
   st.specific_energy = collect(&ColumnSample::specific_energy_m);
   st.momentum_coefficient = collect(&ColumnSample::momentum_coefficient);
   st.specific_force = collect(&ColumnSample::specific_force_m2);
+  st.void_fraction = collect(&ColumnSample::void_fraction);
   {
     std::vector<double> v;
     for (const auto& s : samples) v.push_back(s.surface_from_fraction_m);
@@ -113,6 +115,8 @@ ColumnStatistics column_statistics(const ColumnSpec& spec, const std::vector<Col
       const double t = (z - s.z_bed_m) / (s.depth_m) * static_cast<double>(s.z.size() - 1);
       const std::size_t i = std::min(static_cast<std::size_t>(std::max(t, 0.0)), s.z.size() - 2);
       const double f = std::clamp(t - static_cast<double>(i), 0.0, 1.0);
+      // a void below the frame's surface (chi = 0, sampling.hpp) has no water velocity
+      if (s.water.size() == s.z.size() && s.water[i] + f * (s.water[i + 1] - s.water[i]) < 0.5) continue;
       us.push_back(s.u[i] + f * (s.u[i + 1] - s.u[i]));
       ws.push_back(s.w[i] + f * (s.w[i + 1] - s.w[i]));
     }

@@ -32,7 +32,8 @@ struct ColumnStatistics {
   int n_times = 0;             // frames in the window
   int n_wet = 0;               // frames in which the column had water
   ScalarStats surface, surface_from_fraction, depth, discharge, mean_velocity, max_velocity,
-      near_surface_velocity, energy_coefficient, specific_energy, momentum_coefficient, specific_force;
+      near_surface_velocity, energy_coefficient, specific_energy, momentum_coefficient, specific_force,
+      void_fraction;
   // Time-mean profile on a fixed grid z_bed .. highest surface over the window; at each height only
   // the frames in which that height was under water count (wet_fraction = their share).
   std::vector<double> z, u_mean, u_std, w_mean, wet_fraction;

@@ -256,3 +256,50 @@ TEST_CASE("Droplets above the water do not count as the free surface", "[compare
   const auto vof = make_vof_sampler(cells, InterpolationScheme::mls_linear);
   CHECK(std::abs(vof->sample_column(0.305, 0.0, 21, 9.81).surface_z_m - 0.1234) <= 0.3 / 40 / 12 + 1e-12);
 }
+
+// A void below the surface (an air pocket under a roller; an empty cavity in single-phase SPH) that is
+// thinner than the kernel support: velocities interpolated into it from the water around it must not
+// count as discharge. Uniform u = 1 m/s, so q must equal the water depth h_w (not the column height).
+TEST_CASE("A void below the surface carries no discharge", "[compare][sph][vof]") {
+  const double dx = 0.01, depth = 0.2;
+  auto one = [](double, double) { return 1.0; };
+  auto zero = [](double, double) { return 0.0; };
+  const ParticleFrame full = lattice_particles(0.6, depth, dx, 3, one, zero);
+  // remove the rows with centres at z = 0.095 .. 0.125 (a 4 cm void between z = 0.09 and 0.13)
+  // over 0.2 < x < 0.4: the void is 2.8 h thick, so every point in it still has water neighbours
+  ParticleFrame f;
+  for (std::size_t j = 0; j < full.x.size(); ++j) {
+    if (full.x[j] > 0.2 && full.x[j] < 0.4 && full.z[j] > 0.09 && full.z[j] < 0.13) continue;
+    f.x.push_back(full.x[j]); f.z.push_back(full.z[j]); f.u.push_back(full.u[j]); f.w.push_back(full.w[j]);
+    f.type.push_back(full.type[j]); f.density.push_back(full.density[j]); f.pressure.push_back(full.pressure[j]);
+  }
+  SphSamplingSettings s;
+  s.particle_spacing_m = dx;
+  s.smoothing_length_m = std::sqrt(2.0) * dx;
+  const auto sph = make_sph_sampler(f, s);
+  const double void_m = 0.04;
+  const ColumnSample c = sph->sample_column(0.3, 0.0, 41, g);
+  REQUIRE(c.wet());
+  INFO("SPH surface " << c.surface_z_m << " q " << c.discharge_m2_s << " void fraction " << c.void_fraction);
+  CHECK(std::abs(c.surface_z_m - depth) < 0.1 * dx);
+  CHECK(std::abs(c.discharge_m2_s - (depth - void_m)) < dx);          // one particle spacing of water
+  CHECK(std::abs(c.void_fraction - void_m / depth) < dx / depth);
+  CHECK(c.mean_velocity_m_s == Approx(c.discharge_m2_s / c.depth_m));
+  const ColumnSample full_column = sph->sample_column(0.1, 0.0, 41, g);
+  CHECK(full_column.void_fraction == Approx(0.0).margin(1e-12));
+  CHECK(full_column.discharge_m2_s == Approx(full_column.depth_m).epsilon(1e-6));
+
+  // VOF: 60 x 40 cells of 0.01 x 0.0075 m, surface 0.1234 m; cell rows 6-8 (z 0.045-0.0675) empty
+  // over 0.2 < x < 0.4. alpha is linear between the centres, so the void is 0.0225 m thick.
+  CellFrame cells = cartesian_cells(0.6, 0.0, 0.3, 60, 40, 0.1234, one, zero);
+  for (int k = 6; k <= 8; ++k)
+    for (int i = 20; i < 40; ++i) cells.alpha[static_cast<std::size_t>(k * 60 + i)] = 0.0;
+  const auto vof = make_vof_sampler(cells, InterpolationScheme::mls_linear);
+  const ColumnSample v = vof->sample_column(0.305, 0.0, 41, g);
+  REQUIRE(v.wet());
+  const double vof_void = 0.0225, dz = 0.3 / 40;
+  INFO("VOF surface " << v.surface_z_m << " q " << v.discharge_m2_s << " void fraction " << v.void_fraction);
+  CHECK(std::abs(v.surface_z_m - 0.1234) <= dz / 12 + 1e-12);
+  CHECK(std::abs(v.discharge_m2_s - (0.1234 - vof_void)) < 0.5 * dz);
+  CHECK(std::abs(v.void_fraction - vof_void / 0.1234) < 0.5 * dz / 0.1234);
+}
