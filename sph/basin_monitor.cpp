@@ -322,7 +322,7 @@ std::string BasinMonitor::status_line() const {
 std::string BasinMonitor::summary_json() const {
   const double a = setup_.average_start_s, b = setup_.average_end_s;
   auto in_window = [&](const BasinSample& s) { return s.t >= a - 1e-9 && s.t <= b + 1e-9; };
-  std::vector<double> qin, qout, toe;
+  std::vector<double> qin, qout, toe, toe_t;
   const std::size_t n_sec = setup_.sections.size();
   std::vector<std::vector<double>> depth(n_sec), surface(n_sec), discharge(n_sec);
   for (const auto& s : samples_) {
@@ -333,6 +333,7 @@ std::string BasinMonitor::summary_json() const {
       qout.push_back(s.q_out);
     }
     toe.push_back(s.toe_x);
+    if (std::isfinite(s.toe_x)) toe_t.push_back(s.t);
     for (std::size_t k = 0; k < n_sec; ++k) {
       depth[k].push_back(s.depth[k]);
       surface[k].push_back(s.surface[k]);
@@ -363,6 +364,16 @@ std::string BasinMonitor::summary_json() const {
     const double injected = last->mass_in - first->mass_in;
     mass_error = injected > 0.0 ? (mass_change - net_in) / injected : nan_value;
   }
+  // The same two conditions on the whole window's means: (mean q_out - mean q_in) / q and the toe's
+  // least-squares trend over the window. Waves leaving the basin make 1 s means of q_out swing by more
+  // than 2 % in runs whose window means balance; a basin still filling or draining shows here.
+  const double window_imbalance = (q_out.mean - q_in.mean) / setup_.discharge_m2_s;
+  std::vector<double> toe_found;
+  for (const double x : toe)
+    if (std::isfinite(x)) toe_found.push_back(x);
+  const double toe_trend = toe_found.size() >= 2 ? slope(toe_t, toe_found) : nan_value;
+  const bool steady_means = std::abs(window_imbalance) < steady_discharge_tolerance &&
+                            std::abs(toe_trend) * steady_span_s < setup_.drift_tolerance_m && toe_missing == 0;
   const double from = steady_from();
   const bool window_complete = last && last->t >= b - 1e-9;
   const bool steady_window = std::isfinite(from) && from <= a + 1e-9 && window_complete;
@@ -401,7 +412,9 @@ std::string BasinMonitor::summary_json() const {
   o << "  \"y2_over_y1_relative_to_belanger\": " << json_number((y2 / y1 - belanger_ratio) / belanger_ratio) << ",\n";
   o << "  \"steady\": {\"steady_from_s\": " << json_number(from) << ", \"steady_over_window\": "
     << (steady_window ? "true" : "false") << ", \"toe_drift_tolerance_m\": " << json_number(setup_.drift_tolerance_m)
-    << "},\n";
+    << ", \"window_outflow_minus_inflow_over_q\": " << json_number(window_imbalance)
+    << ", \"window_toe_trend_m_per_s\": " << json_number(toe_trend)
+    << ", \"steady_by_window_means\": " << (steady_means && window_complete ? "true" : "false") << "},\n";
   o << "  \"sections\": [";
   for (std::size_t k = 0; k < n_sec; ++k) {
     const auto& sec = setup_.sections[k];

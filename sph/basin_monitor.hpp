@@ -22,7 +22,12 @@
 //   - toe drift |slope of a least-squares line through toe(t)| * 1 s < the bed wavelength (corrugated)
 //     or 2 y1 (smooth bed).
 // `steady_from_s` is the first output time from which both hold at every later output; the averaging
-// window was steady when steady_from_s <= the window start.
+// window was steady when steady_from_s <= the window start. The same two conditions on the window's
+// means (`steady_by_window_means`): |mean q_out - mean q_in| / q < 2 % over the whole window
+// (`window_outflow_minus_inflow_over_q`, > 0 for a draining basin) and the toe's least-squares trend
+// over the window (`window_toe_trend_m_per_s`) times 1 s below the tolerance. Waves leaving the basin
+// can keep the 1 s test failing in a run whose window means balance; a basin that is still filling or
+// draining fails both.
 //
 // summary.json (written atomically at every output, so it is current even if the run is stopped):
 // time means and standard deviations over the averaging window [average_start_s, average_end_s] of the

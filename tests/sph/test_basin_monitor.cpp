@@ -98,6 +98,25 @@ TEST_CASE("a stationary jump with balanced discharges is steady; a drifting one 
       monitor.record(ps, t, rho0 * q * t, 0.95 * rho0 * q * t);
     }
     CHECK(std::isnan(monitor.steady_from()));
+    const std::string json = monitor.summary_json();
+    CHECK(contains(json, "\"steady_by_window_means\": false"));
+    CHECK(contains(json, "\"window_outflow_minus_inflow_over_q\": -0.05"));
+  }
+  SECTION("outflow swinging by 10 % with the window's period: the 1 s test fails, the window means balance") {
+    sph::BasinMonitor monitor(setup());
+    const sph::ParticleSet ps = step_particles(0.5);
+    const double omega = 2.0 * std::acos(-1.0) / 1.5;  // one period = the window [1.5, 3] s
+    for (int k = 0; k <= 30; ++k) {
+      const double t = k * dt;
+      // q_out = q (1 + 0.1 sin(omega t)): mass out = rho0 q (t + 0.1 (1 - cos(omega t)) / omega); its
+      // 1 s means are 3.6 % below q at t = 3 s, its mean over the window is q.
+      const double out = rho0 * q * (t + 0.1 * (1.0 - std::cos(omega * t)) / omega);
+      monitor.record(ps, t, rho0 * q * t, out);
+    }
+    CHECK(std::isnan(monitor.steady_from()));
+    const std::string json = monitor.summary_json();
+    CHECK(contains(json, "\"steady_over_window\": false"));
+    CHECK(contains(json, "\"steady_by_window_means\": true"));
   }
 }
 
