@@ -61,6 +61,14 @@ std::string sph_run_note(const fs::path& summary_file) {
     << (window == "true" ? ", steady over the averaging window" : ", NOT steady over the averaging window");
   if (!from.empty() && from != "null") o << " (steady from t = " << from << " s)";
   if (!q_error.empty() && q_error != "null") o << "; inflow discharge error " << std::stod(q_error) * 100.0 << " %";
+  const std::string imbalance = summary_token(json, "window_outflow_minus_inflow_over_q");
+  const std::string trend = summary_token(json, "window_toe_trend_m_per_s");
+  const std::string by_means = summary_token(json, "steady_by_window_means");
+  if (!imbalance.empty() && imbalance != "null") {
+    o << "; over the window outflow - inflow = " << std::stod(imbalance) * 100.0 << " % of q";
+    if (!trend.empty() && trend != "null") o << ", toe trend " << std::stod(trend) << " m/s";
+    o << (by_means == "true" ? " (steady by the window means)" : " (NOT steady by the window means)");
+  }
   return o.str();
 }
 

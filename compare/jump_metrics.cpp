@@ -3,6 +3,7 @@
 #include "cases/jump_toe.hpp"
 
 #include <algorithm>
+#include <iomanip>
 #include <cmath>
 #include <sstream>
 
@@ -68,6 +69,21 @@ JumpMetrics compute_jump_metrics(const MethodStatistics& m, const JumpInputs& in
     r.specific_force_upstream_m2 = up->specific_force.mean;
     r.specific_force_downstream_m2 = down->specific_force.mean;
     r.bed_force_fraction = (r.specific_force_upstream_m2 - r.specific_force_downstream_m2) / r.specific_force_upstream_m2;
+    // Continuity check: in a steady window both sections carry the inflow's q = y1 U1. A mean q off
+    // by more than 5 % means the basin was still filling or draining (or the section is in spray),
+    // so E2, eta and M2 there are not those of a stationary jump.
+    const double q_in = in.inflow_depth_m * in.inflow_velocity_m_s;
+    for (const ColumnStatistics* c : {up, down}) {
+      const double ratio = c->discharge.mean / q_in - 1.0;
+      if (q_in > 0.0 && std::abs(ratio) > 0.05) {
+        std::ostringstream s;
+        s << "the \"" << c->spec.role << "\" section's mean discharge " << c->discharge.mean << " m^2/s is "
+          << std::fixed << std::setprecision(1) << 100.0 * ratio << " % off the inflow q = " << std::defaultfloat
+          << q_in << " m^2/s: the averaging window is not steady there (storage still changing), so its "
+          << "energy and force are not those of a stationary jump";
+        r.notes.push_back(s.str());
+      }
+    }
   }
 
   // Longitudinal analysis on the stations.

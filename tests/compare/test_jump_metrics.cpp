@@ -209,3 +209,26 @@ TEST_CASE("A toe downstream of the downstream section gives no y2 or eta, with a
   for (const auto& n : r.notes) found = found || n.find("swept past") != std::string::npos;
   CHECK(found);
 }
+
+TEST_CASE("A section whose mean discharge is off the inflow q is named in the notes", "[compare][metrics]") {
+  const double y1 = 0.0254, u1 = 2.0, y2 = 0.104, q = y1 * u1;
+  auto has_note = [](const JumpMetrics& r, const std::string& part) {
+    for (const auto& n : r.notes)
+      if (n.find(part) != std::string::npos) return true;
+    return false;
+  };
+  JumpInputs in{y1, u1, 0.0, g, {}};
+  for (const double factor : {1.04, 1.08, 0.9}) {
+    MethodStatistics m;
+    m.sections.push_back(as_statistics("upstream", "upstream", uniform_column(0.1, 0.0, y1, u1)));
+    m.sections.push_back(as_statistics("downstream", "downstream", uniform_column(1.5, 0.0, y2, factor * q / y2)));
+    const JumpMetrics r = compute_jump_metrics(m, in);
+    INFO("downstream q = " << factor << " q");
+    CHECK(has_note(r, "\"downstream\" section's mean discharge") == (std::abs(factor - 1.0) > 0.05));
+    CHECK_FALSE(has_note(r, "\"upstream\" section's mean discharge"));
+  }
+  MethodStatistics m;
+  m.sections.push_back(as_statistics("upstream", "upstream", uniform_column(0.1, 0.0, y1, u1)));
+  m.sections.push_back(as_statistics("downstream", "downstream", uniform_column(1.5, 0.0, y2, 1.077 * q / y2)));
+  CHECK(has_note(compute_jump_metrics(m, in), "is 7.7 % off the inflow q"));
+}

@@ -85,5 +85,7 @@ TEST_CASE("The comparator reads the SPH run monitor's verdict from its summary.j
   CHECK_THAT(note, Catch::Contains("jump in_basin"));
   CHECK_THAT(note, Catch::Contains("steady over the averaging window"));
   CHECK_THAT(note, Catch::Contains("steady from t = 1 s"));
+  CHECK_THAT(note, Catch::Contains("outflow - inflow = 0 % of q"));
+  CHECK_THAT(note, Catch::Contains("(steady by the window means)"));
   CHECK(hydrojump::compare::sph_run_note(dir.path() / "absent.json").empty());
 }
