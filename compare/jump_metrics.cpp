@@ -78,7 +78,7 @@ JumpMetrics compute_jump_metrics(const MethodStatistics& m, const JumpInputs& in
       if (q_in > 0.0 && std::abs(ratio) > 0.05) {
         std::ostringstream s;
         s << "the \"" << c->spec.role << "\" section's mean discharge " << c->discharge.mean << " m^2/s is "
-          << std::fixed << std::setprecision(1) << 100.0 * ratio << " % off the inflow q = " << std::defaultfloat
+          << std::fixed << std::setprecision(1) << 100.0 * ratio << " % off the inflow q = " << std::defaultfloat << std::setprecision(4)
           << q_in << " m^2/s: the averaging window is not steady there (storage still changing), so its "
           << "energy and force are not those of a stationary jump";
         r.notes.push_back(s.str());
