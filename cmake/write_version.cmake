@@ -1,16 +1,22 @@
-# Writes OUT (hydrojump/version.hpp) with two strings:
+# Writes OUT (hydrojump/version.hpp) with three strings:
 #   version_string      the project VERSION and, when SRC is a git checkout, the commit it was built
 #                       from (`git describe --always --dirty`), e.g. "0.1.0+3399944e07aa-dirty":
 #                       provenance, printed in reports and by --version;
 #   source_fingerprint  a hash of the program's code only: the git trees of cases/, sph/,
 #                       reference/, compare/, cmake/ and CMakeLists.txt at HEAD, plus the uncommitted
 #                       changes under them (the diff, and the names of untracked files). The study
-#                       runner and `hydrojump sph --resume` key their caches on it, so results of
-#                       other code are never reused while a commit that touches only documentation,
-#                       tests or scripts keeps them. Without git it is the VERSION.
+#                       runner's compare stage keys its cache on it;
+#   solver_fingerprint  the same over the code that generates and runs the solvers only (all of the
+#                       above but compare/, except compare/generate.*, which writes the case
+#                       directories): the study's generate, sph and vof stages and
+#                       `hydrojump sph --resume` key on it, so a change to the comparator re-runs the
+#                       comparison but keeps hours of solver results.
+# Results of other code are never reused, while a commit that touches only documentation, tests or
+# scripts keeps them. Without git both fingerprints are the VERSION.
 # Run at every build; the header is rewritten only when its content changes.
 set(source_id "")
 set(fingerprint "${VERSION}")
+set(solver_fingerprint "${VERSION}")
 if(EXISTS "${SRC}/.git")
   execute_process(COMMAND git -C "${SRC}" describe --always --dirty --abbrev=12
                   OUTPUT_VARIABLE source_id OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET
@@ -18,22 +24,26 @@ if(EXISTS "${SRC}/.git")
   if(NOT status EQUAL 0)
     set(source_id "")
   endif()
-  set(code_paths cases sph reference compare cmake CMakeLists.txt)
-  set(tree_args "")
-  foreach(p IN LISTS code_paths)
-    list(APPEND tree_args "HEAD:${p}")
-  endforeach()
-  execute_process(COMMAND git -C "${SRC}" rev-parse ${tree_args}
-                  OUTPUT_VARIABLE trees ERROR_QUIET RESULT_VARIABLE trees_status)
-  execute_process(COMMAND git -C "${SRC}" diff HEAD -- ${code_paths}
-                  OUTPUT_VARIABLE changes ERROR_QUIET RESULT_VARIABLE diff_status)
-  execute_process(COMMAND git -C "${SRC}" ls-files --others --exclude-standard -- ${code_paths}
-                  OUTPUT_VARIABLE untracked ERROR_QUIET RESULT_VARIABLE untracked_status)
-  if(trees_status EQUAL 0 AND diff_status EQUAL 0 AND untracked_status EQUAL 0)
-    string(SHA1 digest "${VERSION}\n${trees}\n${changes}\n${untracked}")
-    string(SUBSTRING "${digest}" 0 16 digest)
-    set(fingerprint "${VERSION}+code.${digest}")
-  endif()
+  # hash_code(VAR paths...): VERSION + git trees at HEAD + uncommitted diff + untracked names
+  function(hash_code var)
+    set(tree_args "")
+    foreach(p IN LISTS ARGN)
+      list(APPEND tree_args "HEAD:${p}")
+    endforeach()
+    execute_process(COMMAND git -C "${SRC}" rev-parse ${tree_args}
+                    OUTPUT_VARIABLE trees ERROR_QUIET RESULT_VARIABLE trees_status)
+    execute_process(COMMAND git -C "${SRC}" diff HEAD -- ${ARGN}
+                    OUTPUT_VARIABLE changes ERROR_QUIET RESULT_VARIABLE diff_status)
+    execute_process(COMMAND git -C "${SRC}" ls-files --others --exclude-standard -- ${ARGN}
+                    OUTPUT_VARIABLE untracked ERROR_QUIET RESULT_VARIABLE untracked_status)
+    if(trees_status EQUAL 0 AND diff_status EQUAL 0 AND untracked_status EQUAL 0)
+      string(SHA1 digest "${VERSION}\n${trees}\n${changes}\n${untracked}")
+      string(SUBSTRING "${digest}" 0 16 digest)
+      set(${var} "${VERSION}+code.${digest}" PARENT_SCOPE)
+    endif()
+  endfunction()
+  hash_code(fingerprint cases sph reference compare cmake CMakeLists.txt)
+  hash_code(solver_fingerprint cases sph reference compare/generate.cpp compare/generate.hpp cmake CMakeLists.txt)
 endif()
 if(source_id)
   set(full_version "${VERSION}+${source_id}")
@@ -47,6 +57,7 @@ file(WRITE "${OUT}.tmp"
   "namespace hydrojump {\n"
   "inline constexpr const char* version_string = \"${full_version}\";\n"
   "inline constexpr const char* source_fingerprint = \"${fingerprint}\";\n"
+  "inline constexpr const char* solver_fingerprint = \"${solver_fingerprint}\";\n"
   "}\n")
 execute_process(COMMAND "${CMAKE_COMMAND}" -E copy_if_different "${OUT}.tmp" "${OUT}")
 file(REMOVE "${OUT}.tmp")

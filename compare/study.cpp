@@ -72,12 +72,15 @@ int run_child(const std::vector<std::string>& args, const std::filesystem::path&
   return 1;
 }
 
-// The fingerprint of case `c` at `resolution`: its resolved settings and this program's code. Every
-// stage stamp of the case holds it.
-std::string case_fingerprint(const cases::Study& study, const cases::Case& c, const std::string& resolution) {
+// The fingerprint of case `c` at `resolution`: its resolved settings and a fingerprint of this
+// program's code. The generate, sph and vof stamps hold it with `solver_fingerprint` (the code that
+// writes and runs the solvers), the compare stamp with `source_fingerprint` (all of it), so a change
+// to the comparator re-runs only the comparisons.
+std::string case_fingerprint(const cases::Study& study, const cases::Case& c, const std::string& resolution,
+                             const char* code = source_fingerprint) {
   std::string text = cases::resolved_case_text(study, c, resolution);
   text = text.substr(text.find('\n') + 1);  // the first line names the source file: not part of the case
-  return cases::fingerprint(text + "\ncode " + source_fingerprint);
+  return cases::fingerprint(text + "\ncode " + code);
 }
 
 struct StageResult {
@@ -121,7 +124,8 @@ class StudyRunner {
   CaseResult run_case_stages(const cases::Case& c) {
     CaseResult result{c.id, {}};
     const auto dir = options_.out / c.id;
-    const std::string fingerprint = case_fingerprint(study_, c, options_.resolution);
+    const std::string fingerprint = case_fingerprint(study_, c, options_.resolution, solver_fingerprint);
+    const std::string compare_fingerprint = case_fingerprint(study_, c, options_.resolution, source_fingerprint);
 
     // Regenerate the case directories only when the case changed (keeps finished results).
     const auto generated_stamp = dir / "generate.stamp";
@@ -155,7 +159,7 @@ class StudyRunner {
     if (any_solver_ran) std::filesystem::remove(dir / "compare.stamp");
     if (any_solver_ok) {
       result.stages.push_back(run_stage(c.id, "compare", {self_.string(), "compare", dir.string()}, dir,
-                                        fingerprint, {}));
+                                        compare_fingerprint, {}));
     } else {
       result.stages.push_back({"compare", "skipped", 0.0, 0, {}});
     }

@@ -7,7 +7,8 @@
 // failing or crashing case is reported and does not stop the others.
 //
 // Caching: a stage that finished writes OUT/<case>/<stage>.stamp holding a hash of the resolved case
-// and of the program's code (source_fingerprint, cmake/write_version.cmake); a re-run skips stages whose stamp matches, so only what changed runs
+// and of the program's code (solver_fingerprint for the generate, sph and vof stages, source_fingerprint
+// for compare; cmake/write_version.cmake); a re-run skips stages whose stamp matches, so only what changed runs
 // again, and an interrupted study resumes where it stopped (solvers resume from their checkpoints).
 // The study report covers the cases run now and every other case of the spec whose comparison in OUT
 // is current (stamp = its fingerprint), so a long study can be run a few cases at a time.

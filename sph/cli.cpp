@@ -29,7 +29,8 @@
 
 namespace hydrojump::sph {
 
-// The fingerprint that ties a checkpoint to its case: the case text and the program version, without
+// The fingerprint that ties a checkpoint to its case: the case text and the solver code
+// (solver_fingerprint, cmake/write_version.cmake: a comparator change keeps checkpoints), without
 // the run-control settings that never change the trajectory (the stability limit checked after each
 // step and the checkpoint interval), so a run stopped at the density limit can be resumed from its
 // last good checkpoint with a relaxed limit.
@@ -43,7 +44,7 @@ std::string run_fingerprint(const std::string& case_text) {
     kept += line;
     kept += '\n';
   }
-  return cases::fingerprint(kept + "\ncode " + source_fingerprint);
+  return cases::fingerprint(kept + "\ncode " + solver_fingerprint);
 }
 
 namespace {

@@ -26,7 +26,7 @@ struct SphOptions {
 // unstable, std::runtime_error / cases::SpecError on bad input.
 int run_sph_directory(const SphOptions& opt);
 
-// The fingerprint stored in a run's checkpoints: of the case text (case.toml) and the program's code (source_fingerprint),
+// The fingerprint stored in a run's checkpoints: of the case text (case.toml) and the solver code (solver_fingerprint),
 // ignoring sph.max_density_variation and sph.checkpoint_interval_wall_s (run control, not physics),
 // so that --resume accepts a relaxed stability limit.
 std::string run_fingerprint(const std::string& case_text);

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -132,6 +133,19 @@ TEST_CASE("Study runner: failures are isolated, results cached, changes re-run",
   auto third = lines_of(calls);
   CHECK(std::count_if(third.begin(), third.end(), [](const std::string& l) { return l.find("/A") != std::string::npos; }) == 3);
   CHECK(std::count_if(third.begin(), third.end(), [](const std::string& l) { return l.find("/B") != std::string::npos; }) == 2);
+
+  // A comparator change (its stamp holds source_fingerprint, the solvers' hold solver_fingerprint):
+  // only the comparison runs again; the solver results are kept.
+  write(options.out / "A" / "compare.stamp", "written by another comparator");
+  fs::remove(calls);
+  run_study(options, log);
+  auto fourth = lines_of(calls);
+  std::vector<std::string> a_calls;
+  std::copy_if(fourth.begin(), fourth.end(), std::back_inserter(a_calls),
+               [](const std::string& l) { return l.find("/A") != std::string::npos; });
+  REQUIRE(a_calls.size() == 1);
+  CHECK_THAT(a_calls[0], Catch::StartsWith("compare "));
+  CHECK(fs::exists(options.out / "A" / "sph" / "case.toml"));
   fs::remove_all(dir);
 }
 
