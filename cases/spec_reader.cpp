@@ -285,6 +285,8 @@ void read_sph(TableReader& t, SphSettings& s) {
   if (t.has("artificial_viscosity_nu_m2_s") && s.viscosity != "artificial")
     t.fail_at(t.raw().get("artificial_viscosity_nu_m2_s"), "artificial_viscosity_nu_m2_s",
               std::string("is only used with viscosity = \"artificial\" (here \"") + s.viscosity + "\")");
+  // A case that switches to another viscosity model does not use the nu it inherits from [sph].
+  if (s.viscosity != "artificial") s.artificial_viscosity_nu_m2_s = 0.0;
   s.artificial_viscosity_wall_factor = t.number_or("artificial_viscosity_wall_factor", s.artificial_viscosity_wall_factor, between(0.0, 1.0));
   s.sps_smagorinsky_constant = t.number_or("sps_smagorinsky_constant", s.sps_smagorinsky_constant, between(0.0, 1.0));
   s.sps_blin_constant = t.number_or("sps_blin_constant", s.sps_blin_constant, between(0.0, 1.0));

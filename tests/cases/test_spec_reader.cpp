@@ -332,6 +332,17 @@ TEST_CASE("The artificial viscosity is given as alpha or as nu, not both", "[cas
     const auto msg = rejection(replaced(with_sph, "[sph]\n", "[sph]\nviscosity = \"laminar_sps\"\n"));
     CHECK_THAT(msg, Catch::Contains("artificial_viscosity_nu_m2_s is only used with viscosity = \"artificial\""));
   }
+  SECTION("a case that switches to laminar + SPS drops the study's nu, and its resolved case reloads") {
+    const auto text = replaced(with_sph, "[case.run]", "[case.sph]\nviscosity = \"laminar_sps\"\n[case.run]");
+    const Study s = parse_study(text, "spec.toml", ".");
+    CHECK(s.cases[0].sph.viscosity == "laminar_sps");
+    CHECK(s.cases[0].sph.artificial_viscosity_nu_m2_s == 0.0);
+    const auto file = std::filesystem::temp_directory_path() / "hydrojump_test_nu_sps.toml";
+    write_resolved_case(s, s.cases[0], "quick", file);
+    const Study r = load_study(file);
+    CHECK(r.cases[0].sph.viscosity == "laminar_sps");
+    std::filesystem::remove(file);
+  }
   SECTION("negative nu") {
     const auto msg = rejection(replaced(with_sph, "= 0.002", "= -0.002"));
     CHECK_THAT(msg, Catch::Contains("artificial_viscosity_nu_m2_s = -0.002 is out of range"));
