@@ -11,9 +11,10 @@
 #                       directories): the study's generate, sph and vof stages and
 #                       `hydrojump sph --resume` key on it, so a change to the comparator re-runs the
 #                       comparison but keeps hours of solver results.
-# Results of other code are never reused, while a commit that touches only documentation, tests or
-# scripts keeps them. Without git both fingerprints are the VERSION.
+# Results of other code are never reused, while a commit that touches only documentation, spec files,
+# data, tests or scripts keeps them. Without git both fingerprints are the VERSION.
 # Run at every build; the header is rewritten only when its content changes.
+cmake_policy(SET CMP0007 NEW)  # script mode: list() keeps empty elements
 set(source_id "")
 set(fingerprint "${VERSION}")
 set(solver_fingerprint "${VERSION}")
@@ -24,24 +25,41 @@ if(EXISTS "${SRC}/.git")
   if(NOT status EQUAL 0)
     set(source_id "")
   endif()
-  # hash_code(VAR paths...): VERSION + git trees at HEAD + uncommitted diff + untracked names
+  # hash_code(VAR paths...): VERSION + the blobs of the paths at HEAD + the uncommitted diff + the
+  # names of untracked files, leaving out documentation (*.md), spec files (*.toml: each case's own
+  # resolved settings are in its fingerprint already) and data (*.csv), so that editing those keeps
+  # finished results. A git failure is a warning and leaves VAR unique to this configure time, so
+  # that no cache can match it by accident.
   function(hash_code var)
-    set(tree_args "")
-    foreach(p IN LISTS ARGN)
-      list(APPEND tree_args "HEAD:${p}")
+    set(excludes ":(exclude)*.md" ":(exclude)*.toml" ":(exclude)*.csv")
+    execute_process(COMMAND git -C "${SRC}" ls-tree -r HEAD -- ${ARGN}
+                    OUTPUT_VARIABLE tree ERROR_VARIABLE tree_error RESULT_VARIABLE tree_status)
+    execute_process(COMMAND git -C "${SRC}" diff HEAD -- ${ARGN} ${excludes}
+                    OUTPUT_VARIABLE changes ERROR_VARIABLE diff_error RESULT_VARIABLE diff_status)
+    execute_process(COMMAND git -C "${SRC}" ls-files --others --exclude-standard -- ${ARGN} ${excludes}
+                    OUTPUT_VARIABLE untracked ERROR_VARIABLE untracked_error RESULT_VARIABLE untracked_status)
+    foreach(p IN LISTS ARGN)  # a renamed or deleted path would silently drop out of the hash
+      string(FIND "${tree}" "\t${p}" at)
+      if(at EQUAL -1)
+        set(tree_status 1)
+        set(tree_error "${p} is not in HEAD; ")
+      endif()
     endforeach()
-    execute_process(COMMAND git -C "${SRC}" rev-parse ${tree_args}
-                    OUTPUT_VARIABLE trees ERROR_QUIET RESULT_VARIABLE trees_status)
-    execute_process(COMMAND git -C "${SRC}" diff HEAD -- ${ARGN}
-                    OUTPUT_VARIABLE changes ERROR_QUIET RESULT_VARIABLE diff_status)
-    execute_process(COMMAND git -C "${SRC}" ls-files --others --exclude-standard -- ${ARGN}
-                    OUTPUT_VARIABLE untracked ERROR_QUIET RESULT_VARIABLE untracked_status)
-    if(trees_status EQUAL 0 AND diff_status EQUAL 0 AND untracked_status EQUAL 0)
-      string(SHA1 digest "${VERSION}\n${trees}\n${changes}\n${untracked}")
+    if(tree_status EQUAL 0 AND diff_status EQUAL 0 AND untracked_status EQUAL 0 AND tree)
+      string(REPLACE ";" "," tree "${tree}")
+      string(REPLACE "\n" ";" lines "${tree}")
+      list(FILTER lines EXCLUDE REGEX "\\.(md|toml|csv)$")
+      string(SHA1 digest "${VERSION}\n${lines}\n${changes}\n${untracked}")
       string(SUBSTRING "${digest}" 0 16 digest)
       set(${var} "${VERSION}+code.${digest}" PARENT_SCOPE)
+    else()
+      string(TIMESTAMP now "%Y%m%d%H%M%S")
+      message(WARNING "write_version: cannot hash ${ARGN} with git (${tree_error}${diff_error}${untracked_error}); "
+                      "${var} is unique to this build, so no run cache will match it")
+      set(${var} "${VERSION}+unhashed.${now}" PARENT_SCOPE)
     endif()
   endfunction()
+  # Every file whose change can change what the solvers compute or what `generate` writes:
   hash_code(fingerprint cases sph reference compare cmake CMakeLists.txt)
   hash_code(solver_fingerprint cases sph reference compare/generate.cpp compare/generate.hpp cmake CMakeLists.txt)
 endif()

@@ -31,14 +31,39 @@ void integrate_column(ColumnSample& c, double gravity) {
   const double h = c.depth_m;
   const std::size_t n = c.z.size();
   const double dz = h / static_cast<double>(n - 1);
-  // chi_k = 0 in a void: c < 0.5 with water (c >= 0.5) below it; the surface point and the points
-  // below the lowest water point (a bed cell that is partly solid) count as water.
+  // chi_k = 0 in a void (c < 0.5), except at the surface point and within bed_exemption_m of the bed
   std::vector<double> chi(n, 1.0);
+  bool has_void = false;
   if (c.fraction.size() == n) {
-    std::size_t first_water = 0;
-    while (first_water + 1 < n && c.fraction[first_water] < 0.5) ++first_water;
-    for (std::size_t k = first_water; k + 1 < n; ++k) chi[k] = c.fraction[k] >= 0.5 ? 1.0 : 0.0;
+    for (std::size_t k = 0; k + 1 < n; ++k) {
+      if (c.z[k] - c.z_bed_m < c.bed_exemption_m || c.fraction[k] >= 0.5) continue;
+      chi[k] = 0.0;
+      has_void = true;
+    }
   }
+  // Simpson without voids (exact for cubics). With a void, interval by interval: the trapezoidal rule
+  // over water intervals, nothing over void ones, and over an interval with one edge of a void the
+  // water part up to the c = 0.5 crossing (linear in c) times f at its water end.
+  std::vector<double> wet_part(n - 1, 1.0);  // share of each interval that is water
+  if (has_void) {
+    for (std::size_t k = 0; k + 1 < n; ++k) {
+      if (chi[k] == chi[k + 1]) { wet_part[k] = chi[k]; continue; }
+      const double c0 = c.fraction[k], c1 = c.fraction[k + 1];
+      double t = std::abs(c1 - c0) > 1e-12 ? (0.5 - c0) / (c1 - c0) : 0.5;  // crossing at z_k + t dz
+      if (!(t >= 0.0 && t <= 1.0)) t = 0.5;  // an exempt end (surface, bed) with c < 0.5
+      wet_part[k] = chi[k] > 0.0 ? t : 1.0 - t;
+    }
+  }
+  auto integral = [&](const std::vector<double>& f) {
+    if (!has_void) return simpson(f, dz);
+    double sum = 0.0;
+    for (std::size_t k = 0; k + 1 < n; ++k) {
+      if (chi[k] > 0.0 && chi[k + 1] > 0.0) sum += 0.5 * (f[k] + f[k + 1]);
+      else if (chi[k] > 0.0) sum += wet_part[k] * f[k];
+      else if (chi[k + 1] > 0.0) sum += wet_part[k] * f[k + 1];
+    }
+    return sum * dz;
+  };
   std::vector<double> u1(n), u2(n), u3(n);
   double u_max = -std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < n; ++k) {
@@ -49,9 +74,9 @@ void integrate_column(ColumnSample& c, double gravity) {
   }
   c.water = chi;
   // h_w = int chi dz;  void fraction = 1 - h_w / h
-  c.void_fraction = std::clamp(1.0 - simpson(chi, dz) / h, 0.0, 1.0);
+  c.void_fraction = std::clamp(1.0 - integral(chi) / h, 0.0, 1.0);
   // q = int chi u dz
-  c.discharge_m2_s = simpson(u1, dz);
+  c.discharge_m2_s = integral(u1);
   // U = q / h
   c.mean_velocity_m_s = c.discharge_m2_s / h;
   c.max_velocity_m_s = u_max;
@@ -59,7 +84,7 @@ void integrate_column(ColumnSample& c, double gravity) {
   c.near_surface_velocity_m_s = profile_at(c.z, c.u, c.surface_z_m - 0.1 * h);
   // alpha = int chi u^3 dz / (U^3 h)
   const double ubar3 = c.mean_velocity_m_s * c.mean_velocity_m_s * c.mean_velocity_m_s;
-  c.energy_coefficient = std::abs(ubar3) > 1e-30 ? simpson(u3, dz) / (ubar3 * h) : not_a_number;
+  c.energy_coefficient = std::abs(ubar3) > 1e-30 ? integral(u3) / (ubar3 * h) : not_a_number;
   // E = z_b + h + alpha U^2 / (2 g);  with U = 0 the kinetic term is 0 whatever alpha is.
   const double kinetic = std::isfinite(c.energy_coefficient)
                              ? c.energy_coefficient * c.mean_velocity_m_s * c.mean_velocity_m_s /
@@ -68,7 +93,7 @@ void integrate_column(ColumnSample& c, double gravity) {
   c.specific_energy_m = c.z_bed_m + h + kinetic;
   // beta = int chi u^2 dz / (U^2 h)
   const double ubar2 = c.mean_velocity_m_s * c.mean_velocity_m_s;
-  const double u2_integral = simpson(u2, dz);
+  const double u2_integral = integral(u2);
   c.momentum_coefficient = ubar2 > 1e-30 ? u2_integral / (ubar2 * h) : not_a_number;
   // M = h^2/2 + beta q^2/(g h) = h^2/2 + int chi u^2 dz / g  (the same, and defined when U = 0)
   c.specific_force_m2 = 0.5 * h * h + u2_integral / gravity;
@@ -222,6 +247,7 @@ class SphSampler final : public FrameSampler {
   void fill_profile(ColumnSample& c, int n_points) const {
     const std::size_t n = static_cast<std::size_t>(n_points);
     c.z.resize(n); c.u.resize(n); c.w.resize(n); c.pressure.resize(n); c.fraction.resize(n);
+    c.bed_exemption_m = 0.5 * dx_;  // c counts the wall particles: ~1 at a wetted bed, ~1/2 at a dry one
     for (std::size_t k = 0; k < n; ++k) {
       const double z = c.z_bed_m + c.depth_m * static_cast<double>(k) / static_cast<double>(n - 1);
       const Stencil st = stencil(c.x_m, z);
@@ -376,6 +402,8 @@ class VofSampler final : public FrameSampler {
     c.depth_m = c.surface_z_m - z_bed;
     if (!(c.depth_m > 0.0)) { c.surface_z_m = not_a_number; c.depth_m = not_a_number; return c; }
     const std::size_t n = static_cast<std::size_t>(n_points);
+    // a partly solid bed cell (staircase) holds water at alpha < 0.5: no void within one cell of the bed
+    c.bed_exemption_m = local_size(col, x, z_bed);
     // alpha along the column as the surface search sees it: linear between the cell centres
     std::vector<double> zc_col(col.size()), alpha_col(col.size());
     for (std::size_t k = 0; k < col.size(); ++k) {

@@ -4,24 +4,30 @@
 //
 // Column at x, from the bed z_b(x) to the free surface eta(x):
 //   points       z_k = z_b + k (eta - z_b)/(n - 1), k = 0..n-1, n odd (Simpson's rule is exact for
-//                cubics, so the integrals below are exact for linear u)
+//                cubics, so the integrals below are exact for linear u in a column without voids)
 //   depth        h = eta - z_b
 //   water        chi(z) = 1 where the fraction c(z) >= 0.5 (SPH kernel sum, VOF alpha), else 0: the
 //                voids below the surface (air pockets under a plunging roller; in single-phase SPH
 //                empty cavities) carry no water. Velocities interpolated there from the water around
 //                them would otherwise count: run B at `default` showed a time-mean q 23 % above the
-//                inflow at a section in the roller before this mask. The surface point, and the points
-//                below the lowest water point (a staircase bed cell that is partly solid), count as water.
-//   discharge    q = int_{z_b}^{eta} chi u dz   (chi also weights the integrals of u^2 and u^3 below)
+//                inflow at a section in the roller before this mask. The surface point counts as water,
+//                and so do points less than `bed_exemption_m` above the bed (a staircase VOF bed cell
+//                that is partly solid has alpha < 0.5 though it is full of water). A column with a void
+//                is integrated interval by interval: trapezoidal over water, up to the c = 0.5 crossing
+//                (linear in c) over an interval holding a void's edge (Simpson's alternating weights
+//                would count a void of m points as (m +- 1/3) dz depending on where it starts).
+//   discharge    q = int_{z_b}^{eta} chi u dz
 //   water depth  h_w = int chi dz  (void_fraction = 1 - h_w / h)
-//   mean vel.    U = q / h
+//   mean vel.    U = q / h   (over the whole depth h, voids included: E and M below use h)
 //   max vel.     u_max = max_k u(z_k) over the water points
-//   KE coeff.    alpha = int u^3 dz / (U^3 h)   (Coriolis coefficient)
+//   KE coeff.    alpha = int chi u^3 dz / (U^3 h)   (Coriolis coefficient)
 //   energy       E = z_b + h + alpha U^2 / (2 g)  (total head above the datum z = 0)
-//   mom. coeff.  beta = int u^2 dz / (U^2 h)    (Boussinesq coefficient)
+//   mom. coeff.  beta = int chi u^2 dz / (U^2 h)    (Boussinesq coefficient)
 //   spec. force  M = h^2/2 + beta q^2 / (g h)   (momentum function per unit width, m^2: the
-//                hydrostatic force plus the momentum flux, divided by rho g; Belanger's jump has M1 = M2)
-//   near-surface velocity u_s = u(eta - 0.1 h)   (sign gives the direction of the surface flow)
+//                hydrostatic force plus the momentum flux, divided by rho g; Belanger's jump has M1 = M2;
+//                h^2/2 counts a void as water, i.e. hydrostatic pressure through it)
+//   near-surface velocity u_s = u(eta - 0.1 h)   (sign gives the direction of the surface flow; not
+//                masked: in a void it is the velocity interpolated from the water around it)
 //
 // Free surface:
 //   SPH  the kernel-interpolated fluid fraction c(x) = sum_j V_j W(|x - x_j|, h) over fluid AND
@@ -93,6 +99,7 @@ struct ColumnSample {
   std::vector<double> z, u, w, pressure;
   std::vector<double> fraction;                 // c(z_k) (SPH) / alpha(z_k) (VOF); empty: all water
   std::vector<double> water;                    // chi(z_k): 1 water, 0 void (set by integrate_column)
+  double bed_exemption_m = 0.0;                 // points this close to the bed count as water
   double void_fraction = not_a_number;          // 1 - h_w / h
   double discharge_m2_s = not_a_number;
   double mean_velocity_m_s = not_a_number;

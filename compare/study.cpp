@@ -236,7 +236,7 @@ std::vector<CaseResult> with_earlier_runs(const StudyOptions& options, const cas
     }
     std::string fingerprint;
     try {
-      fingerprint = case_fingerprint(study, *c, options.resolution);
+      fingerprint = case_fingerprint(study, *c, options.resolution, source_fingerprint);  // the compare stamp's
     } catch (const std::exception&) {
       continue;  // not valid at this resolution: it cannot have run
     }

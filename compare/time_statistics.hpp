@@ -35,7 +35,8 @@ struct ColumnStatistics {
       near_surface_velocity, energy_coefficient, specific_energy, momentum_coefficient, specific_force,
       void_fraction;
   // Time-mean profile on a fixed grid z_bed .. highest surface over the window; at each height only
-  // the frames in which that height was under water count (wet_fraction = their share).
+  // the frames in which that height was under water, and not in a void below the surface (sampling.hpp),
+  // count (wet_fraction = their share).
   std::vector<double> z, u_mean, u_std, w_mean, wet_fraction;
 };
 

@@ -367,12 +367,26 @@ std::string BasinMonitor::summary_json() const {
   // The same two conditions on the whole window's means: (mean q_out - mean q_in) / q and the toe's
   // least-squares trend over the window. Waves leaving the basin make 1 s means of q_out swing by more
   // than 2 % in runs whose window means balance; a basin still filling or draining shows here.
-  const double window_imbalance = (q_out.mean - q_in.mean) / setup_.discharge_m2_s;
+  // (mass out - mass in over the window) / (rho0 q (t_end - t_start)), from the running totals at the
+  // first and last samples in the window (whatever the output spacing)
+  double window_imbalance = nan_value;
+  {
+    const BasinSample* w0 = nullptr;
+    const BasinSample* w1 = nullptr;
+    for (const auto& s : samples_) {
+      if (!in_window(s)) continue;
+      if (!w0) w0 = &s;
+      w1 = &s;
+    }
+    if (w0 && w1 && w1->t > w0->t)
+      window_imbalance = ((w1->mass_out - w0->mass_out) - (w1->mass_in - w0->mass_in)) /
+                         (setup_.rho0 * setup_.discharge_m2_s * (w1->t - w0->t));
+  }
   std::vector<double> toe_found;
   for (const double x : toe)
     if (std::isfinite(x)) toe_found.push_back(x);
   const double toe_trend = toe_found.size() >= 2 ? slope(toe_t, toe_found) : nan_value;
-  const bool steady_means = std::abs(window_imbalance) < steady_discharge_tolerance &&
+  const bool steady_means = jump_state() == "in_basin" && std::abs(window_imbalance) < steady_discharge_tolerance &&
                             std::abs(toe_trend) * steady_span_s < setup_.drift_tolerance_m && toe_missing == 0;
   const double from = steady_from();
   const bool window_complete = last && last->t >= b - 1e-9;
@@ -388,7 +402,10 @@ std::string BasinMonitor::summary_json() const {
     << json_string("depth h = sum V_i / w over fluid particles in a column of width w (dx for the toe profile, 2 dx "
                    "at sections); toe = cases/jump_toe.hpp criterion (running mean over 0.8 y1 of the surface "
                    "above the floor exceeds 1.5 y1 for 2 y1); q_in, q_out = mass entering the basin (inflow buffer, or "
-                   "under a piston reservoir's gate) / leaving it (outflow buffer, or over a tailgate) per rho0 and time; steady = |q_in - q_out| < 2 % of q and toe drift over 1 s below the tolerance")
+                   "under a piston reservoir's gate) / leaving it (outflow buffer, or over a tailgate) per rho0 and time; steady = |q_in - q_out| < 2 % of q and toe drift over 1 s below the tolerance, at every output from "
+                   "steady_from_s on; steady_by_window_means = the jump in the basin, |mass out - mass in| over the "
+                   "window < 2 % of rho0 q times its length (window_outflow_minus_inflow_over_q, > 0: draining) and "
+                   "the toe's least-squares trend over the window (window_toe_trend_m_per_s) times 1 s below the tolerance")
     << ",\n";
   o << "  \"prescribed\": {\"inflow_depth_m\": " << json_number(y1)
     << ", \"discharge_m2_s\": " << json_number(setup_.discharge_m2_s) << ", \"froude1\": " << json_number(setup_.froude1)

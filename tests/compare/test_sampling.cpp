@@ -282,8 +282,9 @@ TEST_CASE("A void below the surface carries no discharge", "[compare][sph][vof]"
   REQUIRE(c.wet());
   INFO("SPH surface " << c.surface_z_m << " q " << c.discharge_m2_s << " void fraction " << c.void_fraction);
   CHECK(std::abs(c.surface_z_m - depth) < 0.1 * dx);
-  CHECK(std::abs(c.discharge_m2_s - (depth - void_m)) < dx);          // one particle spacing of water
-  CHECK(std::abs(c.void_fraction - void_m / depth) < dx / depth);
+  // the void's edges located to within 0.1 dx by the c = 0.5 crossings between profile points
+  CHECK(std::abs(c.discharge_m2_s - (depth - void_m)) < 0.1 * dx);
+  CHECK(std::abs(c.void_fraction - void_m / depth) < 0.1 * dx / depth);
   CHECK(c.mean_velocity_m_s == Approx(c.discharge_m2_s / c.depth_m));
   const ColumnSample full_column = sph->sample_column(0.1, 0.0, 41, g);
   CHECK(full_column.void_fraction == Approx(0.0).margin(1e-12));
@@ -300,6 +301,6 @@ TEST_CASE("A void below the surface carries no discharge", "[compare][sph][vof]"
   const double vof_void = 0.0225, dz = 0.3 / 40;
   INFO("VOF surface " << v.surface_z_m << " q " << v.discharge_m2_s << " void fraction " << v.void_fraction);
   CHECK(std::abs(v.surface_z_m - 0.1234) <= dz / 12 + 1e-12);
-  CHECK(std::abs(v.discharge_m2_s - (0.1234 - vof_void)) < 0.5 * dz);
-  CHECK(std::abs(v.void_fraction - vof_void / 0.1234) < 0.5 * dz / 0.1234);
+  CHECK(std::abs(v.discharge_m2_s - (0.1234 - vof_void)) < 0.1 * dz);
+  CHECK(std::abs(v.void_fraction - vof_void / 0.1234) < 0.1 * dz / 0.1234);
 }
