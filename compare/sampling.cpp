@@ -64,11 +64,11 @@ void integrate_column(ColumnSample& c, double gravity) {
     }
     return sum * dz;
   };
-  std::vector<double> u1(n), u2(n), u3(n);
+  // (integral() never reads f at a void point, so the powers of u need no mask)
+  std::vector<double> u2(n), u3(n);
   double u_max = -std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k < n; ++k) {
-    u1[k] = chi[k] * c.u[k];
-    u2[k] = u1[k] * c.u[k];
+    u2[k] = c.u[k] * c.u[k];
     u3[k] = u2[k] * c.u[k];
     if (chi[k] > 0.0) u_max = std::max(u_max, c.u[k]);
   }
@@ -76,7 +76,7 @@ void integrate_column(ColumnSample& c, double gravity) {
   // h_w = int chi dz;  void fraction = 1 - h_w / h
   c.void_fraction = std::clamp(1.0 - integral(chi) / h, 0.0, 1.0);
   // q = int chi u dz
-  c.discharge_m2_s = integral(u1);
+  c.discharge_m2_s = integral(c.u);
   // U = q / h
   c.mean_velocity_m_s = c.discharge_m2_s / h;
   c.max_velocity_m_s = u_max;

@@ -77,7 +77,7 @@ int run_child(const std::vector<std::string>& args, const std::filesystem::path&
 // writes and runs the solvers), the compare stamp with `source_fingerprint` (all of it), so a change
 // to the comparator re-runs only the comparisons.
 std::string case_fingerprint(const cases::Study& study, const cases::Case& c, const std::string& resolution,
-                             const char* code = source_fingerprint) {
+                             const char* code) {
   std::string text = cases::resolved_case_text(study, c, resolution);
   text = text.substr(text.find('\n') + 1);  // the first line names the source file: not part of the case
   return cases::fingerprint(text + "\ncode " + code);

@@ -322,18 +322,25 @@ std::string BasinMonitor::status_line() const {
 std::string BasinMonitor::summary_json() const {
   const double a = setup_.average_start_s, b = setup_.average_end_s;
   auto in_window = [&](const BasinSample& s) { return s.t >= a - 1e-9 && s.t <= b + 1e-9; };
-  std::vector<double> qin, qout, toe, toe_t;
+  std::vector<double> qin, qout, toe, toe_t, toe_found;
+  const BasinSample* window_first = nullptr;
+  const BasinSample* window_last = nullptr;
   const std::size_t n_sec = setup_.sections.size();
   std::vector<std::vector<double>> depth(n_sec), surface(n_sec), discharge(n_sec);
   for (const auto& s : samples_) {
     if (!in_window(s)) continue;
+    if (!window_first) window_first = &s;
+    window_last = &s;
     // q_in/q_out cover the interval before the sample: count it if that interval lies in the window.
     if (s.t > a + 1e-9) {
       qin.push_back(s.q_in);
       qout.push_back(s.q_out);
     }
     toe.push_back(s.toe_x);
-    if (std::isfinite(s.toe_x)) toe_t.push_back(s.t);
+    if (std::isfinite(s.toe_x)) {
+      toe_t.push_back(s.t);
+      toe_found.push_back(s.toe_x);
+    }
     for (std::size_t k = 0; k < n_sec; ++k) {
       depth[k].push_back(s.depth[k]);
       surface[k].push_back(s.surface[k]);
@@ -364,27 +371,15 @@ std::string BasinMonitor::summary_json() const {
     const double injected = last->mass_in - first->mass_in;
     mass_error = injected > 0.0 ? (mass_change - net_in) / injected : nan_value;
   }
-  // The same two conditions on the whole window's means: (mean q_out - mean q_in) / q and the toe's
-  // least-squares trend over the window. Waves leaving the basin make 1 s means of q_out swing by more
-  // than 2 % in runs whose window means balance; a basin still filling or draining shows here.
-  // (mass out - mass in over the window) / (rho0 q (t_end - t_start)), from the running totals at the
-  // first and last samples in the window (whatever the output spacing)
+  // The same two conditions on the whole window: (mass out - mass in) / (rho0 q (t_end - t_start))
+  // from the running totals at its first and last samples, and the toe's least-squares trend. Waves
+  // leaving the basin make 1 s means of q_out swing by more than 2 % in runs whose window balances;
+  // a basin still filling or draining shows here.
   double window_imbalance = nan_value;
-  {
-    const BasinSample* w0 = nullptr;
-    const BasinSample* w1 = nullptr;
-    for (const auto& s : samples_) {
-      if (!in_window(s)) continue;
-      if (!w0) w0 = &s;
-      w1 = &s;
-    }
-    if (w0 && w1 && w1->t > w0->t)
-      window_imbalance = ((w1->mass_out - w0->mass_out) - (w1->mass_in - w0->mass_in)) /
-                         (setup_.rho0 * setup_.discharge_m2_s * (w1->t - w0->t));
-  }
-  std::vector<double> toe_found;
-  for (const double x : toe)
-    if (std::isfinite(x)) toe_found.push_back(x);
+  if (window_first && window_last && window_last->t > window_first->t)
+    window_imbalance = ((window_last->mass_out - window_first->mass_out) -
+                        (window_last->mass_in - window_first->mass_in)) /
+                       (setup_.rho0 * setup_.discharge_m2_s * (window_last->t - window_first->t));
   const double toe_trend = toe_found.size() >= 2 ? slope(toe_t, toe_found) : nan_value;
   const bool steady_means = jump_state() == "in_basin" && std::abs(window_imbalance) < steady_discharge_tolerance &&
                             std::abs(toe_trend) * steady_span_s < setup_.drift_tolerance_m && toe_missing == 0;
