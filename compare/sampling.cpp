@@ -26,6 +26,24 @@ static double profile_at(const std::vector<double>& z, const std::vector<double>
   return f[k - 1] + t * (f[k] - f[k - 1]);
 }
 
+// u at height zq from the water points of a profile (chi_k = 1 water, 0 void): linear between two water
+// points; from the highest water point at or below zq when the interval holding zq has a void end;
+// NaN when there is no water at or below zq.
+static double near_surface_velocity(const std::vector<double>& z, const std::vector<double>& u,
+                                    const std::vector<double>& chi, double zq) {
+  if (z.empty()) return not_a_number;
+  const std::size_t k = static_cast<std::size_t>(std::upper_bound(z.begin(), z.end(), zq) - z.begin());
+  // zq lies in [z[k-1], z[k]) (k = 0: below the first point, k = n: at or above the last)
+  const bool lower_water = k > 0 && chi[k - 1] > 0.0;
+  const bool upper_water = k < z.size() && chi[k] > 0.0;
+  if (lower_water && upper_water) return profile_at(z, u, zq);
+  if (k == 0) return upper_water ? u.front() : not_a_number;
+  for (std::size_t j = k; j-- > 0;) {
+    if (chi[j] > 0.0) return u[j];
+  }
+  return not_a_number;
+}
+
 void integrate_column(ColumnSample& c, double gravity) {
   if (!c.wet() || c.z.size() < 3) return;
   const double h = c.depth_m;
@@ -80,8 +98,9 @@ void integrate_column(ColumnSample& c, double gravity) {
   // U = q / h
   c.mean_velocity_m_s = c.discharge_m2_s / h;
   c.max_velocity_m_s = u_max;
-  // u_s = u(eta - 0.1 h)
-  c.near_surface_velocity_m_s = profile_at(c.z, c.u, c.surface_z_m - 0.1 * h);
+  // u_s = u(eta - 0.1 h), from water only: when that height falls on an interval with a void end, the
+  // highest water point at or below it (a void's interpolated velocity is not the flow's).
+  c.near_surface_velocity_m_s = near_surface_velocity(c.z, c.u, chi, c.surface_z_m - 0.1 * h);
   // alpha = int chi u^3 dz / (U^3 h)
   const double ubar3 = c.mean_velocity_m_s * c.mean_velocity_m_s * c.mean_velocity_m_s;
   c.energy_coefficient = std::abs(ubar3) > 1e-30 ? integral(u3) / (ubar3 * h) : not_a_number;

@@ -304,3 +304,36 @@ TEST_CASE("A void below the surface carries no discharge", "[compare][sph][vof]"
   CHECK(std::abs(v.discharge_m2_s - (0.1234 - vof_void)) < 0.1 * dz);
   CHECK(std::abs(v.void_fraction - vof_void / 0.1234) < 0.1 * dz / 0.1234);
 }
+
+// The near-surface velocity u(eta - 0.1 h) (the roller detector's input) reads water only: a void at
+// that height gives the highest water point below it, not the value interpolated into the void.
+TEST_CASE("The near-surface velocity skips a void at eta - 0.1 h", "[compare]") {
+  ColumnSample c;
+  c.z_bed_m = 0.0;
+  c.surface_z_m = 0.2;
+  c.depth_m = 0.2;
+  for (int k = 0; k <= 20; ++k) {
+    c.z.push_back(0.01 * k);
+    c.u.push_back(1.0 + 0.01 * k);  // u = 1 + z
+    c.fraction.push_back(1.0);
+  }
+  c.w.assign(c.z.size(), 0.0);
+  c.pressure.assign(c.z.size(), 0.0);
+  integrate_column(c, g);
+  // no void: linear interpolation at z = 0.18 is exact for a linear profile
+  CHECK(c.near_surface_velocity_m_s == Approx(1.18).epsilon(1e-12));
+  // a void over z = 0.17 .. 0.19 with a spurious velocity interpolated into it
+  for (int k = 17; k <= 19; ++k) {
+    c.fraction[static_cast<std::size_t>(k)] = 0.1;
+    c.u[static_cast<std::size_t>(k)] = -5.0;
+  }
+  integrate_column(c, g);
+  CHECK(c.near_surface_velocity_m_s == Approx(1.16).epsilon(1e-12));  // the water point at z = 0.16
+  // a void only just above the query height (z = 0.18 .. 0.19): the interval [0.18, 0.19) has a void end
+  c.fraction.assign(c.z.size(), 1.0);
+  for (int k = 0; k <= 20; ++k) c.u[static_cast<std::size_t>(k)] = 1.0 + 0.01 * k;
+  c.fraction[19] = 0.2;
+  c.u[19] = -5.0;
+  integrate_column(c, g);
+  CHECK(c.near_surface_velocity_m_s == Approx(1.18).epsilon(1e-12));  // z = 0.18 itself is water
+}
