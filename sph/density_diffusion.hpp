@@ -12,13 +12,16 @@
 // Usage:
 //   | sph.density_diffusion | meaning                              | sph.density_diffusion_coefficient |
 //   |-----------------------|--------------------------------------|-----------------------------------|
-//   | "none"                | plain continuity                     | unused                            |
-//   | "molteni"             | Molteni & Colagrossi 2009            | delta, typically 0.1              |
-//   | "fourtakas"           | Fourtakas et al. 2019 (default)      | delta, default 0.1                |
+//   | "none"                | plain continuity                     | unused (an error if given)        |
+//   | "molteni"             | Molteni & Colagrossi 2009            | delta in [0, 1], typically 0.1    |
+//   | "fourtakas"           | Fourtakas et al. 2019 (default)      | delta in [0, 1], default 0.1      |
+// Example (spec): `[sph]  density_diffusion = "fourtakas"   density_diffusion_coefficient = 0.1`
 #pragma once
 
 #include <stdexcept>
 #include <string>
+
+#include "sph/equation_of_state.hpp"
 
 namespace hydrojump::sph {
 
@@ -32,11 +35,11 @@ inline DensityDiffusion parse_density_diffusion(const std::string& name) {
                               "\" is not allowed: use \"none\", \"molteni\" or \"fourtakas\"");
 }
 
-// rho^H_ji = rho0 ((1 + x)^(1/7) - 1),  x = rho0 g.(r_j - r_i)/B = rho0 g_z (z_j - z_i) / B.
+// rho^H_ji = rho0 ((1 + x)^(1/gamma) - 1),  gamma = 7,  x = rho0 g.(r_j - r_i)/B = rho0 g_z (z_j - z_i) / B.
 // x is O(rho0 g 2h / B) ~ 1e-3, so the power is replaced by its second-order Taylor expansion
 // (relative error below x^3 ~ 1e-9), which keeps pow() out of the pair loop.
 inline double hydrostatic_density_difference(double rho0, double b, double gravity_z, double zj_minus_zi) {
-  constexpr double a = 1.0 / 7.0;
+  constexpr double a = 1.0 / TaitEquationOfState::gamma;
   const double x = rho0 * gravity_z * zj_minus_zi / b;
   return rho0 * x * (a + 0.5 * a * (a - 1.0) * x);
 }
