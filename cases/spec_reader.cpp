@@ -326,6 +326,23 @@ void read_sph(TableReader& t, SphSettings& s) {
   }
   s.max_density_variation = t.number_or("max_density_variation", s.max_density_variation, Range{0.0, 0.5, true, false, "|rho/rho0 - 1|"});
   s.checkpoint_interval_wall_s = t.number_or("checkpoint_interval_wall_s", s.checkpoint_interval_wall_s, positive("s", 1e6));
+  // A parameter of a model this table's settings do not use is an error (it would be silently ignored).
+  // Inherited ones are not: a case that switches model drops the [sph] parameters of the old one.
+  const auto only_with = [&](const char* key, bool used, const std::string& requirement) {
+    if (!used && t.has(key)) t.fail_at(t.raw().get(key), key, "is only used with " + requirement);
+  };
+  const std::string here_viscosity = " (here \"" + s.viscosity + "\")";
+  only_with("artificial_viscosity_alpha", s.viscosity == "artificial", "viscosity = \"artificial\"" + here_viscosity);
+  only_with("artificial_viscosity_wall_factor", s.viscosity == "artificial", "viscosity = \"artificial\"" + here_viscosity);
+  only_with("sps_smagorinsky_constant", s.viscosity == "laminar_sps", "viscosity = \"laminar_sps\"" + here_viscosity);
+  only_with("sps_blin_constant", s.viscosity == "laminar_sps", "viscosity = \"laminar_sps\"" + here_viscosity);
+  only_with("density_diffusion_coefficient", s.density_diffusion != "none",
+            "density_diffusion = \"molteni\" or \"fourtakas\" (here \"none\")");
+  only_with("verlet_euler_interval", s.time_integrator == "verlet",
+            "time_integrator = \"verlet\" (here \"" + s.time_integrator + "\")");
+  for (const char* key : {"sound_speed_coefficient", "sound_speed_min_flow_ratio"})
+    only_with(key, s.sound_speed_m_s == 0.0,
+              "sound_speed_m_s = 0 (here " + number_text(s.sound_speed_m_s) + " m/s gives c0 directly)");
   t.reject_unknown_keys();
 }
 
@@ -770,21 +787,28 @@ class TomlWriter {
 void write_sph(TomlWriter& w, const SphSettings& s) {
   w.str("kernel", s.kernel);
   w.str("viscosity", s.viscosity);
-  if (s.artificial_viscosity_nu_m2_s > 0.0) w.num("artificial_viscosity_nu_m2_s", s.artificial_viscosity_nu_m2_s);
-  else w.num("artificial_viscosity_alpha", s.artificial_viscosity_alpha);
-  w.num("artificial_viscosity_wall_factor", s.artificial_viscosity_wall_factor);
-  w.num("sps_smagorinsky_constant", s.sps_smagorinsky_constant);
-  w.num("sps_blin_constant", s.sps_blin_constant);
+  // Only the parameters of the chosen models (read_sph rejects the others).
+  if (s.viscosity == "artificial") {
+    if (s.artificial_viscosity_nu_m2_s > 0.0) w.num("artificial_viscosity_nu_m2_s", s.artificial_viscosity_nu_m2_s);
+    else w.num("artificial_viscosity_alpha", s.artificial_viscosity_alpha);
+    w.num("artificial_viscosity_wall_factor", s.artificial_viscosity_wall_factor);
+  } else {
+    w.num("sps_smagorinsky_constant", s.sps_smagorinsky_constant);
+    w.num("sps_blin_constant", s.sps_blin_constant);
+  }
   w.str("boundary", s.boundary);
   w.str("density_diffusion", s.density_diffusion);
-  w.num("density_diffusion_coefficient", s.density_diffusion_coefficient);
-  w.num("sound_speed_coefficient", s.sound_speed_coefficient);
-  w.num("sound_speed_m_s", s.sound_speed_m_s);
-  w.num("sound_speed_min_flow_ratio", s.sound_speed_min_flow_ratio);
+  if (s.density_diffusion != "none") w.num("density_diffusion_coefficient", s.density_diffusion_coefficient);
+  if (s.sound_speed_m_s > 0.0) {
+    w.num("sound_speed_m_s", s.sound_speed_m_s);
+  } else {
+    w.num("sound_speed_coefficient", s.sound_speed_coefficient);
+    w.num("sound_speed_min_flow_ratio", s.sound_speed_min_flow_ratio);
+  }
   w.num("cfl_number", s.cfl_number);
   w.num("coef_h", s.coef_h);
   w.str("time_integrator", s.time_integrator);
-  w.integer("verlet_euler_interval", s.verlet_euler_interval);
+  if (s.time_integrator == "verlet") w.integer("verlet_euler_interval", s.verlet_euler_interval);
   w.integer("boundary_layers", s.boundary_layers);
   w.integer("open_boundary_layers", s.open_boundary_layers);
   w.str("inflow_condition", s.inflow_condition);

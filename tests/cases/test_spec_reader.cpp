@@ -348,3 +348,45 @@ TEST_CASE("The artificial viscosity is given as alpha or as nu, not both", "[cas
     CHECK_THAT(msg, Catch::Contains("artificial_viscosity_nu_m2_s = -0.002 is out of range"));
   }
 }
+
+// pbrt-style factories: a parameter of a model the settings do not use is an error naming the file,
+// line, key and the setting that leaves it unused (it would otherwise be silently ignored).
+TEST_CASE("Parameters of models that are not used are rejected", "[cases][spec][reject]") {
+  struct Unused {
+    std::string lines, key, reason;
+  };
+  const std::vector<Unused> unused = {
+      {"viscosity = \"laminar_sps\"\nartificial_viscosity_alpha = 0.1", "artificial_viscosity_alpha", "viscosity = \"artificial\""},
+      {"viscosity = \"laminar_sps\"\nartificial_viscosity_wall_factor = 0.0", "artificial_viscosity_wall_factor", "viscosity = \"artificial\""},
+      {"sps_smagorinsky_constant = 0.2", "sps_smagorinsky_constant", "viscosity = \"laminar_sps\""},
+      {"sps_blin_constant = 0.01", "sps_blin_constant", "viscosity = \"laminar_sps\""},
+      {"density_diffusion = \"none\"\ndensity_diffusion_coefficient = 0.1", "density_diffusion_coefficient", "density_diffusion = \"molteni\" or \"fourtakas\""},
+      {"verlet_euler_interval = 20", "verlet_euler_interval", "time_integrator = \"verlet\""},
+      {"sound_speed_m_s = 30.0\nsound_speed_coefficient = 20.0", "sound_speed_coefficient", "sound_speed_m_s = 0"},
+      {"sound_speed_m_s = 30.0\nsound_speed_min_flow_ratio = 12.0", "sound_speed_min_flow_ratio", "sound_speed_m_s = 0"},
+  };
+  for (const auto& u : unused) {
+    const auto text = replaced(valid_spec, "[[case]]", "[sph]\n" + u.lines + "\n\n[[case]]");
+    const auto msg = rejection(text);
+    INFO(u.lines);
+    CHECK_THAT(msg, Catch::Contains("spec.toml:" + std::to_string(line_of(text, u.key))));
+    CHECK_THAT(msg, Catch::Contains("sph." + u.key + " is only used with " + u.reason));
+  }
+  // The same parameters with the models that use them are accepted, and survive a resolved reload.
+  const auto used = replaced(valid_spec, "[[case]]",
+                             "[sph]\nviscosity = \"laminar_sps\"\nsps_smagorinsky_constant = 0.2\n"
+                             "time_integrator = \"verlet\"\nverlet_euler_interval = 20\nsound_speed_m_s = 30.0\n\n[[case]]");
+  const Study s = parse_study(used, "spec.toml", ".");
+  CHECK(s.cases[0].sph.sps_smagorinsky_constant == 0.2);
+  const auto file = std::filesystem::temp_directory_path() / "hydrojump_test_used.toml";
+  write_resolved_case(s, s.cases[0], "quick", file);
+  const Study r = load_study(file);
+  CHECK(r.cases[0].sph.sps_smagorinsky_constant == 0.2);
+  CHECK(r.cases[0].sph.verlet_euler_interval == 20);
+  CHECK(r.cases[0].sph.sound_speed_m_s == 30.0);
+  std::filesystem::remove(file);
+  // A case that switches model drops what it inherits for the old one: no error.
+  const auto inherited = replaced(replaced(valid_spec, "[[case]]", "[sph]\nartificial_viscosity_alpha = 0.1\n\n[[case]]"),
+                                  "[case.run]", "[case.sph]\nviscosity = \"laminar_sps\"\n[case.run]");
+  CHECK_NOTHROW(parse_study(inherited, "spec.toml", "."));
+}
