@@ -334,7 +334,7 @@ void register_study_command(CLI::App& app) {
       "study",
       "Run a whole study: generate every case, run the SPH solver and the OpenFOAM reference, compare "
       "them on common sections, plot, and write OUT/study_report.md. Finished stages are cached by a "
-      "hash of the resolved case and the program version, so a re-run only runs what changed and an "
+      "hash of the resolved case and of the program's code, so a re-run only runs what changed and an "
       "interrupted study resumes. One failed case is reported and does not stop the others.");
   cmd->add_option("SPEC", options->spec, "study file (TOML), or \"default\" for the embedded ead2002 study")
       ->capture_default_str();

@@ -1,27 +1,38 @@
 #!/usr/bin/env bash
-# The main job: installs what is missing, builds, and runs the default study (the embedded
+# The main job: installs what is missing, builds, and runs the built-in study (the embedded
 # cases/ead2002.toml) at the quick resolution into ./study/, ending with study/study_report.md and the
-# plots. By default only case A_smooth (SPH and OpenFOAM); extra arguments go to
-# `hydrojump study`, e.g. --cases A,B,C, or --cases all for all ten cases.
+# plots. By default only case A_smooth (SPH and OpenFOAM). Arguments go to `hydrojump study`:
+#   bash scripts/run-study.sh --cases A,B,C           # three cases (--cases all: all ten, many hours)
+#   bash scripts/run-study.sh my_study.toml --resolution default --out runs/my_study
+# A first argument that is not an option is the study file; --resolution and --out replace the
+# defaults (quick, ./study).
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build_dir="${BUILD_DIR:-$here/build}"
 "$here/scripts/setup.sh" "$build_dir"
 cd "$here"
-args=("$@")
-has_cases=0
-for a in "${args[@]}"; do
-  case "$a" in --cases|--cases=*) has_cases=1 ;; esac
-done
-if [ "$has_cases" -eq 0 ]; then args+=(--cases A_smooth); fi
-# "--cases all" means every case: drop the option.
+spec=default
+if [ $# -gt 0 ] && [ "${1#-}" = "$1" ]; then spec="$1"; shift; fi
+has_cases=0 has_resolution=0 has_out=0
 filtered=()
-skip=0
-for a in "${args[@]}"; do
-  if [ "$skip" -eq 1 ]; then skip=0; [ "$a" = all ] && { unset 'filtered[-1]'; continue; }; fi
-  [ "$a" = --cases ] && skip=1
-  [ "$a" = --cases=all ] && continue
+skip_all=0
+for a in "$@"; do
+  if [ "$skip_all" -eq 1 ]; then
+    skip_all=0
+    # "--cases all" means every case: drop the option.
+    if [ "$a" = all ]; then unset 'filtered[-1]'; continue; fi
+  fi
+  case "$a" in
+    --cases) has_cases=1; skip_all=1 ;;
+    --cases=all) has_cases=1; continue ;;
+    --cases=*) has_cases=1 ;;
+    --resolution|--resolution=*|-r) has_resolution=1 ;;
+    --out|--out=*|-o) has_out=1 ;;
+  esac
   filtered+=("$a")
 done
+[ "$has_cases" -eq 1 ] || filtered+=(--cases A_smooth)
+[ "$has_resolution" -eq 1 ] || filtered+=(--resolution quick)
+[ "$has_out" -eq 1 ] || filtered+=(--out study)
 export OMP_WAIT_POLICY="${OMP_WAIT_POLICY:-passive}"
-exec "$build_dir/compare/hydrojump" study default --resolution quick --out study "${filtered[@]}"
+exec "$build_dir/compare/hydrojump" study "$spec" "${filtered[@]}"
