@@ -66,11 +66,31 @@ BlockGrid block_grid(const MeshPlan& plan) {
   return grid;
 }
 
-Value face(const BlockGrid& g, std::size_t a_i, std::size_t a_j, std::size_t a_k, std::size_t b_i,
-           std::size_t b_j, std::size_t b_k, std::size_t c_i, std::size_t c_j, std::size_t c_k,
-           std::size_t d_i, std::size_t d_j, std::size_t d_k) {
-  return foam::list({g.vertex(a_i, a_j, a_k), g.vertex(b_i, b_j, b_k), g.vertex(c_i, c_j, c_k),
-                     g.vertex(d_i, d_j, d_k)});
+// One vertex of the block grid: index along x, along z (vertical) and spanwise (0 front, 1 back).
+struct Corner {
+  std::size_t i, j, k;
+};
+
+// A side of a block: left/right (x), bottom/top (z), front/back (spanwise).
+enum class Side { left, right, bottom, top, front, back };
+
+// The face of block (i, j) on one side, as the list of its four vertices in the order blockMesh
+// expects for a boundary face (right-hand normal pointing out of the block).
+Value block_face(const BlockGrid& g, std::size_t i, std::size_t j, Side side) {
+  const std::size_t x0 = i, x1 = i + 1, z0 = j, z1 = j + 1, front = 0, back = 1;
+  auto face = [&g](Corner a, Corner b, Corner c, Corner d) {
+    return foam::list({g.vertex(a.i, a.j, a.k), g.vertex(b.i, b.j, b.k), g.vertex(c.i, c.j, c.k),
+                       g.vertex(d.i, d.j, d.k)});
+  };
+  switch (side) {
+    case Side::left:   return face({x0, z0, front}, {x0, z0, back}, {x0, z1, back}, {x0, z1, front});
+    case Side::right:  return face({x1, z1, front}, {x1, z1, back}, {x1, z0, back}, {x1, z0, front});
+    case Side::bottom: return face({x0, z0, front}, {x1, z0, front}, {x1, z0, back}, {x0, z0, back});
+    case Side::top:    return face({x0, z1, front}, {x0, z1, back}, {x1, z1, back}, {x1, z1, front});
+    case Side::front:  return face({x0, z0, front}, {x0, z1, front}, {x1, z1, front}, {x1, z0, front});
+    case Side::back:   return face({x0, z0, back}, {x1, z0, back}, {x1, z1, back}, {x0, z1, back});
+  }
+  throw std::logic_error("block_face: unknown side");
 }
 
 // Which patch a block-boundary face belongs to.
@@ -108,8 +128,8 @@ Dictionary block_mesh_dict(const MeshPlan& plan, bool stilling_basin, std::vecto
   const std::size_t I = g.nx(), J = g.nz();
   const double eps = 1e-9;
   for (std::size_t j = 0; j < J; ++j) {
-    Value left = face(g, 0, j, 0, 0, j, 1, 0, j + 1, 1, 0, j + 1, 0);
-    Value right = face(g, I, j + 1, 0, I, j + 1, 1, I, j, 1, I, j, 0);
+    Value left = block_face(g, 0, j, Side::left);
+    Value right = block_face(g, I - 1, j, Side::right);
     if (stilling_basin) {
       const double z_lo = j == 0 ? g.z_bottom[0] : g.z[j];
       const double z_hi = g.z[j + 1];
@@ -127,11 +147,11 @@ Dictionary block_mesh_dict(const MeshPlan& plan, bool stilling_basin, std::vecto
     }
   }
   for (std::size_t i = 0; i < I; ++i) {
-    bed.faces.push_back(face(g, i, 0, 0, i + 1, 0, 0, i + 1, 0, 1, i, 0, 1));
-    atmosphere.faces.push_back(face(g, i, J, 0, i, J, 1, i + 1, J, 1, i + 1, J, 0));
+    bed.faces.push_back(block_face(g, i, 0, Side::bottom));
+    atmosphere.faces.push_back(block_face(g, i, J - 1, Side::top));
     for (std::size_t j = 0; j < J; ++j) {
-      front_and_back.faces.push_back(face(g, i, j, 0, i, j + 1, 0, i + 1, j + 1, 0, i + 1, j, 0));
-      front_and_back.faces.push_back(face(g, i, j, 1, i + 1, j, 1, i + 1, j + 1, 1, i, j + 1, 1));
+      front_and_back.faces.push_back(block_face(g, i, j, Side::front));
+      front_and_back.faces.push_back(block_face(g, i, j, Side::back));
     }
   }
 

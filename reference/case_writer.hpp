@@ -16,13 +16,13 @@
 // velocity through the outlet is Umean = q / y2, so the steady outlet depth is y2.
 // Dam break and still water: `walls` (tank ends), `bed` (floor), `atmosphere` (open top).
 //
-// Turbulence (vof.turbulence_model):
-//   | model         | fields       | walls                                                   |
-//   |---------------|--------------|---------------------------------------------------------|
-//   | "kOmegaSST"   | k, omega     | kqRWallFunction, omegaWallFunction, nutkWallFunction    |
-//   | "kEpsilon"    | k, epsilon   | kqRWallFunction, epsilonWallFunction, nutkWallFunction  |
-//   | "RNGkEpsilon" | k, epsilon   | as kEpsilon                                             |
-//   | "laminar"     | none         | -                                                       |
+// Turbulence (vof.turbulence_model; default from cases::VofSettings):
+//   | model         | default | fields       | walls                                                   |
+//   |---------------|---------|--------------|---------------------------------------------------------|
+//   | "kOmegaSST"   | yes     | k, omega     | kqRWallFunction, omegaWallFunction, nutkWallFunction    |
+//   | "kEpsilon"    | no      | k, epsilon   | kqRWallFunction, epsilonWallFunction, nutkWallFunction  |
+//   | "RNGkEpsilon" | no      | k, epsilon   | as kEpsilon                                             |
+//   | "laminar"     | no      | none         | -                                                       |
 // Inlet and initial values: k = 3/2 (I U)^2, I = 5 %; omega = sqrt(k) / (Cmu^0.25 l) and
 // epsilon = Cmu k omega = Cmu^0.75 k^1.5 / l, with l = 0.07 D_h, D_h = 4 y1 (wide open channel) or the
 // water height for tanks. Example (spec): [vof] turbulence_model = "kEpsilon".
