@@ -585,7 +585,7 @@ void check_resolution(const Case& c, const Resolution& r, const std::string& fil
   }
 }
 
-Case read_case(TableReader& c, std::size_t index, const Study& study, const SphSettings& sph,
+Case read_case(TableReader& c, const Study& study, const SphSettings& sph,
                const VofSettings& vof, const std::map<std::string, Resolution>& resolutions,
                const std::filesystem::path& base_dir) {
   Case result;
@@ -593,7 +593,6 @@ Case read_case(TableReader& c, std::size_t index, const Study& study, const SphS
   if (result.id.empty() || result.id.find_first_of("/\\ \t") != std::string::npos) {
     c.fail_at(c.raw().get("id"), "id", "= \"" + result.id + "\" is not usable as a directory name: use letters, digits, '_' or '-'");
   }
-  (void)index;
   result.kind = c.choice("kind", "", {"stilling_basin", "dam_break", "still_water", "poiseuille"}, true);
   result.description = c.string_or("description", "");
   result.sph = sph;
@@ -702,7 +701,7 @@ Study parse_study(std::string_view toml_text, const std::string& source_name,
     std::string id;
     if (const auto* id_node = node.as_table()->get("id"); id_node && id_node->is_string()) id = *id_node->value<std::string>();
     TableReader named(*node.as_table(), source_name, id.empty() ? "" : "case \"" + id + "\": ", "");
-    Case parsed = read_case(id.empty() ? c : named, index, study, sph, vof, resolutions, base_dir);
+    Case parsed = read_case(id.empty() ? c : named, study, sph, vof, resolutions, base_dir);
     if (!ids.insert(parsed.id).second) {
       named.fail_at(node.as_table()->get("id"), "id", "= \"" + parsed.id + "\" is used by two cases: ids must be unique");
     }

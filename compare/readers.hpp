@@ -3,7 +3,7 @@
 //        read with vtkXMLPolyDataReader. Points (x, 0, z) as the SPH solver writes them (sph/vtk_output,
 //        DualSPHysics style) or (x, z, 0): the constant coordinate is taken as spanwise. Point arrays
 //        "velocity" (3 components), "density", "pressure", "type" (sph/particles.hpp: 0 fluid,
-//        1 boundary, 2 inflow buffer, 3 outflow buffer); optional "mass".
+//        1 boundary, 2 inflow buffer, 3 outflow buffer, 4 moving wall); optional "mass".
 //   VOF  an OpenFOAM case directory read directly with vtkOpenFOAMReader (no foamToVTK): the internal
 //        mesh's cell data "alpha.water", "U" and "p_rgh" (or "p"). 2D, one cell thick: OpenFOAM y is
 //        vertical, z spanwise.

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "compare/sph_kernel.hpp"
+#include "sph/particles.hpp"
 
 namespace hydrojump::compare {
 
@@ -147,10 +148,13 @@ class SphSampler final : public FrameSampler {
       // V_j = m_j / rho_j
       volume_[j] = f.density[j] > 0.0 ? m / f.density[j] : 0.0;
     }
-    // Water carries the velocity: fluid (0) and the inflow/outflow buffers (2, 3) of sph/particles.hpp;
-    // boundary particles (1 and anything else) only count in the fluid fraction.
+    // Water carries the velocity: fluid and the inflow/outflow buffers; walls (fixed and moving) only
+    // count in the fluid fraction.
+    using sph::ParticleType;
+    const auto is = [](int t, ParticleType type) { return t == static_cast<int>(type); };
     fluid_.assign(f.type.begin(), f.type.end());
-    for (auto& t : fluid_) t = (t == 0 || t == 2 || t == 3) ? 1 : 0;
+    for (auto& t : fluid_)
+      t = (is(t, ParticleType::fluid) || is(t, ParticleType::inflow) || is(t, ParticleType::outflow)) ? 1 : 0;
     u_ = f.u;
     w_ = f.w;
     p_ = f.pressure.empty() ? std::vector<double>(n, not_a_number) : f.pressure;

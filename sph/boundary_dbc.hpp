@@ -12,8 +12,15 @@
 // layer; with the layout of the particle generator the wall line lies halfway between the first
 // boundary layer and the outer fluid row.
 //
-// Usage: sph.boundary = "dbc" (default) | "mdbc" (boundary_mdbc.hpp).
+// Usage:
+//   | spec key            | values / range          | default | meaning                                    |
+//   |---------------------|-------------------------|---------|--------------------------------------------|
+//   | sph.boundary        | "dbc", "mdbc"           | "dbc"   | wall treatment (mdbc: boundary_mdbc.hpp)   |
+//   | sph.boundary_layers | 0-20                    | 0       | layers of wall particles (0: ceil(2h/dx))  |
+// Example (spec): `[sph]  boundary = "dbc"   boundary_layers = 0`
 #pragma once
+
+#include <algorithm>
 
 namespace hydrojump::sph {
 
@@ -22,6 +29,12 @@ namespace hydrojump::sph {
 inline double dbc_density_rate_pair(double mass_j, double gradient_factor, double u_j, double w_j, double dx,
                                     double dz) {
   return mass_j * gradient_factor * (-u_j * dx - w_j * dz);
+}
+
+// A wall particle's integrated density, never below the reference:  rho_b = max(rho0, rho_b*)
+// (walls push, they do not pull: no suction of the fluid towards a wall).
+inline double dbc_wall_density(double integrated_density, double rho0) {
+  return std::max(rho0, integrated_density);
 }
 
 }  // namespace hydrojump::sph

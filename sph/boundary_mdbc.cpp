@@ -1,5 +1,7 @@
 #include "sph/boundary_mdbc.hpp"
 
+#include "sph/boundary_dbc.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -21,6 +23,12 @@ constexpr double kSomeSupport = 0.5;
 // diag(1, -1, -1) inside the fluid; below this |det| it is treated as singular.
 constexpr double kMinDeterminant = 1e-3;
 
+// For every wall particle b with ghost node g (boundary_mdbc.hpp):
+//   A [rho_g, d rho/dx, d rho/dz]^T = [sum m_j W_gj, sum m_j dW_gj/dx, sum m_j dW_gj/dz]^T,
+//   rho_b = max(rho0, rho_g + (r_b - r_g) . grad rho_g),
+// the Shepard value sum m_j W_gj / sum V_j W_gj where A is singular, rho0 where sum V_j W_gj < 0.5;
+// and the no-slip wall velocity v_b = 2 v_wall - v_g, v_g from the same system with m_j -> m_j u_j / rho_j
+// (only its value, the gradient is not extrapolated).
 template <class K>
 void mdbc_with(ParticleSet& ps, const CellList& cells, const SolverSettings& s, const K& kernel) {
   const Eigen::Index n = ps.size();
@@ -74,7 +82,7 @@ void mdbc_with(ParticleSet& ps, const CellList& cells, const SolverSettings& s, 
         w_g = rhs_w(0) / a(0, 0);
       }
     }
-    ps.rho[i] = std::max(rho_b, rho0);
+    ps.rho[i] = dbc_wall_density(rho_b, rho0);  // never below rho0, as DBC
     // No slip: the velocity mirrored through the wall's own, 2 v_wall - v_ghost (v_wall = 0 if fixed).
     ps.wall_u[i] = 2.0 * ps.u[i] - u_g;
     ps.wall_w[i] = 2.0 * ps.w[i] - w_g;

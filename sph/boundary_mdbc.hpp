@@ -18,8 +18,13 @@
 // no-slip velocity mirrored about the fixed wall, v_b = 2 v_wall - v_g = -v_g, with v_g interpolated at
 // the ghost node with the same first-order correction (English et al. 2022, no-slip variant).
 //
-// Usage: sph.boundary = "mdbc" (default "dbc"). Boundary particles need ghost offsets, which the
-// particle generator computes from the CaseGeometry walls.
+// Usage:
+//   | spec key            | values / range | default | meaning                                       |
+//   |---------------------|----------------|---------|-----------------------------------------------|
+//   | sph.boundary        | "mdbc"         | "dbc"   | this wall treatment (needs ghost offsets)      |
+//   | sph.boundary_layers | 0-20           | 0       | layers of wall particles (0: ceil(2h/dx))     |
+// Boundary particles need ghost offsets, which the particle generator computes from the
+// CaseGeometry walls. Example (spec): `[sph]  boundary = "mdbc"`
 #pragma once
 
 #include "sph/cell_list.hpp"

@@ -28,6 +28,16 @@ int neighbour_ranges(const CellList& cells, int c, Range (&out)[9]) {
   return n;
 }
 
+// The weakly compressible SPH equations (Monaghan 1994, J. Comput. Phys. 110:399-406), gathered for
+// each particle i over its neighbours j within 2h, with grad_i W_ij = F(r_ij) (r_i - r_j):
+//   continuity (fluid):  D_i = d rho_i/dt = sum_j m_j (v_i - v_j) . grad_i W_ij + diffusion_i
+//                        (density_diffusion.hpp; between fluid particles only)
+//   continuity (DBC wall b):  D_b = sum_j m_j (v_b - v_j) . grad_b W_bj          (boundary_dbc.hpp)
+//   momentum (fluid):    a_i = -sum_j m_j (p_i + p_j)/(rho_i rho_j) grad_i W_ij + viscous_i + g
+//                        (viscosity.hpp: artificial Pi_ij, or laminar + SPS stress divergence)
+// and the time-step inputs max|a_i| and max_ij |h v_ij.r_ij / (r_ij^2 + eta^2)|.
+// The symmetric pressure term conserves momentum pairwise (Monaghan 1992, Annu. Rev. Astron.
+// Astrophys. 30:543-574).
 template <class K>
 InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, const SolverSettings& s, const K& kernel) {
   const int n_cells = cells.cell_count();

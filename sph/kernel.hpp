@@ -10,11 +10,13 @@
 // which is what the interaction loop needs (no division by r, finite at r = 0).
 //
 // Usage:
-//   | name           | string value    | notes                              |
-//   |----------------|-----------------|------------------------------------|
-//   | Wendland C2    | "wendland_c2"   | default; no pairing instability    |
-//   | cubic spline   | "cubic_spline"  | classic B-spline                   |
-// Example: `Kernel k = Kernel::make("wendland_c2", 1.4142 * 0.01);  double w = k.value(0.005);`
+//   | spec key    | value / range    | default         | notes                              |
+//   |-------------|------------------|-----------------|------------------------------------|
+//   | sph.kernel  | "wendland_c2"    | "wendland_c2"   | Wendland C2; no pairing instability|
+//   |             | "cubic_spline"   |                 | classic B-spline                   |
+//   | sph.coef_h  | 0.5-3            | 1.0             | h = coef_h sqrt(2) dx              |
+// Example (spec): `[sph]  kernel = "wendland_c2"   coef_h = 1.0`
+// Example (code): `Kernel k = Kernel::make("wendland_c2", 1.4142 * 0.01);  double w = k.value(0.005);`
 #pragma once
 
 #include <numbers>

@@ -96,6 +96,9 @@ void InflowBuffer::create(ParticleSet& particles, std::int64_t& next_id) const {
   }
 }
 
+// x_k += U_b dt for the buffer; a particle past x_in becomes fluid and a new one enters at
+// x_k - layers dx with u = U_b, rho = rho0 (1 + rho0 g (z_s - z)/B)^(1/7). Returns the mass injected,
+// one particle mass per conversion (rate rho0 N dx U_b = rho0 q).
 double InflowBuffer::advance(ParticleSet& particles, double dt, std::int64_t& next_id) {
   const Eigen::Index n = particles.size();
   const double depth_span = layers_ * dx_;
@@ -147,6 +150,10 @@ OutflowBuffer::OutflowBuffer(const cases::OutflowBoundary& outflow, double bed_z
   target_velocity_ = discharge_m2_s / outflow.tailwater_depth_m;
 }
 
+// Fluid past x_out joins the buffer; the buffer moves at u_b (hydrostatic_level: the depth-averaged u
+// upstream, >= 0; absorbing: u_b = U_t + 2 (sqrt(g h) - sqrt(g y_t)) >= 0) with the hydrostatic density
+// of its level; particles layers dx past x_out, or above the level (spray), are removed. Returns the
+// mass removed.
 double OutflowBuffer::advance(ParticleSet& particles, double dt) {
   const Eigen::Index n = particles.size();
   const double x_end = x_out_ + layers_ * dx_;

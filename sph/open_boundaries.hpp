@@ -36,12 +36,22 @@
 // drains faster than q, h < y_t slower). They carry the hydrostatic density of the measured level
 // z_b + h; only particles thrown more than 2 dx above it are removed at once (spray).
 //
+// The absorbing outlet's Riemann invariant is that of the 1D shallow-water equations (e.g. Stoker
+// 1957, Water Waves, ch. 10); the level-holding outlet follows DualSPHysics' outlet with an imposed
+// hydrostatic pressure (Tafuni et al. 2018).
+//
 // Usage
+//   | spec key                  | values / range                  | default              | meaning                          |
+//   |---------------------------|---------------------------------|----------------------|----------------------------------|
+//   | sph.inflow_condition      | "buffer", "piston"              | "buffer"             | this buffer, or piston_inflow.hpp |
+//   | sph.outflow_condition     | "hydrostatic_level", "absorbing", "tailgate" | "hydrostatic_level" | above; tailgate.hpp  |
+//   | sph.open_boundary_layers  | 0-50 (0: automatic; else at least ceil(2 sqrt(2) coef_h) + 1) | 0 | buffer depth in columns |
 //   | quantity        | from                                          |
 //   |-----------------|-----------------------------------------------|
 //   | x_in, y1, U1    | CaseGeometry::inflows[0]                      |
 //   | x_out, y_t      | CaseGeometry::outflows[0]                     |
 //   | layers          | ceil(kernel support / dx) + 1 (at least that) |
+// Example (spec): `[sph]  outflow_condition = "absorbing"`
 // Example:
 //   InflowBuffer inflow(geometry.inflows[0], bed_z, {dx, support, eos, g});
 //   inflow.create(particles, next_id);              // once, at start

@@ -1,5 +1,5 @@
-// Piston inflow: the set-up of the corrugated-bed SPH study (Bo et al. 2019) instead of an inflow
-// buffer. A reservoir upstream of a sluice gate is pushed by a piston that keeps its level at H_r, so
+// Piston inflow: the set-up of the corrugated-bed SPH study (Bo, Wu, Wang, Zhang & Gu 2019, Advances in
+// Science and Technology of Water Resources 39(2):72-78) instead of an inflow buffer. A reservoir upstream of a sluice gate is pushed by a piston that keeps its level at H_r, so
 // the gate passes Q(H_r): q if the jet contracts to y1 below the gate as assumed (Cc = 0.611). With L
 // the reservoir length and Q(H) the gate's discharge,
 //
@@ -26,9 +26,9 @@
 //   | key (section [sph])  | meaning                                                          |
 //   |----------------------|------------------------------------------------------------------|
 //   | inflow_condition     | "piston" (default "buffer")                                      |
-//   | sluice_opening_m     | gate opening (m); 0: y1 / 0.611                                  |
-//   | reservoir_length_m   | piston start to gate (m); 0: U_p T_end + 2 H_r                    |
-//   | piston_level_gain_per_s | K of the level control (1/s); default 10, 0: constant speed   |
+//   | sluice_opening_m     | gate opening, 0-100 m; 0 (default): y1 / 0.611                   |
+//   | reservoir_length_m   | piston start to gate, 0-1000 m; 0 (default): U_p T_end + 2 H_r    |
+//   | piston_level_gain_per_s | K of the level control, 0-1000 1/s; default 10, 0: constant speed |
 // Example (cases/*.toml):
 //   [case.sph]
 //   inflow_condition = "piston"

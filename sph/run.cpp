@@ -31,9 +31,15 @@ std::string format_duration(double s) {
 
 std::string describe(const ParticleSet& ps, Eigen::Index i) {
   std::ostringstream o;
-  static constexpr const char* type_names[] = {"fluid", "boundary", "inflow-buffer", "outflow-buffer", "moving-wall"};
-  const unsigned type = ps.type[i];
-  o << (type < 5 ? type_names[type] : "unknown-type") << " particle id " << ps.id[i] << " at (x, z) = (" << ps.x[i] << ", "
+  const char* name = "unknown-type";
+  switch (static_cast<ParticleType>(ps.type[i])) {
+    case ParticleType::fluid: name = "fluid"; break;
+    case ParticleType::boundary: name = "boundary"; break;
+    case ParticleType::inflow: name = "inflow-buffer"; break;
+    case ParticleType::outflow: name = "outflow-buffer"; break;
+    case ParticleType::moving_wall: name = "moving-wall"; break;
+  }
+  o << name << " particle id " << ps.id[i] << " at (x, z) = (" << ps.x[i] << ", "
     << ps.z[i] << ") m, velocity (" << ps.u[i] << ", " << ps.w[i] << ") m/s, density " << ps.rho[i] << " kg/m^3";
   return o.str();
 }

@@ -21,8 +21,8 @@
 //   | key (section [sph])      | meaning                                                        |
 //   |--------------------------|----------------------------------------------------------------|
 //   | outflow_condition        | "tailgate" (default "hydrostatic_level", or "absorbing")       |
-//   | tailgate_height_m        | crest height above the bed at the outflow section (m); 0: from  |
-//   |                          | the tailwater depth by Rehbock's formula                        |
+//   | tailgate_height_m        | crest height above the bed at the outflow section, 0-100 m;     |
+//   |                          | 0 (default): from the tailwater depth by Rehbock's formula      |
 // Example (cases/*.toml):
 //   [case.sph]
 //   outflow_condition = "tailgate"

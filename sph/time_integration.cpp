@@ -1,5 +1,6 @@
 #include "sph/time_integration.hpp"
 
+#include "sph/boundary_dbc.hpp"
 #include "sph/parallel.hpp"
 
 #include <algorithm>
@@ -13,6 +14,8 @@ namespace {
 inline bool is_wall(const ParticleSet& ps, Eigen::Index i) { return is_wall_type(ps.type[i]); }
 }  // namespace
 
+// dt = CFL min(dt_f, dt_cv),  dt_f = sqrt(h / max|a_i|),  dt_cv = h / (c0 + max_ij |h v_ij.r_ij / (r_ij^2 + eta^2)|);
+// with laminar viscosity also dt <= 0.125 h^2 / nu0.
 double variable_time_step(const InteractionSummary& summary, const SolverSettings& s) {
   const double dt_f = summary.max_acceleration > 0.0 ? std::sqrt(s.h / summary.max_acceleration)
                                                      : std::numeric_limits<double>::infinity();
@@ -23,6 +26,8 @@ double variable_time_step(const InteractionSummary& summary, const SolverSetting
   return dt;
 }
 
+// Fluid:  rho^{n+1/2} = rho^n + dt/2 D^n,  r^{n+1/2} = r^n + dt/2 v^n,  v^{n+1/2} = v^n + dt/2 a^n;
+// DBC walls:  rho_b^{n+1/2} = max(rho0, rho_b^n + dt/2 D_b^n).  Saves the state at n for the corrector.
 void symplectic_predictor(ParticleSet& ps, const SolverSettings& s, double dt) {
   const Eigen::Index n = ps.size();
   const bool dbc = s.boundary == BoundaryMethod::dbc;
@@ -41,12 +46,15 @@ void symplectic_predictor(ParticleSet& ps, const SolverSettings& s, double dt) {
       ps.u[i] += half * ps.ax[i];
       ps.w[i] += half * ps.az[i];
     } else if (dbc && is_wall(ps, i)) {
-      ps.rho[i] = std::max(rho0, ps.rho[i] + half * ps.drho[i]);
+      ps.rho[i] = dbc_wall_density(ps.rho[i] + half * ps.drho[i], rho0);
     }
   }
   wrap_periodic(ps, s);
 }
 
+// Fluid:  v^{n+1} = v^n + dt a^{n+1/2},  r^{n+1} = r^n + dt (v^{n+1} + v^n)/2,
+//         rho^{n+1} = rho^n (2 - eps)/(2 + eps),  eps = -(D^{n+1/2} / rho^{n+1/2}) dt;
+// DBC walls: the same density update, never below rho0.
 void symplectic_corrector(ParticleSet& ps, const SolverSettings& s, double dt) {
   const Eigen::Index n = ps.size();
   const bool dbc = s.boundary == BoundaryMethod::dbc;
@@ -58,7 +66,7 @@ void symplectic_corrector(ParticleSet& ps, const SolverSettings& s, double dt) {
     const double eps = -(ps.drho[i] / ps.rho[i]) * dt;
     double rho_new = ps.rho_old[i] * (2.0 - eps) / (2.0 + eps);
     if (!fluid) {
-      ps.rho[i] = std::max(rho0, rho_new);
+      ps.rho[i] = dbc_wall_density(rho_new, rho0);
       continue;
     }
     ps.rho[i] = rho_new;
@@ -72,6 +80,9 @@ void symplectic_corrector(ParticleSet& ps, const SolverSettings& s, double dt) {
   wrap_periodic(ps, s);
 }
 
+// Verlet:  v^{n+1} = v^{n-1} + 2 dt a^n,  rho^{n+1} = rho^{n-1} + 2 dt D^n,  r^{n+1} = r^n + dt v^n + dt^2/2 a^n;
+// Euler step (euler_step):  v^{n+1} = v^n + dt a^n,  rho^{n+1} = rho^n + dt D^n  (same r update).
+// DBC walls: density only, never below rho0.
 void verlet_update(ParticleSet& ps, const SolverSettings& s, double dt, bool euler_step) {
   const Eigen::Index n = ps.size();
   const bool dbc = s.boundary == BoundaryMethod::dbc;
@@ -84,7 +95,7 @@ void verlet_update(ParticleSet& ps, const SolverSettings& s, double dt, bool eul
     const double rho_new = euler_step ? ps.rho[i] + dt * ps.drho[i] : ps.rho_old[i] + dt2 * ps.drho[i];
     ps.rho_old[i] = ps.rho[i];
     if (!fluid) {
-      ps.rho[i] = std::max(rho0, rho_new);
+      ps.rho[i] = dbc_wall_density(rho_new, rho0);
       continue;
     }
     ps.rho[i] = rho_new;
@@ -100,6 +111,7 @@ void verlet_update(ParticleSet& ps, const SolverSettings& s, double dt, bool eul
   wrap_periodic(ps, s);
 }
 
+// x -> x - P floor((x - x_min) / P),  P = x_max - x_min, for fluid that crossed the periodic seam.
 void wrap_periodic(ParticleSet& ps, const SolverSettings& s) {
   if (!s.periodic_x) return;
   const double period = s.x_max - s.x_min;

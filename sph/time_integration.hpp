@@ -20,7 +20,11 @@
 //   | sph.time_integrator | interactions per step | notes                                        |
 //   |---------------------|-----------------------|----------------------------------------------|
 //   | "symplectic"        | 2                     | default, second order, time reversible       |
-//   | "verlet"            | 1                     | sph.verlet_euler_interval (default 40)       |
+//   | "verlet"            | 1                     | sph.verlet_euler_interval: 1-1000, default 40|
+//   | spec key            | range   | default | meaning                                            |
+//   |---------------------|---------|---------|----------------------------------------------------|
+//   | sph.cfl_number      | (0, 1)  | 0.2     | CFL in dt = CFL min(dt_f, dt_cv)                   |
+// Example (spec): `[sph]  time_integrator = "verlet"   verlet_euler_interval = 40   cfl_number = 0.2`
 #pragma once
 
 #include "sph/interactions.hpp"
@@ -29,10 +33,13 @@
 
 namespace hydrojump::sph {
 
+// The step size from the last interactions (the conditions above).
 double variable_time_step(const InteractionSummary& summary, const SolverSettings& s);
 
+// The symplectic scheme's half step and full step (the equations above; fluid and DBC walls).
 void symplectic_predictor(ParticleSet& ps, const SolverSettings& s, double dt);
 void symplectic_corrector(ParticleSet& ps, const SolverSettings& s, double dt);
+// One Verlet step, or the Euler step that every verlet_euler_interval-th step takes instead.
 void verlet_update(ParticleSet& ps, const SolverSettings& s, double dt, bool euler_step);
 // Moves fluid particles that crossed the periodic seam back into [x_min, x_max).
 void wrap_periodic(ParticleSet& ps, const SolverSettings& s);

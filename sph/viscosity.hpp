@@ -22,7 +22,10 @@
 //   |                | between fluid and wall particles (DualSPHysics' ViscoBoundFactor; |
 //   |                | 0 = no viscous wall friction, e.g. a jump as Belanger assumes it) |
 //   | "laminar_sps"  | fluid.kinematic_viscosity_m2_s, sph.sps_smagorinsky_constant 0.12,|
-//   |                | sph.sps_blin_constant 0.0066                                      |
+//   |                | sph.sps_blin_constant 0.0066 (both in [0, 1]; 0 and 0: laminar)   |
+// Ranges: alpha and the wall factor in [0, 1]; nu in [0, 1] m^2/s. A parameter of the model not
+// chosen is an error (cases/spec_reader.cpp).
+// Example (spec): `[sph]  viscosity = "artificial"   artificial_viscosity_alpha = 0.1`
 #pragma once
 
 #include <cmath>
@@ -59,7 +62,9 @@ struct SpsStress {
   double xx = 0.0, xz = 0.0, zz = 0.0;  // tau/rho (m^2/s^2)
 };
 
-// tau/rho from the velocity gradient (du/dx, du/dz, dw/dx, dw/dz), Dalrymple & Rogers (2006).
+// tau/rho from the velocity gradient (du/dx, du/dz, dw/dx, dw/dz), Dalrymple & Rogers (2006):
+//   S_ab = (d_a v_b + d_b v_a)/2,  |S| = sqrt(2 S_ab S_ab),  nu_t = (C_s dx)^2 |S|,
+//   tau_ab/rho = 2 nu_t S_ab - 2/3 nu_t S_kk delta_ab - 2/3 C_I dx^2 |S|^2 delta_ab.
 inline SpsStress sps_stress(double dudx, double dudz, double dwdx, double dwdz, double smagorinsky, double blin,
                             double dx) {
   const double sxx = dudx, szz = dwdz, sxz = 0.5 * (dudz + dwdx);

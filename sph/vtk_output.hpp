@@ -1,7 +1,7 @@
 // ParaView-ready output of the particles: one VTK XML PolyData file (.vtp) per output time and a
 // .pvd collection listing them with their times. Points are (x, 0, z) (the x-z plane, as in
 // DualSPHysics 2D output). Point data: "velocity" (3 components, y = 0), "density", "pressure",
-// "type" (0 fluid, 1 boundary) and "id". Every file is written atomically (temporary file, rename).
+// "type" (sph::ParticleType: 0 fluid, 1 boundary, 2 inflow buffer, 3 outflow buffer, 4 moving wall) and "id". Every file is written atomically (temporary file, rename).
 //
 // Usage:
 //   ParticleSeries series(dir, "particles");
