@@ -20,8 +20,6 @@
 // Example (spec): `[sph]  boundary = "dbc"   boundary_layers = 0`
 #pragma once
 
-#include <algorithm>
-
 namespace hydrojump::sph {
 
 // Pair term of the boundary particle's continuity equation:  m_j (v_b - v_j) . grad_b W_bj,
@@ -32,9 +30,10 @@ inline double dbc_density_rate_pair(double mass_j, double gradient_factor, doubl
 }
 
 // A wall particle's integrated density, never below the reference:  rho_b = max(rho0, rho_b*)
-// (walls push, they do not pull: no suction of the fluid towards a wall).
+// (walls push, they do not pull: no suction of the fluid towards a wall). A NaN stays NaN, so the
+// run's checks see it.
 inline double dbc_wall_density(double integrated_density, double rho0) {
-  return std::max(rho0, integrated_density);
+  return integrated_density < rho0 ? rho0 : integrated_density;
 }
 
 }  // namespace hydrojump::sph
