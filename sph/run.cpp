@@ -206,11 +206,9 @@ std::string diagnose(const Solver& solver) {
     ++reported;
   };
   const double m = s.domain_margin;
+  // Fluid first (where an instability starts), then the walls it spread to.
   for (Eigen::Index i = 0; i < ps.size(); ++i) {
-    if (!ps.is_fluid(i)) {
-      if (!std::isfinite(ps.rho[i])) report("non-finite density", i);
-      continue;
-    }
+    if (!ps.is_fluid(i)) continue;
     if (!std::isfinite(ps.x[i]) || !std::isfinite(ps.z[i]) || !std::isfinite(ps.u[i]) || !std::isfinite(ps.w[i]) ||
         !std::isfinite(ps.rho[i])) {
       report("non-finite state (NaN/Inf)", i);
@@ -228,6 +226,9 @@ std::string diagnose(const Solver& solver) {
         << s.max_density_variation << " (sph.max_density_variation)";
       report(w.str(), i);
     }
+  }
+  for (Eigen::Index i = 0; i < ps.size(); ++i) {
+    if (!ps.is_fluid(i) && !std::isfinite(ps.rho[i])) report("non-finite density", i);
   }
   const double dt = solver.clock().last_dt;
   if (solver.clock().steps > 0 && !(dt >= 1e-3 * solver.acoustic_time_step())) {
