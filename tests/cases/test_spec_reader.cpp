@@ -71,6 +71,15 @@ int line_of(const std::string& text, const std::string& needle) {
   return 1 + static_cast<int>(std::count(text.begin(), text.begin() + static_cast<long>(at), '\n'));
 }
 
+// The first case of `s` written as a resolved one-case spec (quick) and loaded back.
+Study resolved_reload(const Study& s, const std::string& name) {
+  const auto file = std::filesystem::temp_directory_path() / ("hydrojump_test_" + name + ".toml");
+  write_resolved_case(s, s.cases[0], "quick", file);
+  Study r = load_study(file);
+  std::filesystem::remove(file);
+  return r;
+}
+
 }  // namespace
 
 TEST_CASE("The minimal spec is valid and derives sections", "[cases][spec]") {
@@ -310,11 +319,8 @@ TEST_CASE("The artificial viscosity is given as alpha or as nu, not both", "[cas
   SECTION("nu alone is read and survives a resolved reload") {
     const Study s = parse_study(with_sph, "spec.toml", ".");
     CHECK(s.cases[0].sph.artificial_viscosity_nu_m2_s == 0.002);
-    const auto file = std::filesystem::temp_directory_path() / "hydrojump_test_nu.toml";
-    write_resolved_case(s, s.cases[0], "quick", file);
-    const Study r = load_study(file);
+    const Study r = resolved_reload(s, "nu");
     CHECK(r.cases[0].sph.artificial_viscosity_nu_m2_s == 0.002);
-    std::filesystem::remove(file);
   }
   SECTION("both in one table") {
     const auto text = replaced(with_sph, "artificial_viscosity_nu_m2_s = 0.002", "artificial_viscosity_nu_m2_s = 0.002\nartificial_viscosity_alpha = 0.1");
@@ -337,11 +343,7 @@ TEST_CASE("The artificial viscosity is given as alpha or as nu, not both", "[cas
     const Study s = parse_study(text, "spec.toml", ".");
     CHECK(s.cases[0].sph.viscosity == "laminar_sps");
     CHECK(s.cases[0].sph.artificial_viscosity_nu_m2_s == 0.0);
-    const auto file = std::filesystem::temp_directory_path() / "hydrojump_test_nu_sps.toml";
-    write_resolved_case(s, s.cases[0], "quick", file);
-    const Study r = load_study(file);
-    CHECK(r.cases[0].sph.viscosity == "laminar_sps");
-    std::filesystem::remove(file);
+    CHECK(resolved_reload(s, "nu_sps").cases[0].sph.viscosity == "laminar_sps");
   }
   SECTION("negative nu") {
     const auto msg = rejection(replaced(with_sph, "= 0.002", "= -0.002"));
@@ -378,13 +380,10 @@ TEST_CASE("Parameters of models that are not used are rejected", "[cases][spec][
                              "time_integrator = \"verlet\"\nverlet_euler_interval = 20\nsound_speed_m_s = 30.0\n\n[[case]]");
   const Study s = parse_study(used, "spec.toml", ".");
   CHECK(s.cases[0].sph.sps_smagorinsky_constant == 0.2);
-  const auto file = std::filesystem::temp_directory_path() / "hydrojump_test_used.toml";
-  write_resolved_case(s, s.cases[0], "quick", file);
-  const Study r = load_study(file);
+  const Study r = resolved_reload(s, "used");
   CHECK(r.cases[0].sph.sps_smagorinsky_constant == 0.2);
   CHECK(r.cases[0].sph.verlet_euler_interval == 20);
   CHECK(r.cases[0].sph.sound_speed_m_s == 30.0);
-  std::filesystem::remove(file);
   // A case that switches model drops what it inherits for the old one: no error.
   const auto inherited = replaced(replaced(valid_spec, "[[case]]", "[sph]\nartificial_viscosity_alpha = 0.1\n\n[[case]]"),
                                   "[case.run]", "[case.sph]\nviscosity = \"laminar_sps\"\n[case.run]");
