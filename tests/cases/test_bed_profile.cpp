@@ -66,6 +66,9 @@ TEST_CASE("Polyline follows the bed within the requested deviation", "[cases][be
   const auto bed = BedProfile::sinusoidal(S, T, 0.2, 0.2 + 4 * S);
   const double tol = 1e-4;
   const auto line = bed.polyline(0.0, 0.6, tol);
+  REQUIRE(line.size() >= 2);
+  CHECK(line.front().x() == Approx(0.0).margin(1e-12));
+  CHECK(line.back().x() == Approx(0.6).margin(1e-12));
   for (std::size_t i = 1; i < line.size(); ++i) {
     for (int k = 1; k < 10; ++k) {
       const double t = k / 10.0;

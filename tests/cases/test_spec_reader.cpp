@@ -281,6 +281,10 @@ TEST_CASE("A stated discharge or Froude number that disagrees by more than 2 % i
   const auto msg2 = rejection(replaced(valid_spec, "discharge_m2_s = 0.051", "froude = 4.5"));
   CHECK_THAT(msg2, Catch::Contains("inflow.froude = 4.5"));
   CHECK_THAT(msg2, Catch::Contains("4.006"));
+  // At the limit: q = y1 U1 = 0.0508 m^2/s stated 1.9 % high is accepted, 2.1 % high is not.
+  CHECK_NOTHROW(parse_study(replaced(valid_spec, "discharge_m2_s = 0.051", "discharge_m2_s = 0.0517652"), "spec.toml", "."));
+  CHECK_THAT(rejection(replaced(valid_spec, "discharge_m2_s = 0.051", "discharge_m2_s = 0.0518668")),
+             Catch::Contains("inflow.discharge_m2_s = 0.0518668"));
 }
 
 TEST_CASE("Syntax errors and duplicate ids are reported with a line", "[cases][spec][reject]") {

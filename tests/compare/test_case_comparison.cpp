@@ -188,33 +188,30 @@ TEST_CASE("compare_case_directory on a synthetic jump gives both methods with me
   std::stringstream mds;
   mds << md.rdbuf();
   CHECK_THAT(mds.str(), Catch::Contains("Energy dissipation rate"));
-  // The figures need /usr/bin/python3 with matplotlib (installed by the README's commands).
-  if (std::system("/usr/bin/python3 -c 'import matplotlib' > /dev/null 2>&1") == 0) {
-    // comparison.json is valid JSON (NaN written as null)
-    const std::string cmd = "/usr/bin/python3 -c \"import json,sys; json.load(open(sys.argv[1]))\" '" +
-                            (fx.run() / "comparison.json").string() + "'";
-    CHECK(std::system(cmd.c_str()) == 0);
-    for (const char* f : {"surface.png", "profiles.png", "velocity_decay.png", "eta.png", "snapshot_sph.png",
-                          "snapshot_vof.png"})
-      CHECK(fs::exists(fx.run() / "figures" / f));
-    // study summary across case directories: a finished case and a missing one
-    const StudySummary sum = summarize_study({{"A", fx.run()}, {"B", fx.tmp.path() / "B"}});
-    CHECK(sum.eta_files.size() == 1u);
-    CHECK_THAT(sum.markdown, Catch::Contains("| A | 39.") && Catch::Contains("| 48.43 | 47.08 |") &&
-                                 Catch::Contains("| B | missing"));
-    const std::string positions = sum.markdown.substr(sum.markdown.find("### Jump position and momentum balance"));
-    CHECK_THAT(positions, Catch::Contains("| A | ") && Catch::Contains("| B | missing"));
-    CHECK_THAT(sum.eta_csv, Catch::StartsWith("case,") && Catch::Contains("\nA,"));
-    // eta bars across runs (the study-level figure) from the case directories
-    CHECK(plot_study_eta_bars({fx.run(), fx.tmp.path() / "no-such-case"}, fx.tmp.path() / "eta_bars.png") == "");
-    CHECK(fs::exists(fx.tmp.path() / "eta_bars.png"));
-    std::ifstream html(fx.run() / "report.html");
-    std::stringstream hs;
-    hs << html.rdbuf();
-    CHECK_THAT(hs.str(), Catch::Contains("data:image/png;base64,"));
-  } else {
-    WARN("/usr/bin/python3 with matplotlib is not available: figures not checked");
-  }
+  // study summary across case directories: a finished case and a missing one (no Python involved)
+  const StudySummary sum = summarize_study({{"A", fx.run()}, {"B", fx.tmp.path() / "B"}});
+  CHECK(sum.eta_files.size() == 1u);
+  CHECK_THAT(sum.markdown, Catch::Contains("| A | 39.") && Catch::Contains("| 48.43 | 47.08 |") &&
+                               Catch::Contains("| B | missing"));
+  const std::string positions = sum.markdown.substr(sum.markdown.find("### Jump position and momentum balance"));
+  CHECK_THAT(positions, Catch::Contains("| A | ") && Catch::Contains("| B | missing"));
+  CHECK_THAT(sum.eta_csv, Catch::StartsWith("case,") && Catch::Contains("\nA,"));
+  // comparison.json is valid JSON (NaN written as null); the figures need /usr/bin/python3 with
+  // matplotlib, a dependency (scripts/setup.sh installs python3-matplotlib): missing is a failure.
+  REQUIRE(std::system("/usr/bin/python3 -c 'import matplotlib' > /dev/null 2>&1") == 0);
+  const std::string cmd = "/usr/bin/python3 -c \"import json,sys; json.load(open(sys.argv[1]))\" '" +
+                          (fx.run() / "comparison.json").string() + "'";
+  CHECK(std::system(cmd.c_str()) == 0);
+  for (const char* f : {"surface.png", "profiles.png", "velocity_decay.png", "eta.png", "snapshot_sph.png",
+                        "snapshot_vof.png"})
+    CHECK(fs::exists(fx.run() / "figures" / f));
+  // eta bars across runs (the study-level figure) from the case directories
+  CHECK(plot_study_eta_bars({fx.run(), fx.tmp.path() / "no-such-case"}, fx.tmp.path() / "eta_bars.png") == "");
+  CHECK(fs::exists(fx.tmp.path() / "eta_bars.png"));
+  std::ifstream html(fx.run() / "report.html");
+  std::stringstream hs;
+  hs << html.rdbuf();
+  CHECK_THAT(hs.str(), Catch::Contains("data:image/png;base64,"));
 }
 
 TEST_CASE("A missing VOF result is reported as missing and is not a crash", "[compare][case]") {

@@ -1,6 +1,7 @@
 // Jump metrics on hand-built sections and a synthetic longitudinal profile with known answers.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 #include "cases/hydraulics.hpp"
@@ -102,23 +103,21 @@ TEST_CASE("The experiment's bed force from y1, U1 and the measured y2", "[compar
   // (M1 - M2)/M1 = 38.2252 %.
   MeasuredReference lab;
   lab.sequent_depth_m = 0.145;
-  auto rows = metric_table(nullptr, nullptr, lab, 0.0254, 3.0, 9.81);
-  const MetricRow* bed = nullptr;
-  for (const auto& r : rows)
-    if (r.quantity == "bed_force_fraction") bed = &r;
-  REQUIRE(bed != nullptr);
-  CHECK(bed->experiment == Approx(38.2252).margin(1e-4));
-  CHECK(bed->smooth_theory == 0.0);
-  CHECK(std::isnan(bed->sph));
+  const auto bed_row = [](const MeasuredReference& reference) {
+    const auto rows = metric_table(nullptr, nullptr, reference, 0.0254, 3.0, 9.81);
+    const auto it = std::find_if(rows.begin(), rows.end(), [](const MetricRow& r) { return r.quantity == "bed_force_fraction"; });
+    REQUIRE(it != rows.end());
+    return *it;
+  };
+  const MetricRow bed = bed_row(lab);
+  CHECK(bed.experiment == Approx(38.2252).margin(1e-4));
+  CHECK(bed.smooth_theory == 0.0);
+  CHECK(std::isnan(bed.sph));
   // At Belanger's sequent depth the force balances.
   lab.sequent_depth_m = hydrojump::cases::belanger_sequent_depth(0.0254, 3.0 / std::sqrt(9.81 * 0.0254));
-  rows = metric_table(nullptr, nullptr, lab, 0.0254, 3.0, 9.81);
-  for (const auto& r : rows)
-    if (r.quantity == "bed_force_fraction") CHECK(std::abs(r.experiment) < 1e-9);
+  CHECK(std::abs(bed_row(lab).experiment) < 1e-9);
   // Without a measured y2 there is no experimental value.
-  rows = metric_table(nullptr, nullptr, MeasuredReference{}, 0.0254, 3.0, 9.81);
-  for (const auto& r : rows)
-    if (r.quantity == "bed_force_fraction") CHECK(std::isnan(r.experiment));
+  CHECK(std::isnan(bed_row(MeasuredReference{}).experiment));
 }
 
 TEST_CASE("Toe and jump and roller lengths of a synthetic mean surface", "[compare][metrics]") {

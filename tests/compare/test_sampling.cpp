@@ -142,6 +142,8 @@ TEST_CASE("SPH quadratic velocity field is within the MLS interpolation error bo
     const auto sampler = make_sph_sampler(f, s);
     const double x = 0.3037;
     const ColumnSample c = sampler->sample_column(x, 0.0, 41, g);
+    REQUIRE(c.wet());
+    REQUIRE(c.z.size() == 41u);
     // Linear MLS of f: error = 1/2 sum_j phi_j d_j^T H d_j with |d_j| < 2h, so
     // |error| <= 1/2 max|f''| (2h)^2 sum_j |phi_j|; we state sum_j |phi_j| <= 3 at walls/surfaces.
     const double bound = 0.5 * 8.0 * (2 * h_sml) * (2 * h_sml) * 3.0;
@@ -218,6 +220,7 @@ TEST_CASE("SPH Shepard interpolation is exact for constants and first order near
   s.scheme = InterpolationScheme::shepard;
   const auto constant = make_sph_sampler(lattice_particles(0.6, depth, dx, 3, [](double, double) { return 0.7; }, zero), s);
   const ColumnSample c0 = constant->sample_column(0.3037, 0.0, 21, 9.81);
+  REQUIRE(c0.z.size() == 21u);
   for (double v : c0.u) CHECK(v == Approx(0.7).margin(1e-12));
   // A linear field: the error is bounded by |grad u| times the support radius 2h (one-sided
   // neighbourhoods at the bed and the surface) -- that is why "mls_linear" is the default.

@@ -9,8 +9,10 @@
 // SPH (and of most solvers) over this experiment, whose gate took a finite time to lift. What is
 // asserted instead, with stated tolerances:
 //   - at the first measured time (t = 0.09 s, before the gate matters) the front is within 0.05 L;
-//   - after t = 0.4 s the front speed (least-squares slope) is within 10 % of the measured speed;
-//   - at dx = 0.04 m, a regression bound on the lead: mean |difference| < 0.25 L and max < 0.32 L
+//   - after t = 0.4 s the front speed (least-squares slope) is within 10 % of the measured speed
+//     (measured: 0.99 / 1.01 / 1.02; 10 % is the spread of slopes fitted to the digitised points);
+//   - the issue's own tolerance (mean < 0.10 L, max < 0.20 L) is asserted in a test tagged
+//     [!mayfail]: a known failure, reported as failed in every run but not failing the suite
 //     (the lead grows with resolution: max 0.24 / 0.29 / 0.34 at dx = 0.04 / 0.02 / 0.01 m).
 #include <catch2/catch.hpp>
 
@@ -150,10 +152,16 @@ void check_front(const FrontError& e) {
 TEST_CASE("dam break surge front against Koshizuka and Oka at dx 0.04 m", "[sph][dam_break]") {
   const FrontError e = run_dam_break(0.04, "symplectic");
   check_front(e);
-  // The issue's criterion (mean < 0.10, max < 0.20) is not met (0.18 / 0.24 measured): reported, not
-  // asserted, since a bound taken from this program's own output would prove nothing.
-  WARN("dam break dx 0.04 m: mean |x_front/L difference| " << e.mean_abs << ", max " << e.max_abs
-       << " (issue target 0.10 / 0.20)");
+}
+
+// Issue 3's tolerance, asserted as it is: not met (0.18 / 0.24 at dx 0.04 m), so tagged [!mayfail]
+// (Catch2 reports the failed checks; the suite passes). When it passes, remove the tag.
+TEST_CASE("dam break front within the issue's tolerance (mean 0.10 L, max 0.20 L) at dx 0.04 m: known failure",
+          "[sph][dam_break][!mayfail]") {
+  const FrontError e = run_dam_break(0.04, "symplectic");
+  REQUIRE(e.points >= 10);
+  CHECK(e.mean_abs < 0.10);
+  CHECK(e.max_abs < 0.20);
 }
 
 TEST_CASE("dam break surge front against Koshizuka and Oka at dx 0.02 m and 0.01 m", "[sph][dam_break][slow]") {

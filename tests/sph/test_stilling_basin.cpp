@@ -121,7 +121,9 @@ TEST_CASE("smooth-bed stilling basin: stable, mass balance and inflow discharge"
             << q_in << ", strip q " << q_strip << ", y1 U1 " << q << " m^2/s\n";
   CHECK(open.mass_in() > 0.0);
   CHECK(open.mass_out() > 0.0);
-  CHECK(std::abs(balance) <= 0.005 * open.mass_in());
+  // Bookkeeping is exact: one particle mass (rho0 dx^2 = 0.025 kg/m) lost or duplicated would show
+  // at 1e-9 of the water; the 0.5 % (0.13 kg/m here) could hide a whole inflow column.
+  CHECK(std::abs(balance) <= 1e-9 * (m0 + open.mass_in()));
   CHECK(q_in == Approx(q).epsilon(0.02));
   CHECK(q_strip == Approx(q).epsilon(0.05));
 }

@@ -142,7 +142,9 @@ TEST_CASE("tailgate basin: a short coupled run spills over the crest, stays wate
             << " kg/m\n";
   CHECK(o.mass_in() > 0.0);
   CHECK(o.mass_out() > 0.0);  // the initial tailwater stands above the crest: it spills at once
-  CHECK(std::abs(balance) <= 0.005 * o.mass_in());
+  // Bookkeeping is exact: one particle mass (rho0 dx^2 = 0.025 kg/m) lost or duplicated would show
+  // at 1e-9 of the water; the issue's 0.5 % (0.13 kg/m here) could hide a whole inflow column.
+  CHECK(std::abs(balance) <= 1e-9 * (m0 + o.mass_in()));
   // Watertight: no water inside the plate below its crest.
   const auto& ps = solver.particles();
   for (Eigen::Index i = 0; i < ps.size(); ++i)
