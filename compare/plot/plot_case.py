@@ -159,17 +159,23 @@ def plot_snapshot(csv_dir, fig_dir, case, method):
     u[iz, ix] = [r["u_m_s"] for r in rows]
     w[iz, ix] = [r["w_m_s"] for r in rows]
     speed = np.hypot(u, w)
+    # Colour and arrow scale from the 99.5th percentile of the speed, so that a few spray particles
+    # (single fast particles above the surface) do not wash out the flow (the colour bar extends).
+    finite_speed = speed[np.isfinite(speed)]
+    top = float(np.percentile(finite_speed, 99.5)) if finite_speed.size else 1.0
+    top = top if top > 0.0 else 1.0
     fig, ax = plt.subplots(figsize=(10, 3.0))
-    mesh = ax.pcolormesh(xs, zs, speed, shading="nearest", cmap="viridis")
+    mesh = ax.pcolormesh(xs, zs, speed, shading="nearest", cmap="viridis", vmin=0.0, vmax=top)
     # sparse arrows, about 70 along the channel and 10 over the depth
     sx = max(1, len(xs) // 70)
     sz = max(1, len(zs) // 10)
     X, Z = np.meshgrid(xs[::sx], zs[::sz])
     U, W = u[::sz, ::sx], w[::sz, ::sx]
     ok = np.isfinite(U) & np.isfinite(W)
+    # an arrow of the percentile speed spans 1.5 arrow spacings along x
     ax.quiver(X[ok], Z[ok], U[ok], W[ok], color="w", width=0.0012, headwidth=3, scale_units="xy",
-              scale=np.nanmax(np.hypot(U, W)) / (1.5 * (xs[sx] - xs[0]) if len(xs) > sx else 1.0))
-    fig.colorbar(mesh, ax=ax, label="|u| (m/s)", pad=0.01)
+              scale=top / (1.5 * (xs[sx] - xs[0]) if len(xs) > sx else 1.0))
+    fig.colorbar(mesh, ax=ax, label="|u| (m/s)", pad=0.01, extend="max" if np.nanmax(speed) > top else "neither")
     bed = read_rows(os.path.join(csv_dir, "longitudinal.csv"))
     if bed:
         bx = np.array([r["x_m"] for r in bed if r["method"] == method])
