@@ -290,6 +290,10 @@ void read_sph(TableReader& t, SphSettings& s) {
   s.artificial_viscosity_wall_factor = t.number_or("artificial_viscosity_wall_factor", s.artificial_viscosity_wall_factor, between(0.0, 1.0));
   s.sps_smagorinsky_constant = t.number_or("sps_smagorinsky_constant", s.sps_smagorinsky_constant, between(0.0, 1.0));
   s.sps_blin_constant = t.number_or("sps_blin_constant", s.sps_blin_constant, between(0.0, 1.0));
+  // A table that sets C_s without a mixing length means Smagorinsky's length: it drops an inherited l.
+  if (t.has("sps_smagorinsky_constant") && !t.has("sps_mixing_length_m")) s.sps_mixing_length_m = 0.0;
+  s.sps_mixing_length_m = t.number_or("sps_mixing_length_m", s.sps_mixing_length_m,
+                                      non_negative("m, 0: the Smagorinsky length sps_smagorinsky_constant dx", 1.0));
   s.boundary = t.choice("boundary", s.boundary, {"dbc", "mdbc"});
   s.density_diffusion = t.choice("density_diffusion", s.density_diffusion, {"none", "molteni", "fourtakas"});
   s.density_diffusion_coefficient = t.number_or("density_diffusion_coefficient", s.density_diffusion_coefficient, between(0.0, 1.0));
@@ -336,6 +340,10 @@ void read_sph(TableReader& t, SphSettings& s) {
   only_with("artificial_viscosity_wall_factor", s.viscosity == "artificial", "viscosity = \"artificial\"" + here_viscosity);
   only_with("sps_smagorinsky_constant", s.viscosity == "laminar_sps", "viscosity = \"laminar_sps\"" + here_viscosity);
   only_with("sps_blin_constant", s.viscosity == "laminar_sps", "viscosity = \"laminar_sps\"" + here_viscosity);
+  only_with("sps_mixing_length_m", s.viscosity == "laminar_sps", "viscosity = \"laminar_sps\"" + here_viscosity);
+  if (t.has("sps_mixing_length_m") && t.has("sps_smagorinsky_constant") && s.sps_mixing_length_m > 0.0)
+    t.fail_at(t.raw().get("sps_mixing_length_m"), "sps_mixing_length_m",
+              "and sps_smagorinsky_constant are both given: the mixing length replaces C_s dx, set one");
   only_with("density_diffusion_coefficient", s.density_diffusion != "none",
             "density_diffusion = \"molteni\" or \"fourtakas\" (here \"none\")");
   only_with("verlet_euler_interval", s.time_integrator == "verlet",
@@ -792,7 +800,8 @@ void write_sph(TomlWriter& w, const SphSettings& s) {
     else w.num("artificial_viscosity_alpha", s.artificial_viscosity_alpha);
     w.num("artificial_viscosity_wall_factor", s.artificial_viscosity_wall_factor);
   } else {
-    w.num("sps_smagorinsky_constant", s.sps_smagorinsky_constant);
+    if (s.sps_mixing_length_m > 0.0) w.num("sps_mixing_length_m", s.sps_mixing_length_m);
+    else w.num("sps_smagorinsky_constant", s.sps_smagorinsky_constant);
     w.num("sps_blin_constant", s.sps_blin_constant);
   }
   w.str("boundary", s.boundary);

@@ -198,7 +198,7 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
         continue;
       }
       const double* gi = grad + 4 * static_cast<std::size_t>(i);
-      const SpsStress t = sps_stress(gi[0], gi[1], gi[2], gi[3], s.smagorinsky, s.blin, s.dx);
+      const SpsStress t = sps_stress(gi[0], gi[1], gi[2], gi[3], s.sps_length, s.blin, s.dx);
       ps.tau_xx[i] = t.xx;
       ps.tau_xz[i] = t.xz;
       ps.tau_zz[i] = t.zz;

@@ -140,7 +140,8 @@ SolverSettings make_settings(const cases::Case& c, const cases::FluidProperties&
                                 " m/s: allowed up to alpha = 1, i.e. nu <= h c0 / 8 = " + std::to_string(out.h * c0 / 8.0) + " m^2/s");
   out.artificial_wall_factor = s.artificial_viscosity_wall_factor;
   out.kinematic_viscosity = fluid.kinematic_viscosity_m2_s;
-  out.smagorinsky = s.sps_smagorinsky_constant;
+  // l = sph.sps_mixing_length_m if given, else Smagorinsky's C_s dx
+  out.sps_length = s.sps_mixing_length_m > 0.0 ? s.sps_mixing_length_m : s.sps_smagorinsky_constant * dx;
   out.blin = s.sps_blin_constant;
   out.diffusion_delta = s.density_diffusion_coefficient;
   out.cfl = s.cfl_number;

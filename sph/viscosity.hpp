@@ -22,7 +22,10 @@
 //   |                | between fluid and wall particles (DualSPHysics' ViscoBoundFactor; |
 //   |                | 0 = no viscous wall friction, e.g. a jump as Belanger assumes it) |
 //   | "laminar_sps"  | fluid.kinematic_viscosity_m2_s, sph.sps_smagorinsky_constant 0.12,|
-//   |                | sph.sps_blin_constant 0.0066 (both in [0, 1]; 0 and 0: laminar)   |
+//   |                | sph.sps_blin_constant 0.0066 (both in [0, 1]; 0 and 0: laminar);  |
+//   |                | or sph.sps_mixing_length_m l (0-1 m, default 0: l = C_s dx): the |
+//   |                | eddy viscosity nu_t = l^2 |S| of Prandtl's mixing length, fixed  |
+//   |                | in metres across resolutions (e.g. ~0.1 y2 in a jump's roller)   |
 // Ranges: alpha and the wall factor in [0, 1]; nu in [0, 1] m^2/s. A parameter of the model not
 // chosen is an error (cases/spec_reader.cpp).
 // Example (spec): `[sph]  viscosity = "artificial"   artificial_viscosity_alpha = 0.1`
@@ -63,13 +66,14 @@ struct SpsStress {
 };
 
 // tau/rho from the velocity gradient (du/dx, du/dz, dw/dx, dw/dz), Dalrymple & Rogers (2006):
-//   S_ab = (d_a v_b + d_b v_a)/2,  |S| = sqrt(2 S_ab S_ab),  nu_t = (C_s dx)^2 |S|,
-//   tau_ab/rho = 2 nu_t S_ab - 2/3 nu_t S_kk delta_ab - 2/3 C_I dx^2 |S|^2 delta_ab.
-inline SpsStress sps_stress(double dudx, double dudz, double dwdx, double dwdz, double smagorinsky, double blin,
+//   S_ab = (d_a v_b + d_b v_a)/2,  |S| = sqrt(2 S_ab S_ab),  nu_t = l^2 |S|,
+//   tau_ab/rho = 2 nu_t S_ab - 2/3 nu_t S_kk delta_ab - 2/3 C_I dx^2 |S|^2 delta_ab,
+// with the length l = C_s dx (Smagorinsky) or a mixing length given in metres (Prandtl).
+inline SpsStress sps_stress(double dudx, double dudz, double dwdx, double dwdz, double length, double blin,
                             double dx) {
   const double sxx = dudx, szz = dwdz, sxz = 0.5 * (dudz + dwdx);
   const double s2 = 2.0 * (sxx * sxx + szz * szz + 2.0 * sxz * sxz);  // |S|^2
-  const double nu_t = (smagorinsky * dx) * (smagorinsky * dx) * std::sqrt(s2);
+  const double nu_t = length * length * std::sqrt(s2);
   const double iso = -(2.0 / 3.0) * nu_t * (sxx + szz) - (2.0 / 3.0) * blin * dx * dx * s2;
   return {2.0 * nu_t * sxx + iso, 2.0 * nu_t * sxz, 2.0 * nu_t * szz + iso};
 }

@@ -393,3 +393,22 @@ TEST_CASE("Parameters of models that are not used are rejected", "[cases][spec][
                                   "[case.run]", "[case.sph]\nviscosity = \"laminar_sps\"\n[case.run]");
   CHECK_NOTHROW(parse_study(inherited, "spec.toml", "."));
 }
+
+TEST_CASE("The SPS eddy viscosity takes a mixing length in metres instead of C_s dx", "[cases][spec]") {
+  const auto with = [](const std::string& lines) { return replaced(valid_spec, "[[case]]", "[sph]\n" + lines + "\n\n[[case]]"); };
+  const Study s = parse_study(with("viscosity = \"laminar_sps\"\nsps_mixing_length_m = 0.015"), "spec.toml", ".");
+  CHECK(s.cases[0].sph.sps_mixing_length_m == 0.015);
+  CHECK(resolved_reload(s, "mixing").cases[0].sph.sps_mixing_length_m == 0.015);
+  CHECK_THAT(rejection(with("sps_mixing_length_m = 0.015")),
+             Catch::Contains("sph.sps_mixing_length_m is only used with viscosity = \"laminar_sps\""));
+  CHECK_THAT(rejection(with("viscosity = \"laminar_sps\"\nsps_mixing_length_m = 0.015\nsps_smagorinsky_constant = 0.2")),
+             Catch::Contains("sps_mixing_length_m and sps_smagorinsky_constant are both given"));
+  CHECK_THAT(rejection(with("viscosity = \"laminar_sps\"\nsps_mixing_length_m = -0.01")),
+             Catch::Contains("sph.sps_mixing_length_m = -0.01 is out of range"));
+  // A case's C_s drops the study's mixing length.
+  const auto text = replaced(with("viscosity = \"laminar_sps\"\nsps_mixing_length_m = 0.015"), "[case.run]",
+                             "[case.sph]\nsps_smagorinsky_constant = 0.2\n[case.run]");
+  const Study c = parse_study(text, "spec.toml", ".");
+  CHECK(c.cases[0].sph.sps_mixing_length_m == 0.0);
+  CHECK(c.cases[0].sph.sps_smagorinsky_constant == 0.2);
+}

@@ -77,3 +77,30 @@ TEST_CASE("a viscosity given as nu sets alpha = 8 nu / (h c0) at each resolution
     CHECK_THAT(e.what(), Catch::Contains("nu <= h c0 / 8"));
   }
 }
+
+// The SPS stress of a simple shear u = gamma z: S_xz = gamma/2, |S| = gamma, nu_t = l^2 gamma,
+// tau_xz/rho = 2 nu_t S_xz = l^2 gamma^2, tau_xx/rho = tau_zz/rho = -2/3 C_I dx^2 gamma^2 (S_kk = 0).
+TEST_CASE("SPS stress of a simple shear: Smagorinsky's length C_s dx or a mixing length", "[sph][viscosity]") {
+  const double gamma = 12.0, dx = 0.005, blin = 0.0066;
+  for (const double length : {0.12 * dx, 0.015}) {
+    const auto t = hydrojump::sph::sps_stress(0.0, gamma, 0.0, 0.0, length, blin, dx);
+    CHECK(t.xz == Approx(length * length * gamma * gamma).epsilon(1e-12));
+    CHECK(t.xx == Approx(-2.0 / 3.0 * blin * dx * dx * gamma * gamma).epsilon(1e-12));
+    CHECK(t.zz == Approx(t.xx).epsilon(1e-12));
+  }
+}
+
+TEST_CASE("the SPS length is C_s dx, or the mixing length at every resolution", "[sph][viscosity]") {
+  for (const double dx : {0.02, 0.01}) {
+    const auto smagorinsky = sph_test::load_case("still_water.toml", dx, [](cases::Case& k) {
+      k.sph.viscosity = "laminar_sps";
+      k.sph.sps_smagorinsky_constant = 0.12;
+    });
+    CHECK(smagorinsky.settings.sps_length == Approx(0.12 * dx).epsilon(1e-12));
+    const auto mixing = sph_test::load_case("still_water.toml", dx, [](cases::Case& k) {
+      k.sph.viscosity = "laminar_sps";
+      k.sph.sps_mixing_length_m = 0.015;
+    });
+    CHECK(mixing.settings.sps_length == Approx(0.015).epsilon(1e-12));
+  }
+}
