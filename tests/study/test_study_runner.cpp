@@ -199,3 +199,44 @@ TEST_CASE("Study runner validates before running anything", "[study]") {
   CHECK_FALSE(fs::exists(options.out));
   fs::remove_all(dir);
 }
+
+TEST_CASE("Study runner: --methods runs only the chosen solvers, --force re-runs cached stages, --jobs runs cases side by side",
+          "[study]") {
+  const fs::path dir = fs::temp_directory_path() / ("hydrojump_test_study_options_" + std::to_string(::getpid()));
+  const fs::path calls = dir / "calls.txt";
+  // Each call is recorded; a call takes 0.5 s, so that two cases run side by side overlap.
+  StudyOptions options = mini_study_with_stand_in(
+      dir, "echo \"start $*\" >> '" + calls.string() + "'\nsleep 0.5\necho \"end $*\" >> '" + calls.string() + "'\nexit 0\n");
+  std::ostringstream log;
+  const auto starts = [&] {
+    std::vector<std::string> s;
+    for (const auto& l : lines_of(calls))
+      if (l.rfind("start ", 0) == 0) s.push_back(l.substr(6));
+    return s;
+  };
+
+  // --methods sph: no OpenFOAM stage at all; the comparison still runs (on the SPH result alone).
+  options.methods = {"sph"};
+  REQUIRE(run_study(options, log) == 0);
+  auto run = starts();
+  CHECK(run.size() == 4);  // sph and compare for A and B
+  CHECK(std::none_of(run.begin(), run.end(), [](const std::string& l) { return l.rfind("vof ", 0) == 0; }));
+
+  // Cached: nothing runs; --force runs every stage again.
+  fs::remove(calls);
+  REQUIRE(run_study(options, log) == 0);
+  CHECK(starts().empty());
+  options.force = true;
+  REQUIRE(run_study(options, log) == 0);
+  CHECK(starts().size() == 4);
+
+  // --jobs 2: the two cases' first stages start before either ends.
+  fs::remove(calls);
+  options.jobs = 2;
+  REQUIRE(run_study(options, log) == 0);
+  const auto lines = lines_of(calls);
+  REQUIRE(lines.size() >= 2);
+  CHECK(lines[0].rfind("start ", 0) == 0);
+  CHECK(lines[1].rfind("start ", 0) == 0);
+  fs::remove_all(dir);
+}
