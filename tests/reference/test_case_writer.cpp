@@ -67,7 +67,7 @@ fs::path fresh_dir(const std::string& name) {
 
 }  // namespace
 
-TEST_CASE("cartesian_cut plan: grid lines at the floor and the inflow surface; graded air; staircase bed",
+TEST_CASE("cartesian_cut plan: grid lines at the floor and the inflow surface, graded air, staircase bed",
           "[reference][mesh]") {
   // Air 0.15 m above the tailwater: room for the transition to the bulk cell size.
   const cases::Study study = parse(basin_spec("", 0.02, 0.01, "sinusoidal", 0.005, 0.01, 0.15));
@@ -101,13 +101,21 @@ TEST_CASE("cartesian_cut plan: grid lines at the floor and the inflow surface; g
   CHECK(z[z.size() - 1] - z[z.size() - 2] == Approx(h_bulk).epsilon(0.2));
   CHECK(plan.z_fine_top_m >= 0.06 + 0.25 * 0.06 - 1e-12);  // tailwater + default band 0.25 y2
 
-  // Oracle: a cell is removed exactly when its centre lies below the bed z_b(x_centre).
+  // Oracle: a cell is removed exactly when its centre lies below the bed z_b(x_centre), column by
+  // column (the plan's runs of columns with the same count must give each column its own count).
   long removed = 0;
   for (std::size_t i = 0; i + 1 < x.size(); ++i) {
     const double xc = 0.5 * (x[i] + x[i + 1]);
+    int in_column = 0;
     for (std::size_t j = 0; j + 1 < z.size(); ++j) {
-      if (0.5 * (z[j] + z[j + 1]) < geo.bed.elevation(xc)) ++removed;
+      if (0.5 * (z[j] + z[j + 1]) < geo.bed.elevation(xc)) ++in_column;
     }
+    removed += in_column;
+    int planned = 0;
+    for (const reference::RemovedColumns& r : plan.removed)
+      if (xc > r.x_begin_m && xc < r.x_end_m) planned = r.removed_cells;
+    INFO("column " << i << " at x = " << xc << " m");
+    CHECK(planned == in_column);
   }
   CHECK(removed > 0);
   CHECK(plan.removed_cell_count() == removed);
@@ -322,7 +330,7 @@ TEST_CASE("setFields: the initial water follows the spec's surface and carries q
   CHECK(covered == Approx(geo.x_max_m).epsilon(1e-9));
 }
 
-TEST_CASE("dam break: closed tank; grid line at the gate; water column and floor line", "[reference][case]") {
+TEST_CASE("dam break: closed tank, grid line at the gate, water column and floor line", "[reference][case]") {
   const cases::Study study = parse(dam_break_spec());
   const cases::Case& c = study.cases.front();
   const reference::VofCase vof = reference::build_vof_case(study, c, "quick");

@@ -87,7 +87,7 @@ TEST_CASE("a copied dictionary value is independent of later edits", "[reference
   CHECK(b.subdict_at("inner").at("x").number() == 2.0);
 }
 
-TEST_CASE("short lists are inline; lists of dictionaries are one item per line",
+TEST_CASE("short lists are inline, lists of dictionaries are one item per line",
           "[reference][foam_dictionary]") {
   foam::Dictionary d;
   d.set("phases", foam::list({foam::word("water"), foam::word("air")}));

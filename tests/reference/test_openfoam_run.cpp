@@ -100,7 +100,7 @@ TEST_CASE("every generated dictionary is read by OpenFOAM's foamDictionary", "[r
   }
 }
 
-TEST_CASE("a tiny corrugated basin meshes; passes checkMesh; runs and resumes", "[reference][openfoam]") {
+TEST_CASE("a tiny corrugated basin meshes, passes checkMesh, runs and resumes", "[reference][openfoam]") {
   require_openfoam();
   const std::string spec = basin_spec("", 0.02, 0.01);
   const cases::Study study = parse(spec);

@@ -64,7 +64,7 @@ TEST_CASE("the monitor finds the toe of a step and reads the sections", "[sph][b
   CHECK_THAT(monitor.summary_json(), Catch::Contains("\"jump_state\": \"at_inflow\""));
 }
 
-TEST_CASE("a stationary jump with balanced discharges is steady; a drifting one is not", "[sph][basin]") {
+TEST_CASE("a stationary jump with balanced discharges is steady, a drifting one is not", "[sph][basin]") {
   const double dt = 0.1;
   SECTION("stationary") {
     sph::BasinMonitor monitor(setup());
