@@ -25,7 +25,9 @@
 //   |                | sph.sps_blin_constant 0.0066 (both in [0, 1]; 0 and 0: laminar);  |
 //   |                | or sph.sps_mixing_length_m l (0-1 m, default 0: l = C_s dx): the |
 //   |                | eddy viscosity nu_t = l^2 |S| of Prandtl's mixing length, fixed  |
-//   |                | in metres across resolutions (e.g. ~0.1 y2 in a jump's roller)   |
+//   |                | in metres across resolutions. No wall damping: near a bed the     |
+//   |                | full length acts on the wall shear (a jump's inflow is braked,    |
+//   |                | sph/README.md)                                                    |
 // Ranges: alpha and the wall factor in [0, 1]; nu in [0, 1] m^2/s. A parameter of the model not
 // chosen is an error (cases/spec_reader.cpp).
 // Example (spec): `[sph]  viscosity = "artificial"   artificial_viscosity_alpha = 0.1`
