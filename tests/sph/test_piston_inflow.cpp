@@ -6,7 +6,9 @@
 // basin under the gate; and the contraction of the jet implied by its rate over 0.2-0.4 s,
 //   q_gate = Cc a sqrt(2 g (H - Cc a))      (Torricelli below a sluice gate, H the reservoir level),
 // which must lie between the sharp-edged gate's 0.611 (less contraction is possible, more is not)
-// and 1 (no contraction): 0.55 < Cc < 1.0. Measured: Cc = 0.75 at dx = 5 mm with the level held (an
+// and 1 (no contraction): 0.55 < Cc < 1.0, the lower bound 0.611 less 10 % for the level and the
+// opening, which the test reads at particle resolution (one dx = 5 mm of the 0.23 m level and the
+// 0.042 m opening). Measured: Cc = 0.75 at dx = 5 mm with the level held (an
 // opening of 8 particle spacings contracts less than the laboratory's), so the default opening
 // y1/0.611 passes 18 % more than q (0.060 vs 0.0508 m^2/s over 0.2-0.4 s).
 #include <catch2/catch.hpp>
