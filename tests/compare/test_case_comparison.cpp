@@ -160,10 +160,12 @@ TEST_CASE("compare_case_directory on a synthetic jump gives both methods with me
     CHECK(r.toe_x_m == Approx(x_toe).margin(0.01));
     CHECK(r.roller_end_x_m == Approx(j.x_t + j.lr).margin(0.015));
     CHECK(r.jump_end_x_m == Approx(j.x_t + 0.95 * j.rise).margin(0.015));
-    // eta from the section energies E = z_b + h + alpha U^2/(2g): the downstream section of run A
-    // (x_toe + 8 y2) lies over the corrugations, where the local depth exceeds y2, so it differs from
-    // the crest-depth value by about half a point; the lab convention reproduces the formula.
-    CHECK(100 * r.eta == Approx(100 * (e1 - e2) / e1).margin(1.0));
+    // eta from the section energies E = z_b + h + alpha U^2/(2g) (the downstream section sits on a
+    // crest, where the uniform tailwater gives E2 exactly). The depths are interpolated: at Fr1 = 4,
+    // dE1/dy1 = 1 - Fr1^2 = -15, so 0.1 mm of y1 (0.02 dx) moves eta by 0.15 points; 0.2 points
+    // allows the depths' interpolation error of the sampling tests (well under 0.1 dx).
+    INFO("eta " << 100 * r.eta << " formula " << 100 * (e1 - e2) / e1);
+    CHECK(100 * r.eta == Approx(100 * (e1 - e2) / e1).margin(0.2));
     CHECK(100 * r.eta_crest_depth == Approx(100 * (e1 - e2) / e1).margin(0.3));
     // Discharge at every section equals q (the synthetic field conserves it).
     for (const auto& s : m->stats.sections) {
@@ -176,7 +178,7 @@ TEST_CASE("compare_case_directory on a synthetic jump gives both methods with me
   // The two renderings of the same jump agree closely.
   CHECK(c.surface.n_stations > 100);
   CHECK(c.surface.rms_m < 0.002);
-  CHECK(std::abs(row(c, "eta").sph - row(c, "eta").vof) < 1.0);
+  CHECK(std::abs(row(c, "eta").sph - row(c, "eta").vof) < 0.2);
   CHECK(row(c, "eta").experiment == Approx(48.43));
 
   // Outputs.
