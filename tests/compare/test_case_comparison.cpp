@@ -162,8 +162,9 @@ TEST_CASE("compare_case_directory on a synthetic jump gives both methods with me
     CHECK(r.jump_end_x_m == Approx(j.x_t + 0.95 * j.rise).margin(0.015));
     // eta from the section energies E = z_b + h + alpha U^2/(2g) (the downstream section sits on a
     // crest, where the uniform tailwater gives E2 exactly). The depths are interpolated: at Fr1 = 4,
-    // dE1/dy1 = 1 - Fr1^2 = -15, so 0.1 mm of y1 (0.02 dx) moves eta by 0.15 points; 0.2 points
-    // allows the depths' interpolation error of the sampling tests (well under 0.1 dx).
+    // dE1/dy1 = 1 - Fr1^2 = -15, so 0.1 mm of y1 (0.02 dx) moves eta by 0.33 points; 0.2 points
+    // allows 0.06 mm (0.012 dx) on the flat synthetic inflow, which both samplers resolve much more
+    // closely than the 0.1 dx bound of a general surface (the flat-surface tests: <= 0.0035 dx).
     INFO("eta " << 100 * r.eta << " formula " << 100 * (e1 - e2) / e1);
     CHECK(100 * r.eta == Approx(100 * (e1 - e2) / e1).margin(0.2));
     CHECK(100 * r.eta_crest_depth == Approx(100 * (e1 - e2) / e1).margin(0.3));
