@@ -1,7 +1,9 @@
-// `hydrojump sph` as a user runs it: SIGTERM and SIGINT stop the run with a final checkpoint (exit
-// status 128 + signal, issue 3: "SIGINT/SIGTERM write a final checkpoint and exit cleanly"), and
-// `--resume` continues from it to the end. The executable under test is the real one
-// (HYDROJUMP_EXECUTABLE), on the dam break at the quick resolution (dx 0.02 m, ~5,000 particles).
+// The command line as a user runs it (the real executable, HYDROJUMP_EXECUTABLE):
+// - `hydrojump sph`: SIGTERM and SIGINT stop the run with a final checkpoint (exit status 128 +
+//   signal, issue 3: "SIGINT/SIGTERM write a final checkpoint and exit cleanly"), and `--resume`
+//   continues from it to the end (the dam break at the quick resolution, dx 0.02 m, 5,000 particles);
+// - `hydrojump check` prints the derived hydraulics (hand values); `generate` refuses an invalid spec
+//   and writes nothing; `bench --json` prints its figures.
 #include <catch2/catch.hpp>
 
 #include <chrono>
@@ -10,6 +12,8 @@
 #include <string>
 #include <thread>
 #include <vector>
+
+#include <sstream>
 
 #include <fcntl.h>
 #include <sys/wait.h>
@@ -72,6 +76,9 @@ std::string read_text(const fs::path& file) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
+// Runs `hydrojump args...` to the end; returns its exit status and leaves its output in `log`.
+int run(const std::vector<std::string>& args, const fs::path& log) { return wait_exit_status(start(args, log)); }
+
 }  // namespace
 
 TEST_CASE("hydrojump sph stops on SIGTERM and SIGINT with a checkpoint, and --resume finishes the run",
@@ -114,4 +121,61 @@ TEST_CASE("hydrojump sph stops on SIGTERM and SIGINT with a checkpoint, and --re
   CHECK(last.clock.time >= 0.8 - 1e-9);
   CHECK(last.clock.steps > second.clock.steps);
   CHECK(lines_in(run / "run_log.csv") == last.log_rows.size() + 1);
+}
+
+TEST_CASE("hydrojump check prints run A's derived hydraulics", "[compare][integration][cli]") {
+  hydrojump::compare::testing::TempDir tmp("check");
+  REQUIRE(run({"check", std::string(HYDROJUMP_SOURCE_DIR) + "/cases/ead2002.toml"}, tmp.path() / "check.log") == 0);
+  // Run A by hand (y1 = 25.4 mm, U1 = 2 m/s, y2 = 0.104 m): q = 0.0508 m^2/s, Fr1 = 2/sqrt(9.81 y1) =
+  // 4.01, y2* = y1/2 (sqrt(1 + 8 Fr1^2) - 1) = 0.132 m, E1 = y1 + q^2/(2 g y1^2) = 0.2293 m,
+  // E2 = 0.104 + q^2/(2 g 0.104^2) = 0.1162 m, eta = 1 - E2/E1 = 49.34 %, eta* (at y2*) = 39.22 %.
+  std::string row_a;
+  std::istringstream lines(read_text(tmp.path() / "check.log"));
+  for (std::string line; std::getline(lines, line);)
+    if (line.rfind("  A ", 0) == 0) row_a = line;
+  INFO(read_text(tmp.path() / "check.log"));
+  REQUIRE_FALSE(row_a.empty());
+  std::istringstream fields(row_a);
+  std::vector<std::string> f;
+  for (std::string x; fields >> x;) f.push_back(x);
+  REQUIRE(f.size() == 13u);
+  CHECK(f[2] == "0.0254");
+  CHECK(f[4] == "0.0508");
+  CHECK(f[5] == "4.01");
+  CHECK(f[6] == "0.132");
+  CHECK(f[8] == "0.2293");
+  CHECK(f[9] == "0.1162");
+  CHECK(f[10] == "49.34");
+  CHECK(f[11] == "39.22");
+  CHECK(f[12] == "48.43");  // the experiment's, from the spec
+}
+
+TEST_CASE("hydrojump generate refuses an invalid spec, names the key and writes nothing", "[compare][integration][cli]") {
+  hydrojump::compare::testing::TempDir tmp("invalid");
+  std::string spec = read_text(std::string(HYDROJUMP_SOURCE_DIR) + "/cases/dam_break.toml");
+  const std::string good = "[case.column]\nwidth_m = 1.0";
+  REQUIRE(spec.find(good) != std::string::npos);
+  spec.replace(spec.find(good), good.size(), "[case.column]\nwidth_m = -1.0");
+  {
+    std::ofstream out(tmp.path() / "bad.toml");
+    out << spec;
+  }
+  const fs::path out_dir = tmp.path() / "runs";
+  CHECK(run({"generate", (tmp.path() / "bad.toml").string(), "--out", out_dir.string()}, tmp.path() / "generate.log") != 0);
+  const std::string log = read_text(tmp.path() / "generate.log");
+  CHECK_THAT(log, Catch::Contains("bad.toml:") && Catch::Contains("column.width_m = -1"));
+  CHECK_FALSE(fs::exists(out_dir));
+}
+
+TEST_CASE("hydrojump bench --json prints particles, steps, threads, speed and memory", "[compare][integration][cli]") {
+  hydrojump::compare::testing::TempDir tmp("bench");
+  REQUIRE(run({"bench", "--steps", "3", "--threads", "1", "--json"}, tmp.path() / "bench.log") == 0);
+  const std::string log = read_text(tmp.path() / "bench.log");
+  INFO(log);
+  // 20,000 fluid particles (1 m x 2 m at dx 0.01 m) plus the tank's walls
+  CHECK_THAT(log, Catch::Contains("\"steps\": 3") && Catch::Contains("\"threads\": 1") &&
+                      Catch::Contains("\"particle_steps_per_second\": ") && Catch::Contains("\"peak_memory_bytes\": "));
+  const auto at = log.find("\"particles\": ");
+  REQUIRE(at != std::string::npos);
+  CHECK(std::stol(log.substr(at + 13)) > 20000);
 }
