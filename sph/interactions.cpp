@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "sph/boundary_dbc.hpp"
@@ -87,6 +88,12 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
   //   grad v_i = sum_j V_j (v_j - v_i) (x) grad_i W_ij
   std::vector<double> grad_store(sps ? 4 * static_cast<std::size_t>(n) : 0, 0.0);
   double* grad = grad_store.data();
+  // With a mixing length: the distance from each fluid particle to the nearest wall particle within
+  // the kernel support (infinity: none), for Prandtl's l = min(l_m, kappa d).
+  const bool wall_distance_needed = sps && s.sps_length_near_walls;
+  std::vector<double> wall_distance_store(wall_distance_needed ? static_cast<std::size_t>(n) : 0,
+                                          std::numeric_limits<double>::infinity());
+  double* wall_distance = wall_distance_store.data();
 
   double max_acc2 = 0.0, max_visc = 0.0;
 #pragma omp parallel for schedule(dynamic, 16) reduction(max : max_acc2, max_visc) if (threads)
@@ -123,6 +130,7 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
       const double pi = p[i], inv_rhoi = 1.0 / rhoi;
       double d = 0.0, fx = 0.0, fz = 0.0, visc_rate = 0.0;
       double dudx = 0.0, dudz = 0.0, dwdx = 0.0, dwdz = 0.0;
+      double wall_r2 = std::numeric_limits<double>::infinity();
       for (int k = 0; k < n_ranges; ++k) {
         const Range rg = ranges[k];
         for (int j = rg.begin; j < rg.end; ++j) {
@@ -138,6 +146,7 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
           d += mj * (du * gx + dw * gzw);
           // Inflow/outflow buffer neighbours act like fluid (their imposed velocity and density).
           const bool fluid_j = !is_wall_type(type[j]);
+          if (!fluid_j) wall_r2 = std::min(wall_r2, r2);
           if (diffusion && fluid_j) {
             double jump = rho[j] - rhoi;
             if (fourtakas) jump -= hydrostatic_density_difference(rho0, b, gz, -dz);
@@ -182,6 +191,7 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
         gi[1] = dudz;
         gi[2] = dwdx;
         gi[3] = dwdz;
+        if (wall_distance_needed) wall_distance[i] = std::sqrt(wall_r2);
       }
       drho[i] = d;
       ax[i] = fx + s.body_force_x;
@@ -198,7 +208,8 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
         continue;
       }
       const double* gi = grad + 4 * static_cast<std::size_t>(i);
-      const SpsStress t = sps_stress(gi[0], gi[1], gi[2], gi[3], s.sps_length, s.blin, s.dx);
+      const double length = wall_distance_needed ? mixing_length_near_wall(s.sps_length, wall_distance[i], s.dx) : s.sps_length;
+      const SpsStress t = sps_stress(gi[0], gi[1], gi[2], gi[3], length, s.blin, s.dx);
       ps.tau_xx[i] = t.xx;
       ps.tau_xz[i] = t.xz;
       ps.tau_zz[i] = t.zz;

@@ -142,6 +142,7 @@ SolverSettings make_settings(const cases::Case& c, const cases::FluidProperties&
   out.kinematic_viscosity = fluid.kinematic_viscosity_m2_s;
   // l = sph.sps_mixing_length_m if given, else Smagorinsky's C_s dx
   out.sps_length = s.sps_mixing_length_m > 0.0 ? s.sps_mixing_length_m : s.sps_smagorinsky_constant * dx;
+  out.sps_length_near_walls = s.sps_mixing_length_m > 0.0;
   out.blin = s.sps_blin_constant;
   out.diffusion_delta = s.density_diffusion_coefficient;
   out.cfl = s.cfl_number;

@@ -25,14 +25,15 @@
 //   |                | sph.sps_blin_constant 0.0066 (both in [0, 1]; 0 and 0: laminar);  |
 //   |                | or sph.sps_mixing_length_m l (0-1 m, default 0: l = C_s dx): the |
 //   |                | eddy viscosity nu_t = l^2 |S| of Prandtl's mixing length, fixed  |
-//   |                | in metres across resolutions. No wall damping: near a bed the     |
-//   |                | full length acts on the wall shear (a jump's inflow is braked,    |
-//   |                | sph/README.md)                                                    |
+//   |                | in metres across resolutions, limited near walls to Prandtl's     |
+//   |                | kappa d (mixing_length_near_wall; without the limit the full      |
+//   |                | length braked a jump's inflow, sph/README.md)                     |
 // Ranges: alpha and the wall factor in [0, 1]; nu in [0, 1] m^2/s. A parameter of the model not
 // chosen is an error (cases/spec_reader.cpp).
 // Example (spec): `[sph]  viscosity = "artificial"   artificial_viscosity_alpha = 0.1`
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -61,6 +62,16 @@ inline double artificial_viscosity_pair(double alpha_c0_h, double v_dot_r, doubl
 inline double laminar_viscosity_pair(double nu0, double gradient_factor, double r2, double eta2, double rho_i,
                                      double rho_j) {
   return 4.0 * nu0 * gradient_factor * r2 / ((rho_i + rho_j) * (r2 + eta2));
+}
+
+// Prandtl's mixing length near a wall: l = min(l_m, kappa d), kappa = 0.41, d the distance from the
+// wall, here from the centre of the nearest wall particle less dx/2 (the wall line lies halfway
+// between the first boundary layer and the outer fluid row). No wall within the kernel support
+// (d_centre = infinity): l_m.
+inline double mixing_length_near_wall(double length, double wall_centre_distance, double dx) {
+  constexpr double kappa = 0.41;
+  const double d = wall_centre_distance - 0.5 * dx;
+  return std::min(length, kappa * std::max(0.0, d));
 }
 
 struct SpsStress {

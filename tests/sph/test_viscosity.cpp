@@ -7,6 +7,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <limits>
 
 #include "sph/cell_list.hpp"
 #include "sph/interactions.hpp"
@@ -103,4 +104,16 @@ TEST_CASE("the SPS length is C_s dx, or the mixing length at every resolution", 
     });
     CHECK(mixing.settings.sps_length == Approx(0.015).epsilon(1e-12));
   }
+}
+
+// Prandtl near a wall: l = min(l_m, 0.41 d), d measured from the wall line dx/2 in front of the
+// nearest wall particle's centre; no wall in reach: l_m.
+TEST_CASE("the mixing length vanishes at a wall as kappa d and is l_m away from it", "[sph][viscosity]") {
+  using hydrojump::sph::mixing_length_near_wall;
+  const double dx = 0.005, lm = 0.015;
+  CHECK(mixing_length_near_wall(lm, 0.5 * dx, dx) == 0.0);                             // on the wall line
+  CHECK(mixing_length_near_wall(lm, 0.2 * dx, dx) == 0.0);                             // never negative
+  CHECK(mixing_length_near_wall(lm, 0.5 * dx + 0.01, dx) == Approx(0.41 * 0.01).epsilon(1e-12));
+  CHECK(mixing_length_near_wall(lm, 0.5 * dx + 0.05, dx) == lm);                       // 0.41 * 0.05 > l_m
+  CHECK(mixing_length_near_wall(lm, std::numeric_limits<double>::infinity(), dx) == lm);
 }
