@@ -2,9 +2,9 @@
 #   version_string      the project VERSION and, when SRC is a git checkout, the commit it was built
 #                       from (`git describe --always --dirty`), e.g. "0.1.0+3399944e07aa-dirty":
 #                       provenance, printed in reports and by --version;
-#   source_fingerprint  a hash of the program's code only: the git trees of cases/, sph/,
-#                       reference/, compare/, cmake/ and CMakeLists.txt at HEAD, plus the uncommitted
-#                       changes under them (the diff, and the names of untracked files). The study
+#   source_fingerprint  a hash of the program's code only: the content of the files under cases/,
+#                       sph/, reference/, compare/, cmake/ and CMakeLists.txt that git tracks or
+#                       would track, as they are in the working tree (committed or not). The study
 #                       runner's compare stage keys its cache on it;
 #   solver_fingerprint  the same over the code that generates and runs the solvers only (all of the
 #                       above but compare/, except compare/generate.*, which writes the case
@@ -25,36 +25,51 @@ if(EXISTS "${SRC}/.git")
   if(NOT status EQUAL 0)
     set(source_id "")
   endif()
-  # hash_code(VAR paths...): VERSION + the blobs of the paths at HEAD + the uncommitted diff + the
-  # names of untracked files, leaving out documentation (*.md), spec files (*.toml: each case's own
-  # resolved settings are in its fingerprint already) and data (*.csv), so that editing those keeps
-  # finished results. A git failure is a warning and leaves VAR unique to this configure time, so
-  # that no cache can match it by accident.
+  # hash_code(VAR paths...): VERSION + the path and content (SHA1) of every file under the paths that
+  # git tracks or would track (untracked but not ignored), as they are in the working tree, leaving
+  # out documentation (*.md), spec files (*.toml: each case's own resolved settings are in its
+  # fingerprint already) and data (*.csv), so that editing those keeps finished results. Content, not
+  # commits: committing a change does not change the fingerprint. A git failure, or a path that git
+  # does not know (renamed or deleted: it would silently drop out of the hash), is a warning and
+  # leaves VAR unique to this configure time, so that no cache can match it by accident.
   function(hash_code var)
     set(excludes ":(exclude)*.md" ":(exclude)*.toml" ":(exclude)*.csv")
-    execute_process(COMMAND git -C "${SRC}" ls-tree -r HEAD -- ${ARGN}
-                    OUTPUT_VARIABLE tree ERROR_VARIABLE tree_error RESULT_VARIABLE tree_status)
-    execute_process(COMMAND git -C "${SRC}" diff HEAD -- ${ARGN} ${excludes}
-                    OUTPUT_VARIABLE changes ERROR_VARIABLE diff_error RESULT_VARIABLE diff_status)
-    execute_process(COMMAND git -C "${SRC}" ls-files --others --exclude-standard -- ${ARGN} ${excludes}
-                    OUTPUT_VARIABLE untracked ERROR_VARIABLE untracked_error RESULT_VARIABLE untracked_status)
-    foreach(p IN LISTS ARGN)  # a renamed or deleted path would silently drop out of the hash
-      string(FIND "${tree}" "\t${p}" at)
-      if(at EQUAL -1)
-        set(tree_status 1)
-        set(tree_error "${p} is not in HEAD; ")
+    execute_process(COMMAND git -C "${SRC}" ls-files --cached --others --exclude-standard -- ${ARGN} ${excludes}
+                    OUTPUT_VARIABLE listing ERROR_VARIABLE list_error RESULT_VARIABLE list_status)
+    string(REPLACE ";" "," listing "${listing}")
+    string(REPLACE "\n" ";" files "${listing}")
+    list(FILTER files EXCLUDE REGEX "^$")
+    list(REMOVE_DUPLICATES files)
+    list(SORT files)
+    foreach(p IN LISTS ARGN)
+      set(known FALSE)
+      foreach(f IN LISTS files)
+        if(f STREQUAL p OR f MATCHES "^${p}/")
+          set(known TRUE)
+          break()
+        endif()
+      endforeach()
+      if(NOT known)
+        set(list_status 1)
+        set(list_error "${p} is not known to git; ")
       endif()
     endforeach()
-    if(tree_status EQUAL 0 AND diff_status EQUAL 0 AND untracked_status EQUAL 0 AND tree)
-      string(REPLACE ";" "," tree "${tree}")
-      string(REPLACE "\n" ";" lines "${tree}")
-      list(FILTER lines EXCLUDE REGEX "\\.(md|toml|csv)$")
-      string(SHA1 digest "${VERSION}\n${lines}\n${changes}\n${untracked}")
+    if(list_status EQUAL 0 AND files)
+      set(manifest "${VERSION}\n")
+      foreach(f IN LISTS files)
+        if(EXISTS "${SRC}/${f}")
+          file(SHA1 "${SRC}/${f}" h)
+        else()
+          set(h "deleted")
+        endif()
+        string(APPEND manifest "${f} ${h}\n")
+      endforeach()
+      string(SHA1 digest "${manifest}")
       string(SUBSTRING "${digest}" 0 16 digest)
       set(${var} "${VERSION}+code.${digest}" PARENT_SCOPE)
     else()
       string(TIMESTAMP now "%Y%m%d%H%M%S")
-      message(WARNING "write_version: cannot hash ${ARGN} with git (${tree_error}${diff_error}${untracked_error}); "
+      message(WARNING "write_version: cannot hash ${ARGN} with git (${list_error}); "
                       "${var} is unique to this build, so no run cache will match it")
       set(${var} "${VERSION}+unhashed.${now}" PARENT_SCOPE)
     endif()
