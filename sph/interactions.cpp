@@ -146,7 +146,7 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
           d += mj * (du * gx + dw * gzw);
           // Inflow/outflow buffer neighbours act like fluid (their imposed velocity and density).
           const bool fluid_j = !is_wall_type(type[j]);
-          if (!fluid_j) wall_r2 = std::min(wall_r2, r2);
+          if (wall_distance_needed && !fluid_j) wall_r2 = std::min(wall_r2, r2);
           if (diffusion && fluid_j) {
             double jump = rho[j] - rhoi;
             if (fourtakas) jump -= hydrostatic_density_difference(rho0, b, gz, -dz);
