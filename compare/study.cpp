@@ -130,8 +130,16 @@ class StudyRunner {
     // Regenerate the case directories only when the case changed (keeps finished results).
     const auto generated_stamp = dir / "generate.stamp";
     if (options_.force || cases::read_text_file(generated_stamp) != fingerprint) {
-      // The results of a changed case are stale: start its directory afresh.
-      std::filesystem::remove_all(dir);
+      // The results of a changed case are stale: start its directory afresh, keeping the previous
+      // results (hours of runs) as <case>.previous (replacing an older one) instead of deleting them.
+      if (std::filesystem::exists(dir / "generate.stamp")) {
+        const auto previous = options_.out / (c.id + ".previous");
+        std::filesystem::remove_all(previous);
+        std::filesystem::rename(dir, previous);
+        say(c.id + ": the case or the program changed: its previous results are kept in " + previous.string());
+      } else {
+        std::filesystem::remove_all(dir);
+      }
       std::ostringstream generated;
       generate_cases(study_, {&c}, options_.resolution, options_.out, generated);
       say(c.id + ": " + generated.str().substr(0, generated.str().find_last_not_of('\n') + 1));

@@ -126,10 +126,15 @@ TEST_CASE("Study runner: failures are isolated, results cached, changes re-run",
   CHECK_THAT(second[0], Catch::StartsWith("sph ") && Catch::Contains("/B/sph") && Catch::EndsWith("--resume"));
   CHECK_THAT(second[1], Catch::StartsWith("compare ") && Catch::Contains("/B"));
 
-  // A changed case runs all its stages again; the unchanged one does not.
+  // A changed case runs all its stages again; the unchanged one does not. The previous results are
+  // kept beside it as <case>.previous.
+  write(options.out / "A" / "sph" / "result.txt", "hours of work");
   write(dir / "mini.toml", with_tailwater("0.11"));
   fs::remove(calls);
   run_study(options, log);
+  CHECK(fs::exists(options.out / "A.previous" / "sph" / "result.txt"));
+  CHECK_FALSE(fs::exists(options.out / "A" / "sph" / "result.txt"));
+  CHECK_THAT(log.str(), Catch::Contains("previous results are kept in"));
   auto third = lines_of(calls);
   CHECK(std::count_if(third.begin(), third.end(), [](const std::string& l) { return l.find("/A") != std::string::npos; }) == 3);
   CHECK(std::count_if(third.begin(), third.end(), [](const std::string& l) { return l.find("/B") != std::string::npos; }) == 2);
