@@ -132,7 +132,7 @@ class StudyRunner {
     if (options_.force || cases::read_text_file(generated_stamp) != fingerprint) {
       // The results of a changed case are stale: start its directory afresh, keeping the previous
       // results (hours of runs) as <case>.previous (replacing an older one) instead of deleting them.
-      if (std::filesystem::exists(dir / "generate.stamp")) {
+      if (std::filesystem::exists(generated_stamp)) {
         const auto previous = options_.out / (c.id + ".previous");
         std::filesystem::remove_all(previous);
         std::filesystem::rename(dir, previous);
