@@ -6,12 +6,9 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-extern char** environ;
+#include "cases/child_process.hpp"
 
 namespace fs = std::filesystem;
 
@@ -60,42 +57,21 @@ std::string run_plot_script(const std::string& script, const std::vector<std::st
   } catch (const std::exception& e) {
     return e.what();
   }
-  std::vector<std::string> argv_s = {python, (dir / script).string()};
-  argv_s.insert(argv_s.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& a : argv_s) argv.push_back(a.data());
-  argv.push_back(nullptr);
+  std::vector<std::string> argv = {python, (dir / script).string()};
+  argv.insert(argv.end(), args.begin(), args.end());
   fs::create_directories(log_file.parent_path());
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, log_file.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
-  posix_spawn_file_actions_adddup2(&actions, 1, 2);
-  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
   // matplotlib without a display, and no user site packages shadowing the system ones
-  std::vector<std::string> env_s;
-  for (char** e = environ; *e; ++e) {
-    const std::string v = *e;
-    if (v.rfind("MPLBACKEND=", 0) == 0 || v.rfind("PYTHONPATH=", 0) == 0) continue;
-    env_s.push_back(v);
+  cases::ChildCommand command(argv, log_file);
+  command.environment = {"MPLBACKEND=Agg", "PYTHONPATH"};
+  cases::ChildExit ended;
+  try {
+    ended = cases::run_child(command);
+  } catch (const std::exception& e) {
+    return e.what();
   }
-  env_s.push_back("MPLBACKEND=Agg");
-  std::vector<char*> envp;
-  for (auto& v : env_s) envp.push_back(v.data());
-  envp.push_back(nullptr);
-  pid_t pid = 0;
-  const int rc = posix_spawn(&pid, python, &actions, nullptr, argv.data(), envp.data());
-  posix_spawn_file_actions_destroy(&actions);
-  if (rc != 0) return "could not start /usr/bin/python3";
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0) {
-    if (errno != EINTR) return "waitpid failed for the plot script";
-  }
-  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return "";
+  if (ended.status() == 0) return "";
   std::ostringstream s;
-  s << script << " failed (";
-  if (WIFEXITED(status)) s << "exit status " << WEXITSTATUS(status);
-  else s << "killed by a signal";
-  s << "): " << last_line(log_file) << " (log: " << log_file.string() << ")";
+  s << script << " failed (it " << ended.describe() << "): " << last_line(log_file) << " (log: " << log_file.string() << ")";
   return s.str();
 }
 

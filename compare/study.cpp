@@ -12,20 +12,14 @@
 #include <sstream>
 #include <thread>
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include "cases/atomic_file.hpp"
+#include "cases/child_process.hpp"
 #include "cases/fingerprint.hpp"
 #include "cases/spec_reader.hpp"
 #include "compare/generate.hpp"
 #include "compare/plots.hpp"
 #include "compare/study_summary.hpp"
 #include "hydrojump/version.hpp"
-
-extern char** environ;
 
 namespace hydrojump::compare {
 namespace {
@@ -46,30 +40,6 @@ std::string duration_text(double seconds) {
   else if (total >= 60) s << total / 60 << "m" << std::setw(2) << std::setfill('0') << total % 60 << "s";
   else s << total << "s";
   return s.str();
-}
-
-// Runs `args` as a child process with stdout and stderr appended to `log_file`; returns its exit
-// status (128 + signal number if it was killed).
-int run_child(const std::vector<std::string>& args, const std::filesystem::path& log_file) {
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log_file.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
-  posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-  posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
-  std::vector<char*> argv;
-  for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  pid_t pid = 0;
-  const int rc = posix_spawn(&pid, argv[0], &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (rc != 0) return 127;
-  int status = 0;
-  while (waitpid(pid, &status, 0) < 0) {
-    if (errno != EINTR) return 127;
-  }
-  if (WIFEXITED(status)) return WEXITSTATUS(status);
-  if (WIFSIGNALED(status)) return 128 + WTERMSIG(status);
-  return 1;
 }
 
 // The fingerprint of case `c` at `resolution`: its resolved settings and a fingerprint of this
@@ -186,8 +156,18 @@ class StudyRunner {
     if (!started_marker.empty()) cases::write_file_atomically(started_marker, fingerprint);
     say(id + ": " + stage + " started (log: " + log_file.string() + ")");
     const auto t0 = std::chrono::steady_clock::now();
-    const int status = run_child(args, log_file);
+    int status = 127;
+    std::string start_error;
+    try {
+      status = cases::run_child(cases::ChildCommand(args, log_file)).status();
+    } catch (const std::exception& e) {
+      start_error = e.what();
+    }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (!start_error.empty()) {
+      say(id + ": " + stage + " FAILED: " + start_error);
+      return {stage, "failed", seconds, status, {}};
+    }
     if (status != 0) {
       say(id + ": " + stage + " FAILED (exit status " + std::to_string(status) + ") after " +
           duration_text(seconds) + "; last lines of " + log_file.string() + ":\n" + tail(log_file, 8));

@@ -23,6 +23,7 @@
 #include <unistd.h>
 
 #include "cases/atomic_file.hpp"
+#include "cases/child_process.hpp"
 #include "cases/spec_reader.hpp"
 #include "reference/case_writer.hpp"
 #include "reference/foam_dictionary.hpp"
@@ -66,27 +67,6 @@ class StopRequestGuard {
   struct sigaction old_term_ {};
 };
 
-std::string describe_exit(int rc) {
-  if (rc > 128 && rc < 128 + 65) {
-    const char* name = ::strsignal(rc - 128);
-    return "was killed by signal " + std::to_string(rc - 128) + " (" + (name ? name : "?") + ")";
-  }
-  return "exited with code " + std::to_string(rc);
-}
-
-std::optional<fs::path> find_on_path(const std::string& name) {
-  const char* path = std::getenv("PATH");
-  if (!path) return std::nullopt;
-  std::stringstream ss(path);
-  std::string dir;
-  while (std::getline(ss, dir, ':')) {
-    if (dir.empty()) continue;
-    const fs::path candidate = fs::path(dir) / name;
-    if (::access(candidate.c_str(), X_OK) == 0) return candidate;
-  }
-  return std::nullopt;
-}
-
 // The last `n` lines of a text file, indented.
 std::string tail_file(const fs::path& file, std::size_t n = 20) {
   std::ifstream in(file);
@@ -101,56 +81,24 @@ std::string tail_file(const fs::path& file, std::size_t n = 20) {
   return out;
 }
 
-// Starts `argv` in `cwd` with stdout and stderr going to `log` (appended or truncated).
+// Starts `argv` in `cwd` with stdout and stderr going to `log` (appended or truncated), in its own
+// process group: Ctrl-C reaches hydrojump, which asks the solver to write and stop. OpenFOAM warns when
+// PWD differs from the working directory.
 pid_t spawn(const std::vector<std::string>& argv, const fs::path& cwd, const fs::path& log, bool append) {
-  const pid_t pid = ::fork();
-  if (pid < 0) throw OpenFoamError(std::string("cannot start ") + argv.front() + ": fork failed");
-  if (pid == 0) {
-    // Own process group: Ctrl-C reaches hydrojump, which asks the solver to write and stop.
-    ::setpgid(0, 0);
-    if (::chdir(cwd.c_str()) != 0) ::_exit(126);
-    ::setenv("PWD", cwd.c_str(), 1);  // OpenFOAM warns when PWD differs from the working directory
-    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | (append ? O_APPEND : O_TRUNC), 0644);
-    if (fd < 0) ::_exit(126);
-    ::dup2(fd, STDOUT_FILENO);
-    ::dup2(fd, STDERR_FILENO);
-    const int null_fd = ::open("/dev/null", O_RDONLY);
-    if (null_fd >= 0) ::dup2(null_fd, STDIN_FILENO);
-    std::vector<char*> args;
-    for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
-    args.push_back(nullptr);
-    ::execvp(args[0], args.data());
-    ::_exit(127);
+  try {
+    cases::ChildCommand command(argv, log);
+    command.append_to_log = append;
+    command.working_directory = cwd;
+    command.own_process_group = true;
+    command.environment = {"PWD=" + cwd.string()};
+    return cases::start_child(command);
+  } catch (const std::exception& e) {
+    throw OpenFoamError(e.what());
   }
-  return pid;
 }
 
-// Exit code of a finished child (128 + signal when killed by one).
-int exit_code(int status) {
-  if (WIFEXITED(status)) return WEXITSTATUS(status);
-  if (WIFSIGNALED(status)) return 128 + WTERMSIG(status);
-  return -1;
-}
-
-int wait_for(pid_t pid) {
-  int status = 0;
-  while (::waitpid(pid, &status, 0) < 0) {
-    if (errno != EINTR) return -1;
-  }
-  return exit_code(status);
-}
-
-// Stops a child we started: SIGTERM, then SIGKILL after 5 s.
-void stop_child(pid_t pid) {
-  ::kill(pid, SIGTERM);
-  for (int i = 0; i < 50; ++i) {
-    int status = 0;
-    if (::waitpid(pid, &status, WNOHANG) == pid) return;
-    std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  }
-  ::kill(pid, SIGKILL);
-  wait_for(pid);
-}
+// The exit status (128 + signal when killed) of a child started by spawn.
+int wait_for(pid_t pid) { return cases::wait_child(pid).status(); }
 
 std::string command_text(const std::vector<std::string>& argv) {
   std::string s;
@@ -163,9 +111,9 @@ void run_step(const fs::path& dir, const std::vector<std::string>& argv, const s
               std::ostream& out) {
   out << "  " << command_text(argv) << "  (log: " << log_name << ")\n" << std::flush;
   const fs::path log = dir / log_name;
-  const int rc = wait_for(spawn(argv, dir, log, false));
-  if (rc != 0) {
-    throw OpenFoamError(argv.front() + " failed (it " + describe_exit(rc) + ") in " + dir.string() +
+  const cases::ChildExit ended = cases::wait_child(spawn(argv, dir, log, false));
+  if (ended.status() != 0) {
+    throw OpenFoamError(argv.front() + " failed (it " + ended.describe() + ") in " + dir.string() +
                         "; last lines of " + log_name + ":\n" + tail_file(log));
   }
 }
@@ -428,7 +376,7 @@ OpenFoamInstallation check_openfoam(bool need_mpi) {
                                    "interFoam", "decomposePar", "reconstructPar", "foamDictionary"};
   if (need_mpi) apps.push_back("mpirun");
   for (const std::string& app : apps) {
-    if (!find_on_path(app)) {
+    if (!cases::find_on_path(app)) {
       throw OpenFoamError("OpenFOAM not found: `" + app + "` is not on PATH. Install the Debian packages " +
                           (app == "mpirun" ? std::string("`openmpi-bin`") : std::string("`openfoam`")) +
                           " (or add OpenFOAM's bin directory to PATH).");
@@ -642,8 +590,7 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
   const double t_begin = start.value_or(0.0);
   const auto solver_begin = std::chrono::steady_clock::now();
   auto last_report = solver_begin;
-  int status = 0;
-  bool finished = false;
+  std::optional<cases::ChildExit> ended;  // how interFoam ended; nullopt while it runs
   auto read_new = [&]() {
     std::ifstream in(log_file, std::ios::binary);
     if (!in) return;
@@ -671,39 +618,33 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
   StopRequestGuard stop_guard;
   bool stop_sent = false;
   std::chrono::steady_clock::time_point stop_time;
-  while (!finished) {
+  while (!ended) {
     std::this_thread::sleep_for(std::chrono::milliseconds(500));
-    const pid_t r = ::waitpid(pid, &status, WNOHANG);
-    if (r == pid) finished = true;
-    if (stop_requested && !finished && !stop_sent) {
+    ended = cases::poll_child(pid);
+    if (stop_requested && !ended && !stop_sent) {
       out << (interactive ? "\n" : "") << "Stop requested: interFoam writes the current time and stops...\n"
           << std::flush;
       ::kill(pid, write_and_stop_signal);
       stop_sent = true;
       stop_time = std::chrono::steady_clock::now();
     }
-    if (stop_sent && !finished &&
+    if (stop_sent && !ended &&
         std::chrono::duration<double>(std::chrono::steady_clock::now() - stop_time).count() > 120.0) {
-      stop_child(pid);
-      finished = true;
-      status = -1;
+      ended = cases::stop_child(pid);
     }
     read_new();
-    if (log.failed() && !finished) {
-      stop_child(pid);
+    if (log.failed() && !ended) {
+      ended = cases::stop_child(pid);
       read_new();
-      finished = true;
-      status = -1;
     }
     const auto now = std::chrono::steady_clock::now();
     const double since = std::chrono::duration<double>(now - last_report).count();
-    if (!finished && (interactive ? since >= 1.0 : since >= options.progress_interval_s)) {
+    if (!ended && (interactive ? since >= 1.0 : since >= options.progress_interval_s)) {
       progress(false);
       last_report = now;
     }
   }
   progress(true);
-  const int rc = status == -1 ? -1 : exit_code(status);
   if (stop_sent) {
     const auto written = latest_time(parallel ? dir / "processor0" : dir);
     throw OpenFoamError("interrupted: interFoam stopped at t = " + format_seconds(log.time_s().value_or(t_begin)) +
@@ -718,8 +659,8 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
                          "before stopping). To retry, lower maxCo/maxAlphaCo in system/controlDict, delete the "
                          "bad time directories and run `hydrojump vof DIR --resume`."
                    : std::string();
-  if (log.failed() || rc != 0) {
-    const std::string why = log.failed() ? log.failure() : "the solver " + describe_exit(rc);
+  if (log.failed() || ended->status() != 0) {
+    const std::string why = log.failed() ? log.failure() : "the solver " + ended->describe();
     throw OpenFoamError("interFoam stopped in " + dir.string() + ": " + why + "." + resume_hint +
                         "\nLast lines of log.interFoam" + (log.failed() ? " up to the failure" : "") + ":\n" +
                         (log.failed() ? log.failure_context() : log.tail()));

@@ -11,14 +11,12 @@
 #include <fstream>
 #include <string>
 #include <thread>
+#include <sstream>
 #include <vector>
 
-#include <sstream>
+#include <signal.h>
 
-#include <fcntl.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
+#include "cases/child_process.hpp"
 #include "sph/checkpoint.hpp"
 #include "temp_dir.hpp"
 
@@ -26,33 +24,19 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Starts `hydrojump args...` with stdout and stderr to `log`; returns its pid.
+// Starts `hydrojump args...` with stdout and stderr to `log` (truncated); returns its pid.
 pid_t start(const std::vector<std::string>& args, const fs::path& log) {
-  const pid_t pid = ::fork();
-  REQUIRE(pid >= 0);
-  if (pid == 0) {
-    const int fd = ::open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (fd >= 0) {
-      ::dup2(fd, 1);
-      ::dup2(fd, 2);
-    }
-    std::vector<char*> argv;
-    std::string exe = HYDROJUMP_EXECUTABLE;
-    argv.push_back(exe.data());
-    std::vector<std::string> copy = args;
-    for (auto& a : copy) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    ::execv(exe.c_str(), argv.data());
-    ::_exit(127);
-  }
-  return pid;
+  std::vector<std::string> argv = {HYDROJUMP_EXECUTABLE};
+  argv.insert(argv.end(), args.begin(), args.end());
+  hydrojump::cases::ChildCommand command(argv, log);
+  command.append_to_log = false;
+  return hydrojump::cases::start_child(command);
 }
 
 int wait_exit_status(pid_t pid) {
-  int status = 0;
-  REQUIRE(::waitpid(pid, &status, 0) == pid);
-  REQUIRE(WIFEXITED(status));  // it exits by itself after the signal, not killed by it
-  return WEXITSTATUS(status);
+  const hydrojump::cases::ChildExit e = hydrojump::cases::wait_child(pid);
+  REQUIRE(e.exited);  // it exits by itself after the signal, not killed by it
+  return e.exit_code;
 }
 
 std::size_t lines_in(const fs::path& file) {

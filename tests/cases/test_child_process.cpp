@@ -1,0 +1,131 @@
+// Child processes (cases/child_process.hpp) with /bin/sh as the child: exit codes, signals, the log
+// file (appended or truncated), the working directory, environment changes, and programs that cannot
+// be started (an exception naming them, not a status 127 that looks like the program's own).
+#include <catch2/catch.hpp>
+
+#include <chrono>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+#include <unistd.h>
+
+#include "cases/child_process.hpp"
+
+using namespace hydrojump::cases;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string read(const fs::path& p) {
+  std::ifstream in(p);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+fs::path fresh_dir() {
+  const fs::path dir = fs::temp_directory_path() / ("hydrojump-child-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+ChildCommand shell(const std::string& script, const fs::path& log) { return ChildCommand({"/bin/sh", "-c", script}, log); }
+
+}  // namespace
+
+TEST_CASE("A child's exit code and output reach the caller and its log file", "[cases][process]") {
+  const fs::path dir = fresh_dir();
+  const fs::path log = dir / "out.log";
+  const ChildExit e = run_child(shell("echo to-stdout; echo to-stderr >&2; exit 3", log));
+  CHECK(e.exited);
+  CHECK(e.exit_code == 3);
+  CHECK(e.status() == 3);
+  CHECK(e.describe() == "exited with code 3");
+  CHECK(read(log) == "to-stdout\nto-stderr\n");
+
+  // Appended by default, truncated on request.
+  CHECK(run_child(shell("echo second", log)).status() == 0);
+  CHECK(read(log) == "to-stdout\nto-stderr\nsecond\n");
+  ChildCommand truncate = shell("echo only", log);
+  truncate.append_to_log = false;
+  CHECK(run_child(truncate).status() == 0);
+  CHECK(read(log) == "only\n");
+
+  // stdin is /dev/null: a child that reads it ends instead of waiting for a terminal.
+  CHECK(run_child(shell("cat; echo read-done", log)).status() == 0);
+  CHECK(read(log) == "only\nread-done\n");
+  fs::remove_all(dir);
+}
+
+TEST_CASE("A child killed by a signal reports it as 128 + the signal number", "[cases][process]") {
+  const fs::path dir = fresh_dir();
+  const ChildExit e = run_child(shell("kill -KILL $$", dir / "log"));
+  CHECK_FALSE(e.exited);
+  CHECK(e.signal == 9);
+  CHECK(e.status() == 137);
+  CHECK_THAT(e.describe(), Catch::StartsWith("was killed by signal 9"));
+
+  // stop_child: SIGTERM first; a child that ignores it is killed after the grace period.
+  const pid_t polite = start_child(shell("sleep 30", dir / "log"));
+  CHECK_FALSE(poll_child(polite).has_value());  // still running
+  const ChildExit stopped = stop_child(polite);
+  CHECK(stopped.signal == 15);
+  const pid_t stubborn = start_child(shell("trap '' TERM; while :; do sleep 0.1; done", dir / "log"));
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));  // let the shell install its trap
+  const auto t0 = std::chrono::steady_clock::now();
+  const ChildExit killed = stop_child(stubborn, std::chrono::milliseconds(300));
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  CHECK(killed.signal == 9);
+  CHECK(seconds < 5.0);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("A child runs in its working directory with the requested environment changes", "[cases][process]") {
+  const fs::path dir = fresh_dir();
+  fs::create_directories(dir / "work");
+  ::setenv("HYDROJUMP_TEST_REMOVED", "present", 1);
+  ::setenv("HYDROJUMP_TEST_REPLACED", "old", 1);
+  ChildCommand c = shell("pwd; echo \"${HYDROJUMP_TEST_REMOVED:-unset} $HYDROJUMP_TEST_REPLACED $HYDROJUMP_TEST_ADDED\"",
+                         dir / "log");
+  c.working_directory = dir / "work";
+  c.environment = {"HYDROJUMP_TEST_REMOVED", "HYDROJUMP_TEST_REPLACED=new", "HYDROJUMP_TEST_ADDED=added"};
+  REQUIRE(run_child(c).status() == 0);
+  CHECK(read(dir / "log") == fs::canonical(dir / "work").string() + "\nunset new added\n");
+  // The parent's environment is untouched.
+  CHECK(std::string(std::getenv("HYDROJUMP_TEST_REMOVED")) == "present");
+  CHECK(std::string(std::getenv("HYDROJUMP_TEST_REPLACED")) == "old");
+  ::unsetenv("HYDROJUMP_TEST_REMOVED");
+  ::unsetenv("HYDROJUMP_TEST_REPLACED");
+  fs::remove_all(dir);
+}
+
+TEST_CASE("A program that cannot be started is an error naming it and the reason", "[cases][process]") {
+  const fs::path dir = fresh_dir();
+  auto message = [](const ChildCommand& c) -> std::string {
+    try {
+      run_child(c);
+    } catch (const std::exception& e) {
+      return e.what();
+    }
+    return "no exception";
+  };
+  CHECK(message(ChildCommand({"hydrojump-no-such-program"}, dir / "log")) ==
+        "cannot start hydrojump-no-such-program: it is not on PATH");
+  CHECK_THAT(message(ChildCommand({(dir / "missing").string()}, dir / "log")),
+             Catch::Contains("cannot start " + (dir / "missing").string()) &&
+                 Catch::Contains("No such file or directory"));
+  std::ofstream(dir / "not-executable") << "#!/bin/sh\n";
+  CHECK_THAT(message(ChildCommand({(dir / "not-executable").string()}, dir / "log")), Catch::Contains("Permission denied"));
+  ChildCommand no_dir = shell("true", dir / "log");
+  no_dir.working_directory = dir / "absent";
+  CHECK_THAT(message(no_dir), Catch::Contains("cannot enter its working directory " + (dir / "absent").string()));
+  CHECK_THAT(message(shell("true", dir / "absent" / "log")),
+             Catch::Contains("cannot open its log file " + (dir / "absent" / "log").string()));
+  // A name on PATH is found.
+  CHECK(find_on_path("sh").has_value());
+  CHECK(run_child(ChildCommand({"sh", "-c", "exit 0"}, dir / "log")).status() == 0);
+  fs::remove_all(dir);
+}
