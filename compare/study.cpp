@@ -14,6 +14,7 @@
 
 #include "cases/atomic_file.hpp"
 #include "cases/child_process.hpp"
+#include "cases/directory_lock.hpp"
 #include "cases/fingerprint.hpp"
 #include "cases/spec_reader.hpp"
 #include "compare/generate.hpp"
@@ -293,6 +294,8 @@ int run_study(const StudyOptions& options, std::ostream& log) {
   // Validate every selected case first: nothing runs while one is invalid.
   for (const auto* c : selected) cases::validate_for_resolution(study, *c, options.resolution);
   std::filesystem::create_directories(options.out);
+  // One study per output directory (its case runs lock their own directories too).
+  const cases::DirectoryLock lock(options.out, "hydrojump study " + options.spec);
   log << "study \"" << study.name << "\": " << selected.size() << " case(s) at resolution \""
       << options.resolution << "\" into " << options.out.string() << " (" << options.jobs
       << " at a time)" << std::endl;
@@ -323,7 +326,8 @@ void register_study_command(CLI::App& app) {
       "Run a whole study: generate every case, run the SPH solver and the OpenFOAM reference, compare "
       "them on common sections, plot, and write OUT/study_report.md. Finished stages are cached by a "
       "hash of the resolved case and of the program's code, so a re-run only runs what changed and an "
-      "interrupted study resumes. One failed case is reported and does not stop the others.");
+      "interrupted study resumes. One failed case is reported and does not stop the others. One study per OUT "
+      "at a time: a second one stops at once, naming the first.");
   cmd->add_option("SPEC", options->spec, "study file (TOML), or \"default\" for the embedded ead2002 study")
       ->capture_default_str();
   cmd->add_option("--resolution,-r", options->resolution, "resolution level (quick, default, fine)")

@@ -24,6 +24,7 @@
 
 #include "cases/atomic_file.hpp"
 #include "cases/child_process.hpp"
+#include "cases/directory_lock.hpp"
 #include "cases/spec_reader.hpp"
 #include "reference/case_writer.hpp"
 #include "reference/foam_dictionary.hpp"
@@ -420,6 +421,8 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
     throw OpenFoamError(dir.string() + " is not a generated OpenFOAM case: " + spec_file.string() +
                         " is missing (write it with `hydrojump generate SPEC --out DIR`)");
   }
+  // One process per case directory (a second one stops here, naming the first).
+  const cases::DirectoryLock lock(dir, "hydrojump vof");
   const cases::Study study = cases::load_study(spec_file);
   if (study.cases.size() != 1 || study.cases.front().resolutions.size() != 1) {
     throw OpenFoamError(spec_file.string() + " must hold exactly one case with one resolution table "

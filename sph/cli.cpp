@@ -1,5 +1,6 @@
 #include "sph/cli.hpp"
 
+#include "cases/directory_lock.hpp"
 #include "cases/fingerprint.hpp"
 #include "hydrojump/version.hpp"
 
@@ -68,6 +69,8 @@ int run_sph_directory(const SphOptions& opt) {
   if (!std::filesystem::exists(case_file))
     throw std::runtime_error("'" + case_file.string() +
                              "' not found: DIR must be a directory written by `hydrojump generate` (DIR/<case>/sph)");
+  // One process per run directory (a second one stops here, naming the first).
+  const cases::DirectoryLock lock(dir, "hydrojump sph");
   if (opt.threads > 0) omp_set_num_threads(opt.threads);
   const cases::Study study = cases::load_study(case_file);
   if (study.cases.size() != 1)
@@ -213,7 +216,8 @@ void register_commands(CLI::App& app) {
       "depth and discharge at every section per output) and DIR/summary.json (averages over the averaging\n"
       "window, y2/y1 against Belanger, mass balance, steady-state verdict), and DIR/checkpoint.bin (every sph.checkpoint_interval_wall_s seconds and\n"
       "at exit). Ctrl-C (SIGINT) or SIGTERM writes a checkpoint and stops; continue with --resume. An unstable\n"
-      "run stops with a diagnosis in DIR/failure.txt and keeps its last good checkpoint.");
+      "run stops with a diagnosis in DIR/failure.txt and keeps its last good checkpoint. One process per DIR:\n"
+      "a second one started on it stops at once, naming the first (DIR/.hydrojump.lock).");
   sph->add_option("DIR", opt->dir, "case directory holding case.toml")->required()->check(CLI::ExistingDirectory);
   sph->add_flag("--resume", opt->resume, "continue from DIR/checkpoint.bin");
   sph->add_flag("--restart", opt->restart, "start over even if DIR holds a previous run (overwrites its outputs)");

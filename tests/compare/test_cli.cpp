@@ -89,6 +89,10 @@ TEST_CASE("hydrojump sph stops on SIGTERM and SIGINT with a checkpoint, and --re
   // Resumed, then SIGINT (Ctrl-C): 128 + 2, a later checkpoint.
   pid = start({"sph", run.string(), "--resume", "--quiet", "--threads", "1"}, tmp.path() / "run2.log");
   wait_for_rows(run / "run_log.csv", first.log_rows.size() + 2);
+  // A second process on the same directory stops at once, naming the running one (cases/directory_lock.hpp).
+  CHECK(wait_exit_status(start({"sph", run.string(), "--resume", "--quiet"}, tmp.path() / "second.log")) != 0);
+  CHECK_THAT(read_text(tmp.path() / "second.log"),
+             Catch::Contains("is in use by another process (hydrojump sph, pid " + std::to_string(pid) + ")"));
   REQUIRE(::kill(pid, SIGINT) == 0);
   CHECK(wait_exit_status(pid) == 128 + SIGINT);
   const auto second = hydrojump::sph::read_checkpoint(checkpoint);

@@ -11,6 +11,7 @@
 
 #include <unistd.h>
 
+#include "cases/directory_lock.hpp"
 #include "compare/study.hpp"
 
 namespace fs = std::filesystem;
@@ -202,6 +203,23 @@ TEST_CASE("Study runner validates before running anything", "[study]") {
   std::ostringstream log;
   CHECK_THROWS_WITH(run_study(options, log), Catch::Contains("tailwater.depth_m = -1"));
   CHECK_FALSE(fs::exists(options.out));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("Study runner: a second study on the same output directory stops before running anything", "[study]") {
+  const fs::path dir = fs::temp_directory_path() / ("hydrojump_test_study_busy_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  write(dir / "ok.toml", with_tailwater("0.104"));
+  StudyOptions options;
+  options.spec = (dir / "ok.toml").string();
+  options.out = dir / "out";
+  options.executable = "/bin/false";
+  const hydrojump::cases::DirectoryLock first(options.out, "hydrojump study (the first)");
+  std::ostringstream log;
+  CHECK_THROWS_WITH(run_study(options, log), Catch::Contains(options.out.string() + " is in use by another process "
+                                                             "(hydrojump study (the first), pid"));
+  CHECK(log.str().empty());  // nothing started
   fs::remove_all(dir);
 }
 

@@ -1,0 +1,84 @@
+// The run-directory lock (cases/directory_lock.hpp): a second holder is refused with a message naming
+// the first; the lock goes with its holder, including one killed by SIGKILL; children do not inherit it.
+#include <catch2/catch.hpp>
+
+#include <chrono>
+#include <string>
+#include <thread>
+
+#include <csignal>
+#include <unistd.h>
+
+#include "cases/child_process.hpp"
+#include "cases/directory_lock.hpp"
+
+using namespace hydrojump::cases;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path fresh_dir() {
+  const fs::path dir = fs::temp_directory_path() / ("hydrojump-lock-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  return dir;
+}
+
+std::string busy_message(const fs::path& dir) {
+  try {
+    const DirectoryLock second(dir, "second");
+  } catch (const DirectoryBusy& e) {
+    return e.what();
+  }
+  return "not refused";
+}
+
+}  // namespace
+
+TEST_CASE("A run directory is locked by one holder at a time", "[cases][lock]") {
+  const fs::path dir = fresh_dir() / "run";
+  {
+    const DirectoryLock first(dir, "hydrojump sph");  // creates the directory
+    CHECK(fs::is_directory(dir));
+    const std::string message = busy_message(dir);
+    CHECK_THAT(message, Catch::StartsWith(dir.string() + " is in use by another process (hydrojump sph, pid " +
+                                          std::to_string(::getpid()) + ")"));
+  }
+  // Released with its holder: the next one gets it.
+  { const DirectoryLock again(dir, "again"); }
+  fs::remove_all(dir.parent_path());
+}
+
+TEST_CASE("A lock held by a process goes with it, even when it is killed", "[cases][lock]") {
+  const fs::path dir = fresh_dir() / "run";
+  fs::create_directories(dir);
+  // flock(1) from util-linux (essential in Debian) takes the same kind of lock on the same file and,
+  // with --no-fork, becomes the sleeping holder itself.
+  const auto flock_program = find_on_path("flock");
+  if (!flock_program) FAIL("flock(1) (util-linux) is needed for this test");
+  const pid_t holder = start_child(ChildCommand(
+      {flock_program->string(), "--no-fork", "--nonblock", (dir / DirectoryLock::file_name).string(), "sleep", "30"}));
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  std::string message;
+  while ((message = busy_message(dir)) == "not refused") {
+    REQUIRE(std::chrono::steady_clock::now() < deadline);
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  CHECK_THAT(message, Catch::Contains(dir.string() + " is in use by another process"));
+  ::kill(holder, SIGKILL);
+  CHECK(wait_child(holder).signal == SIGKILL);
+  CHECK(busy_message(dir) == "not refused");  // no stale lock to delete by hand
+  fs::remove_all(dir.parent_path());
+}
+
+TEST_CASE("A child started while the lock is held does not keep it", "[cases][lock]") {
+  const fs::path dir = fresh_dir() / "run";
+  pid_t child = 0;
+  {
+    const DirectoryLock lock(dir, "parent");
+    child = start_child(ChildCommand({"/bin/sh", "-c", "sleep 5"}));
+  }
+  // The parent let go; the sleeping child must not hold the lock.
+  CHECK(busy_message(dir) == "not refused");
+  stop_child(child);
+  fs::remove_all(dir.parent_path());
+}
