@@ -9,6 +9,7 @@
 
 #include <csignal>
 #include <fcntl.h>
+#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -19,12 +20,6 @@ namespace hydrojump::cases {
 namespace fs = std::filesystem;
 
 namespace {
-
-// What the child reports through the close-on-exec pipe when it fails before exec.
-struct StartFailure {
-  int stage = 0;  // 1: chdir, 2: exec
-  int error = 0;  // errno
-};
 
 ChildExit decode(int status) {
   ChildExit e;
@@ -59,7 +54,12 @@ int open_or_throw(const fs::path& file, int flags, const std::string& program, c
     throw std::runtime_error("cannot start " + program + ": cannot open its " + what + " " + file.string() +
                              " (" + std::strerror(errno) + ")");
   }
-  return fd;
+  if (fd > STDERR_FILENO) return fd;
+  const int high = ::fcntl(fd, F_DUPFD_CLOEXEC, STDERR_FILENO + 1);
+  const int error = errno;
+  ::close(fd);
+  if (high < 0) throw std::runtime_error("cannot start " + program + ": fcntl failed (" + std::strerror(error) + ")");
+  return high;
 }
 
 }  // namespace
@@ -77,7 +77,7 @@ std::optional<fs::path> find_on_path(const std::string& name) {
   std::string dir;
   while (std::getline(dirs, dir, ':')) {
     if (dir.empty()) continue;
-    const fs::path candidate = fs::path(dir) / name;
+    const fs::path candidate = fs::absolute(fs::path(dir) / name);
     std::error_code ec;
     if (fs::is_regular_file(candidate, ec) && ::access(candidate.c_str(), X_OK) == 0) return candidate;
   }
@@ -92,9 +92,16 @@ pid_t start_child(const ChildCommand& command) {
     const auto found = find_on_path(name);
     if (!found) throw std::runtime_error("cannot start " + name + ": it is not on PATH");
     program = *found;
+  }  // a relative path with a '/' is taken relative to the working directory, as a shell there would
+  const std::string dir = command.working_directory.string();
+  std::error_code ec;
+  if (!dir.empty() && !fs::is_directory(command.working_directory, ec)) {
+    throw std::runtime_error("cannot start " + name + ": cannot enter its working directory " + dir +
+                             " (not a directory)");
   }
 
-  // Everything the child needs, built before fork.
+  // Everything the child needs, built here: posix_spawn (no copy of this process's memory, the exec
+  // error returned to the caller) with the log on stdout and stderr and /dev/null on stdin.
   std::vector<std::string> args = command.argv;
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
@@ -103,58 +110,31 @@ pid_t start_child(const ChildCommand& command) {
   std::vector<char*> envp;
   for (std::string& v : env) envp.push_back(v.data());
   envp.push_back(nullptr);
-  const std::string dir = command.working_directory.string();
 
+  // Descriptors at 3 or above (a parent started with stdout closed would otherwise get 1 back), all
+  // close-on-exec, so children started by other threads meanwhile do not inherit them.
   const int log_fd = open_or_throw(command.log_file, O_WRONLY | O_CREAT | (command.append_to_log ? O_APPEND : O_TRUNC),
                                    name, "log file");
-  const int null_fd = ::open("/dev/null", O_RDONLY | O_CLOEXEC);
-  int report[2] = {-1, -1};
-  if (::pipe2(report, O_CLOEXEC) != 0) {
-    ::close(log_fd);
-    if (null_fd >= 0) ::close(null_fd);
-    throw std::runtime_error("cannot start " + name + ": pipe failed (" + std::strerror(errno) + ")");
+  const int null_fd = open_or_throw("/dev/null", O_RDONLY, name, "input");
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, log_fd, STDOUT_FILENO);
+  posix_spawn_file_actions_adddup2(&actions, log_fd, STDERR_FILENO);
+  posix_spawn_file_actions_adddup2(&actions, null_fd, STDIN_FILENO);
+  if (!dir.empty()) posix_spawn_file_actions_addchdir_np(&actions, dir.c_str());
+  posix_spawnattr_t attributes;
+  posix_spawnattr_init(&attributes);
+  if (command.own_process_group) {
+    posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);
+    posix_spawnattr_setpgroup(&attributes, 0);
   }
-
-  const pid_t pid = ::fork();
-  if (pid == 0) {
-    // The child: async-signal-safe calls only.
-    StartFailure failure;
-    if (command.own_process_group) ::setpgid(0, 0);
-    if (!dir.empty() && ::chdir(dir.c_str()) != 0) {
-      failure = {1, errno};
-    } else {
-      ::dup2(log_fd, STDOUT_FILENO);
-      ::dup2(log_fd, STDERR_FILENO);
-      if (null_fd >= 0) ::dup2(null_fd, STDIN_FILENO);
-      ::execve(program.c_str(), argv.data(), envp.data());
-      failure = {2, errno};
-    }
-    [[maybe_unused]] const auto written = ::write(report[1], &failure, sizeof failure);
-    ::_exit(127);
-  }
-  const int fork_error = errno;
+  pid_t pid = 0;
+  const int rc = posix_spawn(&pid, program.c_str(), &actions, &attributes, argv.data(), envp.data());
+  posix_spawnattr_destroy(&attributes);
+  posix_spawn_file_actions_destroy(&actions);
   ::close(log_fd);
-  if (null_fd >= 0) ::close(null_fd);
-  ::close(report[1]);
-  if (pid < 0) {
-    ::close(report[0]);
-    throw std::runtime_error("cannot start " + name + ": fork failed (" + std::strerror(fork_error) + ")");
-  }
-  // The pipe closes on a successful exec and carries a StartFailure otherwise.
-  StartFailure failure;
-  ssize_t n = 0;
-  do {
-    n = ::read(report[0], &failure, sizeof failure);
-  } while (n < 0 && errno == EINTR);
-  ::close(report[0]);
-  if (n == static_cast<ssize_t>(sizeof failure)) {
-    wait_child(pid);
-    if (failure.stage == 1) {
-      throw std::runtime_error("cannot start " + name + ": cannot enter its working directory " + dir + " (" +
-                               std::strerror(failure.error) + ")");
-    }
-    throw std::runtime_error("cannot start " + name + " (" + program.string() + "): " + std::strerror(failure.error));
-  }
+  ::close(null_fd);
+  if (rc != 0) throw std::runtime_error("cannot start " + name + " (" + program.string() + "): " + std::strerror(rc));
   return pid;
 }
 

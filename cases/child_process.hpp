@@ -4,9 +4,9 @@
 // compare` stages, the matplotlib scripts, OpenFOAM's utilities and solvers, and the tests that run the
 // real executable.
 //
-// Everything that can fail is prepared in the parent (the program looked up on PATH, the log file
-// opened, the environment built), so a child of a multi-threaded parent only calls async-signal-safe
-// functions between fork and exec, and a program that cannot be started is an exception naming it and
+// Everything is prepared before the child exists (the program looked up on PATH, the log file opened,
+// the environment built) and the child is made by posix_spawn, which is safe from a multi-threaded
+// parent and does not copy its memory; a program that cannot be started is an exception naming it and
 // the reason instead of an exit status 127 that looks like the program's own.
 //
 // Usage

@@ -2,6 +2,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <iostream>
 #include <string>
 
 #include <fcntl.h>
@@ -28,6 +29,10 @@ DirectoryLock::DirectoryLock(const std::filesystem::path& dir, const std::string
   std::filesystem::create_directories(dir, ec);
   const std::filesystem::path file = dir / file_name;
   fd_ = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  bool writable = fd_ >= 0;
+  // A lock file left by another user (or a root run) can still be locked through a read-only
+  // descriptor; only the holder text is not written then.
+  if (fd_ < 0 && errno == EACCES) fd_ = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
   if (fd_ < 0) {
     throw std::runtime_error("cannot create the lock file " + file.string() + " (" + std::strerror(errno) +
                              "): is " + dir.string() + " writable?");
@@ -46,8 +51,12 @@ DirectoryLock::DirectoryLock(const std::filesystem::path& dir, const std::string
                           (other.empty() ? std::string("holder unknown") : other) +
                           "); wait for it to finish or stop it (Ctrl-C or SIGTERM: runs stop with a checkpoint) first");
     }
-    throw std::runtime_error("cannot lock " + file.string() + " (" + std::strerror(error) + ")");
+    // A file system without flock (some NFS, FUSE): run unprotected rather than not at all.
+    std::cerr << "warning: cannot lock " << file.string() << " (" << std::strerror(error)
+              << "); make sure no other hydrojump process uses " << dir.string() << "\n";
+    return;
   }
+  if (!writable) return;
   // Ours: record who holds it (best effort; the lock, not the text, is what counts).
   const std::string text = holder + ", pid " + std::to_string(::getpid()) + "\n";
   if (::ftruncate(fd_, 0) == 0) {

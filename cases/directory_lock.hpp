@@ -5,7 +5,8 @@
 //
 // The lock is flock(2) on an open file: the kernel releases it when the holder exits, however it exits
 // (SIGKILL, power loss of the process), so there is no stale lock to delete by hand. Child processes do
-// not inherit it (close-on-exec). The file keeps the holder's pid and command for the message.
+// not inherit it (close-on-exec). The file keeps the holder's pid and command for the message. On a
+// file system without flock support the run goes on unprotected, with a warning.
 //
 // Usage
 //   const DirectoryLock lock(run_dir, "hydrojump sph");   // throws DirectoryBusy if held

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <memory>
 #include <mutex>
 #include <sstream>
 #include <thread>
@@ -103,6 +104,12 @@ class StudyRunner {
     if (options_.force || cases::read_text_file(generated_stamp) != fingerprint) {
       // The results of a changed case are stale: start its directory afresh, keeping the previous
       // results (hours of runs) as <case>.previous (replacing an older one) instead of deleting them.
+      // Not while a run started by hand is still writing in it (that run keeps its directory).
+      std::vector<std::unique_ptr<cases::DirectoryLock>> runs_idle;
+      for (const auto& top : {dir, options_.out / (c.id + ".previous")})
+        for (const char* method : {"sph", "vof"})
+          if (std::filesystem::is_directory(top / method))
+            runs_idle.push_back(std::make_unique<cases::DirectoryLock>(top / method, "hydrojump study (moving it)"));
       if (std::filesystem::exists(generated_stamp)) {
         const auto previous = options_.out / (c.id + ".previous");
         std::filesystem::remove_all(previous);
@@ -111,6 +118,7 @@ class StudyRunner {
       } else {
         std::filesystem::remove_all(dir);
       }
+      runs_idle.clear();
       std::ostringstream generated;
       generate_cases(study_, {&c}, options_.resolution, options_.out, generated);
       say(c.id + ": " + generated.str().substr(0, generated.str().find_last_not_of('\n') + 1));
@@ -167,7 +175,7 @@ class StudyRunner {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (!start_error.empty()) {
       say(id + ": " + stage + " FAILED: " + start_error);
-      return {stage, "failed", seconds, status, {}};
+      return {stage, "failed", seconds, status, start_error};
     }
     if (status != 0) {
       say(id + ": " + stage + " FAILED (exit status " + std::to_string(status) + ") after " +

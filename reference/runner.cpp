@@ -388,7 +388,14 @@ OpenFoamInstallation check_openfoam(bool need_mpi) {
   const int fd = ::mkstemp(tmpl);
   if (fd >= 0) ::close(fd);
   const fs::path log = tmpl;
-  const int rc = wait_for(spawn({"interFoam", "-help"}, fs::temp_directory_path(), log, false));
+  int rc = 0;
+  try {
+    rc = wait_for(spawn({"interFoam", "-help"}, fs::temp_directory_path(), log, false));
+  } catch (...) {
+    std::error_code ec;
+    fs::remove(log, ec);
+    throw;
+  }
   std::ifstream in(log);
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   std::error_code ec;

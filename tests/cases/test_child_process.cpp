@@ -73,8 +73,13 @@ TEST_CASE("A child killed by a signal reports it as 128 + the signal number", "[
   CHECK_FALSE(poll_child(polite).has_value());  // still running
   const ChildExit stopped = stop_child(polite);
   CHECK(stopped.signal == 15);
-  const pid_t stubborn = start_child(shell("trap '' TERM; while :; do sleep 0.1; done", dir / "log"));
-  std::this_thread::sleep_for(std::chrono::milliseconds(200));  // let the shell install its trap
+  const pid_t stubborn = start_child(shell("trap '' TERM; echo ready; while :; do sleep 0.1; done", dir / "stubborn.log"));
+  // Wait until the shell has installed its trap (it says so).
+  const auto ready_by = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (read(dir / "stubborn.log").find("ready") == std::string::npos) {
+    REQUIRE(std::chrono::steady_clock::now() < ready_by);
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
   const auto t0 = std::chrono::steady_clock::now();
   const ChildExit killed = stop_child(stubborn, std::chrono::milliseconds(300));
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

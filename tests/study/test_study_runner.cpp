@@ -131,6 +131,16 @@ TEST_CASE("Study runner: failures are isolated, results cached, changes re-run",
   // kept beside it as <case>.previous.
   write(options.out / "A" / "sph" / "result.txt", "hours of work");
   write(dir / "mini.toml", with_tailwater("0.11"));
+  {
+    // ... but not while a run started by hand still writes in it: A fails and nothing is moved.
+    const hydrojump::cases::DirectoryLock by_hand(options.out / "A" / "sph", "hydrojump sph (by hand)");
+    std::ostringstream busy_log;
+    CHECK(run_study(options, busy_log) == 2);
+    CHECK_THAT(busy_log.str(), Catch::Contains("A: FAILED") &&
+                                   Catch::Contains("in use by another process (hydrojump sph (by hand)"));
+    CHECK(fs::exists(options.out / "A" / "sph" / "result.txt"));
+    CHECK_FALSE(fs::exists(options.out / "A.previous"));
+  }
   fs::remove(calls);
   run_study(options, log);
   CHECK(fs::exists(options.out / "A.previous" / "sph" / "result.txt"));
