@@ -295,6 +295,9 @@ void read_sph(TableReader& t, SphSettings& s) {
   s.sps_mixing_length_m = t.number_or("sps_mixing_length_m", s.sps_mixing_length_m,
                                       non_negative("m, 0: the Smagorinsky length sps_smagorinsky_constant dx", 1.0));
   s.boundary = t.choice("boundary", s.boundary, {"dbc", "mdbc"});
+  s.viscous_wall_condition = t.choice("viscous_wall_condition", s.viscous_wall_condition, {"no_slip", "free_slip"});
+  // A case that switches to another viscosity model does not use the wall condition it inherits.
+  if (s.viscosity != "laminar_sps") s.viscous_wall_condition = "no_slip";
   s.density_diffusion = t.choice("density_diffusion", s.density_diffusion, {"none", "molteni", "fourtakas"});
   s.density_diffusion_coefficient = t.number_or("density_diffusion_coefficient", s.density_diffusion_coefficient, between(0.0, 1.0));
   s.sound_speed_coefficient = t.number_or("sound_speed_coefficient", s.sound_speed_coefficient, Range{1.0, 1000.0, false, false, "c0 / sqrt(g H_max)"});
@@ -341,6 +344,11 @@ void read_sph(TableReader& t, SphSettings& s) {
   only_with("sps_smagorinsky_constant", s.viscosity == "laminar_sps", "viscosity = \"laminar_sps\"" + here_viscosity);
   only_with("sps_blin_constant", s.viscosity == "laminar_sps", "viscosity = \"laminar_sps\"" + here_viscosity);
   only_with("sps_mixing_length_m", s.viscosity == "laminar_sps", "viscosity = \"laminar_sps\"" + here_viscosity);
+  only_with("viscous_wall_condition", s.viscosity == "laminar_sps", "viscosity = \"laminar_sps\"" + here_viscosity);
+  if (s.viscous_wall_condition == "free_slip" && s.boundary != "mdbc")
+    t.fail_at(t.raw().get(t.has("viscous_wall_condition") ? "viscous_wall_condition" : "boundary"), "viscous_wall_condition",
+              "= \"free_slip\" needs boundary = \"mdbc\" (the slip velocity is mirrored at mDBC's ghost nodes; here \"" +
+                  s.boundary + "\")");
   if (t.has("sps_mixing_length_m") && t.has("sps_smagorinsky_constant") && s.sps_mixing_length_m > 0.0)
     t.fail_at(t.raw().get("sps_mixing_length_m"), "sps_mixing_length_m",
               "and sps_smagorinsky_constant are both given: the mixing length replaces C_s dx, set one");
@@ -803,6 +811,7 @@ void write_sph(TomlWriter& w, const SphSettings& s) {
     if (s.sps_mixing_length_m > 0.0) w.num("sps_mixing_length_m", s.sps_mixing_length_m);
     else w.num("sps_smagorinsky_constant", s.sps_smagorinsky_constant);
     w.num("sps_blin_constant", s.sps_blin_constant);
+    w.str("viscous_wall_condition", s.viscous_wall_condition);
   }
   w.str("boundary", s.boundary);
   w.str("density_diffusion", s.density_diffusion);

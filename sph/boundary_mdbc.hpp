@@ -16,13 +16,17 @@
 // ghost node lies mostly outside the fluid (Shepard sum sum_j V_j W_gj < 0.5) rho_b = rho0. rho_b is never below rho0, so walls do not pull
 // on the fluid. Boundary particles do not move; for the viscous terms (laminar_sps) they carry the
 // no-slip velocity mirrored about the fixed wall, v_b = 2 v_wall - v_g = -v_g, with v_g interpolated at
-// the ghost node with the same first-order correction (English et al. 2022, no-slip variant).
+// the ghost node with the same first-order correction (English et al. 2022, no-slip variant). With
+// sph.viscous_wall_condition = "free_slip" they carry the ghost velocity with its wall-normal part
+// reversed instead (the slip variant), v_b = v_wall + v_rel - 2 (v_rel . n) n, v_rel = v_g - v_wall,
+// n along the ghost offset: the eddy and laminar viscosity then see no shear at the wall.
 //
 // Usage:
 //   | spec key            | values / range | default | meaning                                       |
 //   |---------------------|----------------|---------|-----------------------------------------------|
 //   | sph.boundary        | "mdbc"         | "dbc"   | this wall treatment (needs ghost offsets)      |
 //   | sph.boundary_layers | 0-20           | 0       | layers of wall particles (0: ceil(2h/dx))     |
+//   | sph.viscous_wall_condition | "no_slip", "free_slip" | "no_slip" | wall velocity of the viscous terms (laminar_sps) |
 // Boundary particles need ghost offsets, which the particle generator computes from the
 // CaseGeometry walls. Example (spec): `[sph]  boundary = "mdbc"`
 #pragma once

@@ -73,6 +73,7 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
   const bool fourtakas = s.density_diffusion == DensityDiffusion::fourtakas;
   const bool dbc = s.boundary == BoundaryMethod::dbc;
   const double nu0 = s.kinematic_viscosity;
+  const bool free_slip_walls = sps && s.viscous_walls_free_slip;
 
   // V_j = m_j / rho_j, once per particle instead of once per pair.
   const Eigen::Index n = ps.size();
@@ -168,10 +169,14 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
             fx += lam * (fluid_j ? du : ui - wall_u[j]);
             fz += lam * (fluid_j ? dw : wi - wall_w[j]);
             if (sps) {
-              dudx -= vj * du * gx;
-              dudz -= vj * du * gzw;
-              dwdx -= vj * dw * gx;
-              dwdz -= vj * dw * gzw;
+              // Free slip: wall neighbours enter the gradient with their slip velocity (mDBC), so the
+              // wall's shear is not sensed; no slip: with their own (zero unless moving).
+              const double gu = free_slip_walls && !fluid_j ? ui - wall_u[j] : du;
+              const double gw = free_slip_walls && !fluid_j ? wi - wall_w[j] : dw;
+              dudx -= vj * gu * gx;
+              dudz -= vj * gu * gzw;
+              dwdx -= vj * gw * gx;
+              dwdz -= vj * gw * gzw;
               // m_j (tau_i/rho_i^2 + tau_j/rho_j^2) . grad_i W (tau stored divided by rho)
               const double inv_rhoj = vj / mj;
               const double sxx = txx[i] * inv_rhoi + txx[j] * inv_rhoj;

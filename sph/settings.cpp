@@ -143,6 +143,7 @@ SolverSettings make_settings(const cases::Case& c, const cases::FluidProperties&
   // l = sph.sps_mixing_length_m if given, else Smagorinsky's C_s dx
   out.sps_length = s.sps_mixing_length_m > 0.0 ? s.sps_mixing_length_m : s.sps_smagorinsky_constant * dx;
   out.sps_length_near_walls = s.sps_mixing_length_m > 0.0;
+  out.viscous_walls_free_slip = s.viscosity == "laminar_sps" && s.viscous_wall_condition == "free_slip";
   out.blin = s.sps_blin_constant;
   out.diffusion_delta = s.density_diffusion_coefficient;
   out.cfl = s.cfl_number;
