@@ -19,6 +19,15 @@ using namespace hydrojump;
 
 namespace {
 
+// Sets every fluid particle sliding at 0.5 m/s and sorts the particles into `cells`.
+void slide_and_sort(sph::ParticleSet& ps, sph::CellList& cells, const sph::SolverSettings& settings) {
+  for (Eigen::Index i = 0; i < ps.size(); ++i)
+    if (ps.is_fluid(i)) ps.u[i] = 0.5;
+  cells.build(ps.x, ps.z, sph::CellGrid::enclosing(ps.x, ps.z, settings.support()));
+  ps.permute(cells.order());
+  cells.mark_sorted();
+}
+
 // Mean horizontal acceleration of the fluid particles of the bottom row with 0.3 < x < 0.7 m.
 double bottom_row_drag(double wall_factor) {
   const double dx = 0.02;
@@ -29,12 +38,8 @@ double bottom_row_drag(double wall_factor) {
     k.sph.boundary = "dbc";
   });
   sph::ParticleSet ps = c.particles;
-  for (Eigen::Index i = 0; i < ps.size(); ++i)
-    if (ps.is_fluid(i)) ps.u[i] = 0.5;
   sph::CellList cells;
-  cells.build(ps.x, ps.z, sph::CellGrid::enclosing(ps.x, ps.z, c.settings.support()));
-  ps.permute(cells.order());
-  cells.mark_sorted();
+  slide_and_sort(ps, cells, c.settings);
   sph::compute_pressure(ps, c.settings);
   sph::compute_interactions(ps, cells, c.settings);
   double sum = 0.0;
@@ -135,12 +140,8 @@ double bottom_row_sps_drag(const std::string& wall_condition) {
   });
   REQUIRE(c.settings.viscous_walls_free_slip == (wall_condition == "free_slip"));
   sph::ParticleSet ps = c.particles;
-  for (Eigen::Index i = 0; i < ps.size(); ++i)
-    if (ps.is_fluid(i)) ps.u[i] = 0.5;
   sph::CellList cells;
-  cells.build(ps.x, ps.z, sph::CellGrid::enclosing(ps.x, ps.z, c.settings.support()));
-  ps.permute(cells.order());
-  cells.mark_sorted();
+  slide_and_sort(ps, cells, c.settings);
   for (int pass = 0; pass < 2; ++pass) {
     sph::mdbc_boundary_density(ps, cells, c.settings);
     sph::compute_pressure(ps, c.settings);
