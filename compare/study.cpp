@@ -105,13 +105,13 @@ class StudyRunner {
       // The results of a changed case are stale: start its directory afresh, keeping the previous
       // results (hours of runs) as <case>.previous (replacing an older one) instead of deleting them.
       // Not while a run started by hand is still writing in it (that run keeps its directory).
+      const auto previous = options_.out / (c.id + ".previous");
       std::vector<std::unique_ptr<cases::DirectoryLock>> runs_idle;
-      for (const auto& top : {dir, options_.out / (c.id + ".previous")})
+      for (const auto& top : {dir, previous})
         for (const char* method : {"sph", "vof"})
           if (std::filesystem::is_directory(top / method))
             runs_idle.push_back(std::make_unique<cases::DirectoryLock>(top / method, "hydrojump study (moving it)"));
       if (std::filesystem::exists(generated_stamp)) {
-        const auto previous = options_.out / (c.id + ".previous");
         std::filesystem::remove_all(previous);
         std::filesystem::rename(dir, previous);
         say(c.id + ": the case or the program changed: its previous results are kept in " + previous.string());

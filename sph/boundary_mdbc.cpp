@@ -83,11 +83,8 @@ void mdbc_with(ParticleSet& ps, const CellList& cells, const SolverSettings& s, 
       }
     }
     ps.rho[i] = dbc_wall_density(rho_b, rho0);  // never below rho0, as DBC
-    // No slip: the velocity mirrored through the wall's own, 2 v_wall - v_ghost (v_wall = 0 if fixed).
-    ps.wall_u[i] = 2.0 * ps.u[i] - u_g;
-    ps.wall_w[i] = 2.0 * ps.w[i] - w_g;
-    const double n_len = std::hypot(ps.ghost_dx[i], ps.ghost_dz[i]);
-    if (s.viscous_walls_free_slip && n_len > 0.0) {
+    const double n_len = s.viscous_walls_free_slip ? std::hypot(ps.ghost_dx[i], ps.ghost_dz[i]) : 0.0;
+    if (n_len > 0.0) {
       // Free slip: the ghost velocity relative to the wall with its normal part reversed,
       //   v_b = v_wall + v_rel - 2 (v_rel . n) n,   v_rel = v_g - v_wall,  n = (g - b)/|g - b|
       const double nx = ps.ghost_dx[i] / n_len, nz = ps.ghost_dz[i] / n_len;
@@ -95,6 +92,11 @@ void mdbc_with(ParticleSet& ps, const CellList& cells, const SolverSettings& s, 
       const double rn = ru * nx + rw * nz;
       ps.wall_u[i] = ps.u[i] + ru - 2.0 * rn * nx;
       ps.wall_w[i] = ps.w[i] + rw - 2.0 * rn * nz;
+    } else {
+      // No slip (and free slip without a ghost offset): the velocity mirrored through the wall's own,
+      // 2 v_wall - v_ghost (v_wall = 0 if fixed).
+      ps.wall_u[i] = 2.0 * ps.u[i] - u_g;
+      ps.wall_w[i] = 2.0 * ps.w[i] - w_g;
     }
   }
 }

@@ -164,15 +164,18 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
                         artificial_viscosity_pair(alpha_c0_h, v_dot_r, r2, eta2, rhoi, rho[j]);
           }
           if (!artificial) {
-            // Boundary neighbours enter with their no-slip wall velocity (zero with DBC).
+            // Boundary neighbours enter with their mDBC wall velocity, no-slip or slip (zero with DBC).
             const double lam = mj * laminar_viscosity_pair(nu0, f, r2, eta2, rhoi, rho[j]);
-            fx += lam * (fluid_j ? du : ui - wall_u[j]);
-            fz += lam * (fluid_j ? dw : wi - wall_w[j]);
+            const double du_visc = fluid_j ? du : ui - wall_u[j];
+            const double dw_visc = fluid_j ? dw : wi - wall_w[j];
+            fx += lam * du_visc;
+            fz += lam * dw_visc;
             if (sps) {
-              // Free slip: wall neighbours enter the gradient with their slip velocity (mDBC), so the
-              // wall's shear is not sensed; no slip: with their own (zero unless moving).
-              const double gu = free_slip_walls && !fluid_j ? ui - wall_u[j] : du;
-              const double gw = free_slip_walls && !fluid_j ? wi - wall_w[j] : dw;
+              // Free slip: wall neighbours enter the gradient with their slip velocity (mDBC), as in
+              // the laminar term, so the wall's shear is not sensed; no slip: with their own (zero
+              // unless moving).
+              const double gu = free_slip_walls ? du_visc : du;
+              const double gw = free_slip_walls ? dw_visc : dw;
               dudx -= vj * gu * gx;
               dudz -= vj * gu * gzw;
               dwdx -= vj * gw * gx;
