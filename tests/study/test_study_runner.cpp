@@ -81,15 +81,16 @@ std::string with_tailwater(const std::string& value) {
   return s;
 }
 
-// A fresh directory `dir` with the mini study (tailwater 0.104 m) and a stand-in for the hydrojump
-// executable running the shell script `script`; options to run that study into dir/out with it.
-StudyOptions mini_study_with_stand_in(const fs::path& dir, const std::string& script) {
+// A fresh directory `dir` with the mini study (case A's tailwater `tailwater` in m) and a stand-in for
+// the hydrojump executable running the shell script `script`; options to run that study into dir/out.
+StudyOptions mini_study_with_stand_in(const fs::path& dir, const std::string& script,
+                                      const std::string& tailwater = "0.104") {
   fs::remove_all(dir);
   fs::create_directories(dir);
   const fs::path fake = dir / "fake_hydrojump";
   write(fake, "#!/bin/sh\n" + script);
   fs::permissions(fake, fs::perms::owner_all);
-  write(dir / "mini.toml", with_tailwater("0.104"));
+  write(dir / "mini.toml", with_tailwater(tailwater));
   StudyOptions options;
   options.spec = (dir / "mini.toml").string();
   options.out = dir / "out";
@@ -203,13 +204,7 @@ TEST_CASE("Study runner: the report covers cases run earlier into the same direc
 
 TEST_CASE("Study runner validates before running anything", "[study]") {
   const fs::path dir = fs::temp_directory_path() / ("hydrojump_test_study_invalid_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  write(dir / "bad.toml", with_tailwater("-1"));
-  StudyOptions options;
-  options.spec = (dir / "bad.toml").string();
-  options.out = dir / "out";
-  options.executable = "/bin/false";
+  const StudyOptions options = mini_study_with_stand_in(dir, "exit 1\n", "-1");
   std::ostringstream log;
   CHECK_THROWS_WITH(run_study(options, log), Catch::Contains("tailwater.depth_m = -1"));
   CHECK_FALSE(fs::exists(options.out));
@@ -218,13 +213,7 @@ TEST_CASE("Study runner validates before running anything", "[study]") {
 
 TEST_CASE("Study runner: a second study on the same output directory stops before running anything", "[study]") {
   const fs::path dir = fs::temp_directory_path() / ("hydrojump_test_study_busy_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  write(dir / "ok.toml", with_tailwater("0.104"));
-  StudyOptions options;
-  options.spec = (dir / "ok.toml").string();
-  options.out = dir / "out";
-  options.executable = "/bin/false";
+  const StudyOptions options = mini_study_with_stand_in(dir, "exit 1\n");
   const hydrojump::cases::DirectoryLock first(options.out, "hydrojump study (the first)");
   std::ostringstream log;
   CHECK_THROWS_WITH(run_study(options, log), Catch::Contains(options.out.string() + " is in use by another process "
