@@ -295,7 +295,7 @@ void read_sph(TableReader& t, SphSettings& s) {
   s.sps_mixing_length_m = t.number_or("sps_mixing_length_m", s.sps_mixing_length_m,
                                       non_negative("m, 0: the Smagorinsky length sps_smagorinsky_constant dx", 1.0));
   s.boundary = t.choice("boundary", s.boundary, {"dbc", "mdbc"});
-  s.viscous_wall_condition = t.choice("viscous_wall_condition", s.viscous_wall_condition, {"no_slip", "free_slip"});
+  s.viscous_wall_condition = t.choice("viscous_wall_condition", s.viscous_wall_condition, {"no_slip", "free_slip", "wall_function"});
   // A case that switches to another viscosity model does not use the wall condition it inherits.
   if (s.viscosity != "laminar_sps") s.viscous_wall_condition = "no_slip";
   s.density_diffusion = t.choice("density_diffusion", s.density_diffusion, {"none", "molteni", "fourtakas"});
@@ -345,9 +345,9 @@ void read_sph(TableReader& t, SphSettings& s) {
   only_with("sps_blin_constant", s.viscosity == "laminar_sps", "viscosity = \"laminar_sps\"" + here_viscosity);
   only_with("sps_mixing_length_m", s.viscosity == "laminar_sps", "viscosity = \"laminar_sps\"" + here_viscosity);
   only_with("viscous_wall_condition", s.viscosity == "laminar_sps", "viscosity = \"laminar_sps\"" + here_viscosity);
-  if (s.viscous_wall_condition == "free_slip" && s.boundary != "mdbc")
+  if (s.viscous_wall_condition != "no_slip" && s.boundary != "mdbc")
     t.fail_at(t.raw().get(t.has("viscous_wall_condition") ? "viscous_wall_condition" : "boundary"), "viscous_wall_condition",
-              "= \"free_slip\" needs boundary = \"mdbc\" (the slip velocity is mirrored at mDBC's ghost nodes; here \"" +
+              "= \"" + s.viscous_wall_condition + "\" needs boundary = \"mdbc\" (the slip velocity is mirrored at mDBC's ghost nodes; here \"" +
                   s.boundary + "\")");
   if (t.has("sps_mixing_length_m") && t.has("sps_smagorinsky_constant") && s.sps_mixing_length_m > 0.0)
     t.fail_at(t.raw().get("sps_mixing_length_m"), "sps_mixing_length_m",

@@ -26,7 +26,7 @@
 //   |---------------------|----------------|---------|-----------------------------------------------|
 //   | sph.boundary        | "mdbc"         | "dbc"   | this wall treatment (needs ghost offsets)      |
 //   | sph.boundary_layers | 0-20           | 0       | layers of wall particles (0: ceil(2h/dx))     |
-//   | sph.viscous_wall_condition | "no_slip", "free_slip" | "no_slip" | wall velocity of the viscous terms (laminar_sps) |
+//   | sph.viscous_wall_condition | "no_slip", "free_slip", "wall_function" | "no_slip" | wall velocity of the viscous terms (laminar_sps; wall_function: slip) |
 // Boundary particles need ghost offsets, which the particle generator computes from the
 // CaseGeometry walls. Example (spec): `[sph]  boundary = "mdbc"`
 #pragma once

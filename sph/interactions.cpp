@@ -10,6 +10,7 @@
 #include "sph/kernel.hpp"
 #include "sph/parallel.hpp"
 #include "sph/viscosity.hpp"
+#include "sph/wall_function.hpp"
 
 namespace hydrojump::sph {
 
@@ -74,6 +75,7 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
   const bool dbc = s.boundary == BoundaryMethod::dbc;
   const double nu0 = s.kinematic_viscosity;
   const bool free_slip_walls = sps && s.viscous_walls_free_slip;
+  const bool wall_function = sps && s.wall_function_shear;
 
   // V_j = m_j / rho_j, once per particle instead of once per pair.
   const Eigen::Index n = ps.size();
@@ -132,6 +134,9 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
       double d = 0.0, fx = 0.0, fz = 0.0, visc_rate = 0.0;
       double dudx = 0.0, dudz = 0.0, dwdx = 0.0, dwdz = 0.0;
       double wall_r2 = std::numeric_limits<double>::infinity();
+      // wall_function: the nearest wall particle within the support and the offset x_i - x_j to it
+      int nearest_wall = -1;
+      double nearest_r2 = std::numeric_limits<double>::infinity(), nearest_dx = 0.0, nearest_dz = 0.0;
       for (int k = 0; k < n_ranges; ++k) {
         const Range rg = ranges[k];
         for (int j = rg.begin; j < rg.end; ++j) {
@@ -148,6 +153,12 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
           // Inflow/outflow buffer neighbours act like fluid (their imposed velocity and density).
           const bool fluid_j = !is_wall_type(type[j]);
           if (wall_distance_needed && !fluid_j) wall_r2 = std::min(wall_r2, r2);
+          if (wall_function && !fluid_j && r2 < nearest_r2) {
+            nearest_r2 = r2;
+            nearest_wall = j;
+            nearest_dx = dx;
+            nearest_dz = dz;
+          }
           if (diffusion && fluid_j) {
             double jump = rho[j] - rhoi;
             if (fourtakas) jump -= hydrostatic_density_difference(rho0, b, gz, -dz);
@@ -200,6 +211,20 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
         gi[2] = dwdx;
         gi[3] = dwdz;
         if (wall_distance_needed) wall_distance[i] = std::sqrt(wall_r2);
+      }
+      if (wall_function && nearest_wall >= 0) {
+        // The log law's wall shear on the first fluid layer (wall_function.hpp). Wall normal n along the
+        // nearest wall particle's ghost offset g - b = 2 (q - b); distance to the wall surface
+        // d = (x_i - x_b) . n - |g - b| / 2; velocity relative to the wall particle's own (moving walls).
+        const double g_len = std::hypot(ps.ghost_dx[nearest_wall], ps.ghost_dz[nearest_wall]);
+        if (g_len > 0.0) {
+          const double nx = ps.ghost_dx[nearest_wall] / g_len, nz = ps.ghost_dz[nearest_wall] / g_len;
+          const double d_wall = nearest_dx * nx + nearest_dz * nz - 0.5 * g_len;
+          const WallShearAcceleration a = wall_shear_acceleration(ui - u[nearest_wall], wi - w[nearest_wall], nx, nz, d_wall,
+                                                                  s.dx, nu0);
+          fx += a.ax;
+          fz += a.az;
+        }
       }
       drho[i] = d;
       ax[i] = fx + s.body_force_x;

@@ -28,10 +28,11 @@
 //   |                | in metres across resolutions, limited near walls to Prandtl's     |
 //   |                | kappa d (mixing_length_near_wall; without the limit the full      |
 //   |                | length braked a jump's inflow, sph/README.md)                     |
-//   |                | sph.viscous_wall_condition "no_slip" (default) or "free_slip"     |
-//   |                | (mDBC only): the walls' velocity in both terms is mDBC's no-slip  |
-//   |                | or slip velocity (boundary_mdbc.hpp); free slip takes the wall    |
-//   |                | shear of an unresolved boundary layer out (sph/README.md)        |
+//   |                | sph.viscous_wall_condition "no_slip" (default), "free_slip" or    |
+//   |                | "wall_function" (mDBC only): the walls' velocity in both terms is |
+//   |                | mDBC's no-slip or slip velocity (boundary_mdbc.hpp); free slip    |
+//   |                | takes the wall shear of an unresolved boundary layer out, the    |
+//   |                | wall function puts the log law's back (wall_function.hpp)        |
 // Ranges: alpha and the wall factor in [0, 1]; nu in [0, 1] m^2/s. A parameter of the model not
 // chosen is an error (cases/spec_reader.cpp).
 // Example (spec): `[sph]  viscosity = "artificial"   artificial_viscosity_alpha = 0.1`

@@ -413,15 +413,21 @@ TEST_CASE("The SPS eddy viscosity takes a mixing length in metres instead of C_s
   CHECK(c.cases[0].sph.sps_smagorinsky_constant == 0.2);
 }
 
-TEST_CASE("The viscous wall condition is no_slip or free_slip, with laminar_sps and mDBC only", "[cases][spec]") {
+TEST_CASE("The viscous wall condition is no_slip, free_slip or wall_function, with laminar_sps and mDBC only", "[cases][spec]") {
   const auto with = [](const std::string& lines) { return replaced(valid_spec, "[[case]]", "[sph]\n" + lines + "\n\n[[case]]"); };
   const Study s = parse_study(with("viscosity = \"laminar_sps\"\nboundary = \"mdbc\"\nviscous_wall_condition = \"free_slip\""),
                               "spec.toml", ".");
   CHECK(s.cases[0].sph.viscous_wall_condition == "free_slip");
   CHECK(resolved_reload(s, "free_slip").cases[0].sph.viscous_wall_condition == "free_slip");
   CHECK(parse_study(with("viscosity = \"laminar_sps\""), "spec.toml", ".").cases[0].sph.viscous_wall_condition == "no_slip");
+  const Study wf = parse_study(with("viscosity = \"laminar_sps\"\nboundary = \"mdbc\"\nviscous_wall_condition = \"wall_function\""),
+                               "spec.toml", ".");
+  CHECK(resolved_reload(wf, "wall_function").cases[0].sph.viscous_wall_condition == "wall_function");
   CHECK_THAT(rejection(with("viscosity = \"laminar_sps\"\nboundary = \"mdbc\"\nviscous_wall_condition = \"slip\"")),
-             Catch::Contains("viscous_wall_condition") && Catch::Contains("\"no_slip\"") && Catch::Contains("\"free_slip\""));
+             Catch::Contains("viscous_wall_condition") && Catch::Contains("\"no_slip\"") && Catch::Contains("\"free_slip\"") &&
+                 Catch::Contains("\"wall_function\""));
+  CHECK_THAT(rejection(with("viscosity = \"laminar_sps\"\nboundary = \"dbc\"\nviscous_wall_condition = \"wall_function\"")),
+             Catch::Contains("= \"wall_function\" needs boundary = \"mdbc\""));
   CHECK_THAT(rejection(with("boundary = \"mdbc\"\nviscous_wall_condition = \"free_slip\"")),
              Catch::Contains("sph.viscous_wall_condition is only used with viscosity = \"laminar_sps\""));
   CHECK_THAT(rejection(with("viscosity = \"laminar_sps\"\nboundary = \"dbc\"\nviscous_wall_condition = \"free_slip\"")),

@@ -9,10 +9,12 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "sph/boundary_mdbc.hpp"
 #include "sph/cell_list.hpp"
 #include "sph/interactions.hpp"
+#include "sph/wall_function.hpp"
 #include "sph_test_support.hpp"
 
 using namespace hydrojump;
@@ -174,4 +176,90 @@ TEST_CASE("free-slip walls take no viscous drag from a uniform flow, no-slip wal
   // ~1e-3 m^2/s^2, ~0.02 m/s^2 over four rows; free slip: none (round-off).
   CHECK(no_slip < -0.005);
   CHECK(std::abs(free_slip) < 1e-6 * std::abs(no_slip));
+}
+
+// The log law's friction velocity: in the log layer u_t / u_tau = ln(E y+) / kappa, in the viscous
+// sublayer u_t / u_tau = y+; the two meet at y+ = 11.53 (the law is continuous there).
+TEST_CASE("the wall function's friction velocity solves the log law, or the sublayer's law near the wall",
+          "[sph][viscosity][wall_function]") {
+  using hydrojump::sph::friction_velocity;
+  const double nu = 1e-6;
+  int log_layer = 0, sublayer = 0;
+  for (const double u_t : {0.001, 0.05, 0.5, 3.0}) {
+    for (const double d : {0.001, 0.0025, 0.01}) {
+      const double u_tau = friction_velocity(u_t, d, nu);
+      const double y_plus = d * u_tau / nu;
+      INFO("u_t " << u_t << " m/s, d " << d << " m: u_tau " << u_tau << " m/s, y+ " << y_plus);
+      if (y_plus >= 11.53)
+        CHECK(u_t / u_tau == Approx(std::log(9.8 * y_plus) / 0.41).epsilon(1e-10));
+      else
+        CHECK(u_t / u_tau == Approx(y_plus).epsilon(1e-12));
+      ++(y_plus >= 11.53 ? log_layer : sublayer);
+    }
+  }
+  CHECK(log_layer >= 6);  // both laws were exercised
+  CHECK(sublayer >= 2);
+  // Continuity at the sublayer's edge: just below and just above y+ = 11.53 give nearly the same u_tau.
+  const double d_edge = 11.53 * nu / std::sqrt(nu * 0.2 / 1.0);  // y+ of the sublayer law = 11.53 at u_t 0.2
+  const double below = friction_velocity(0.2, d_edge * (1.0 - 1e-6), nu);
+  const double above = friction_velocity(0.2, d_edge * (1.0 + 1e-6), nu);
+  CHECK(above == Approx(below).epsilon(1e-4));
+  CHECK(friction_velocity(0.0, 0.01, nu) == 0.0);
+}
+
+namespace {
+
+// laminar_sps with the wall function over an mDBC floor, the fluid sliding uniformly at `speed`: the
+// horizontal acceleration of each fluid particle with 0.3 < x < 0.7 m, by row above the floor.
+std::vector<double> row_accelerations_with_wall_function(double speed, double dx, int rows) {
+  auto c = sph_test::load_case("still_water.toml", dx, [&](cases::Case& k) {
+    k.sph.viscosity = "laminar_sps";
+    k.sph.sps_mixing_length_m = 0.05;
+    k.sph.boundary = "mdbc";
+    k.sph.viscous_wall_condition = "wall_function";
+  });
+  REQUIRE(c.settings.viscous_walls_free_slip);
+  REQUIRE(c.settings.wall_function_shear);
+  sph::ParticleSet ps = c.particles;
+  for (Eigen::Index i = 0; i < ps.size(); ++i)
+    if (ps.is_fluid(i)) ps.u[i] = speed;
+  sph::CellList cells;
+  cells.build(ps.x, ps.z, sph::CellGrid::enclosing(ps.x, ps.z, c.settings.support()));
+  ps.permute(cells.order());
+  cells.mark_sorted();
+  sph::mdbc_boundary_density(ps, cells, c.settings);
+  sph::compute_pressure(ps, c.settings);
+  sph::compute_interactions(ps, cells, c.settings);
+  std::vector<double> sum(static_cast<std::size_t>(rows), 0.0);
+  std::vector<int> count(static_cast<std::size_t>(rows), 0);
+  for (Eigen::Index i = 0; i < ps.size(); ++i) {
+    if (!ps.is_fluid(i) || ps.x[i] < 0.3 || ps.x[i] > 0.7) continue;
+    const int row = static_cast<int>(std::floor((ps.z[i] - c.geometry.bed.elevation(ps.x[i])) / dx));
+    if (row < 0 || row >= rows) continue;
+    sum[static_cast<std::size_t>(row)] += ps.ax[i];
+    ++count[static_cast<std::size_t>(row)];
+  }
+  for (int r = 0; r < rows; ++r) {
+    REQUIRE(count[static_cast<std::size_t>(r)] > 0);
+    sum[static_cast<std::size_t>(r)] /= count[static_cast<std::size_t>(r)];
+  }
+  return sum;
+}
+
+}  // namespace
+
+// A uniform flow over a flat floor: the first row (at d = dx/2 above the wall surface) takes the log
+// law's stress, a = -u_tau^2 / dx against the flow; the rows above take none (free slip in the
+// viscous terms, pressure terms cancel on the symmetric lattice).
+TEST_CASE("the wall function brakes the first fluid row by the log law's wall shear, and no other row",
+          "[sph][viscosity][wall_function]") {
+  const double dx = 0.02, nu = 1e-6;
+  for (const double speed : {0.5, -1.5}) {
+    const std::vector<double> a = row_accelerations_with_wall_function(speed, dx, 4);
+    const double u_tau = hydrojump::sph::friction_velocity(std::abs(speed), 0.5 * dx, nu);
+    INFO("speed " << speed << " m/s: rows a_x " << a[0] << ", " << a[1] << ", " << a[2] << ", " << a[3]
+                  << " m/s^2; log law -sign(u) u_tau^2/dx = " << -std::copysign(u_tau * u_tau / dx, speed));
+    CHECK(a[0] == Approx(-std::copysign(u_tau * u_tau / dx, speed)).epsilon(1e-6));
+    for (int r = 1; r < 4; ++r) CHECK(std::abs(a[static_cast<std::size_t>(r)]) < 1e-6 * std::abs(a[0]));
+  }
 }
