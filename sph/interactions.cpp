@@ -133,8 +133,9 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
       const double pi = p[i], inv_rhoi = 1.0 / rhoi;
       double d = 0.0, fx = 0.0, fz = 0.0, visc_rate = 0.0;
       double dudx = 0.0, dudz = 0.0, dwdx = 0.0, dwdz = 0.0;
-      double wall_r2 = std::numeric_limits<double>::infinity();
-      // wall_function: the nearest wall particle within the support and the offset x_i - x_j to it
+      // The nearest wall particle within the support (mixing length: its distance; wall function: its
+      // ghost offset too) and the offset x_i - x_j to it.
+      const bool nearest_wall_needed = wall_distance_needed || wall_function;
       int nearest_wall = -1;
       double nearest_r2 = std::numeric_limits<double>::infinity(), nearest_dx = 0.0, nearest_dz = 0.0;
       for (int k = 0; k < n_ranges; ++k) {
@@ -152,8 +153,7 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
           d += mj * (du * gx + dw * gzw);
           // Inflow/outflow buffer neighbours act like fluid (their imposed velocity and density).
           const bool fluid_j = !is_wall_type(type[j]);
-          if (wall_distance_needed && !fluid_j) wall_r2 = std::min(wall_r2, r2);
-          if (wall_function && !fluid_j && r2 < nearest_r2) {
+          if (nearest_wall_needed && !fluid_j && r2 < nearest_r2) {
             nearest_r2 = r2;
             nearest_wall = j;
             nearest_dx = dx;
@@ -210,7 +210,7 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
         gi[1] = dudz;
         gi[2] = dwdx;
         gi[3] = dwdz;
-        if (wall_distance_needed) wall_distance[i] = std::sqrt(wall_r2);
+        if (wall_distance_needed) wall_distance[i] = std::sqrt(nearest_r2);
       }
       if (wall_function && nearest_wall >= 0) {
         // The log law's wall shear on the first fluid layer (wall_function.hpp). Wall normal n along the
