@@ -97,6 +97,9 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
   std::vector<double> wall_distance_store(wall_distance_needed ? static_cast<std::size_t>(n) : 0,
                                           std::numeric_limits<double>::infinity());
   double* wall_distance = wall_distance_store.data();
+  // The nearest wall particle of each fluid particle: its distance for the mixing length, its ghost
+  // offset for the wall function.
+  const bool nearest_wall_needed = wall_distance_needed || wall_function;
 
   double max_acc2 = 0.0, max_visc = 0.0;
 #pragma omp parallel for schedule(dynamic, 16) reduction(max : max_acc2, max_visc) if (threads)
@@ -133,9 +136,7 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
       const double pi = p[i], inv_rhoi = 1.0 / rhoi;
       double d = 0.0, fx = 0.0, fz = 0.0, visc_rate = 0.0;
       double dudx = 0.0, dudz = 0.0, dwdx = 0.0, dwdz = 0.0;
-      // The nearest wall particle within the support (mixing length: its distance; wall function: its
-      // ghost offset too) and the offset x_i - x_j to it.
-      const bool nearest_wall_needed = wall_distance_needed || wall_function;
+      // The nearest wall particle within the support and the offset x_i - x_j to it.
       int nearest_wall = -1;
       double nearest_r2 = std::numeric_limits<double>::infinity(), nearest_dx = 0.0, nearest_dz = 0.0;
       for (int k = 0; k < n_ranges; ++k) {
