@@ -21,10 +21,11 @@ using namespace hydrojump;
 
 namespace {
 
-// Sets every fluid particle sliding at 0.5 m/s and sorts the particles into `cells`.
-void slide_and_sort(sph::ParticleSet& ps, sph::CellList& cells, const sph::SolverSettings& settings) {
+// Sets every fluid particle sliding at `speed` (m/s) and sorts the particles into `cells`.
+void slide_and_sort(sph::ParticleSet& ps, sph::CellList& cells, const sph::SolverSettings& settings,
+                    double speed = 0.5) {
   for (Eigen::Index i = 0; i < ps.size(); ++i)
-    if (ps.is_fluid(i)) ps.u[i] = 0.5;
+    if (ps.is_fluid(i)) ps.u[i] = speed;
   cells.build(ps.x, ps.z, sph::CellGrid::enclosing(ps.x, ps.z, settings.support()));
   ps.permute(cells.order());
   cells.mark_sorted();
@@ -221,12 +222,8 @@ std::vector<double> row_accelerations_with_wall_function(double speed, double dx
   REQUIRE(c.settings.viscous_walls_free_slip);
   REQUIRE(c.settings.wall_function_shear);
   sph::ParticleSet ps = c.particles;
-  for (Eigen::Index i = 0; i < ps.size(); ++i)
-    if (ps.is_fluid(i)) ps.u[i] = speed;
   sph::CellList cells;
-  cells.build(ps.x, ps.z, sph::CellGrid::enclosing(ps.x, ps.z, c.settings.support()));
-  ps.permute(cells.order());
-  cells.mark_sorted();
+  slide_and_sort(ps, cells, c.settings, speed);
   sph::mdbc_boundary_density(ps, cells, c.settings);
   sph::compute_pressure(ps, c.settings);
   sph::compute_interactions(ps, cells, c.settings);
