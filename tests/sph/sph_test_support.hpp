@@ -38,9 +38,23 @@ inline LoadedCase load_case(const std::string& file, double dx,
   return out;
 }
 
+// The viscosity of the short-basin fixtures, independent of the model the study file chooses for
+// A_smooth: Monaghan's artificial viscosity alpha = 0.1 between fluid particles only (wall factor 0).
+// The fixtures test open boundaries, gates and bookkeeping, and their measured figures were taken
+// with this model.
+inline void use_fixture_viscosity(hydrojump::cases::Case& c) {
+  c.sph.viscosity = "artificial";
+  c.sph.artificial_viscosity_alpha = 0.1;
+  c.sph.artificial_viscosity_nu_m2_s = 0.0;
+  c.sph.artificial_viscosity_wall_factor = 0.0;
+  c.sph.sps_mixing_length_m = 0.0;
+  c.sph.viscous_wall_condition = "no_slip";
+}
+
 // Case A_smooth of cases/ead2002.toml (y1 = 25.4 mm, U1 = 2 m/s) on a shortened domain (0.1 m
-// upstream, 0.3 m basin, 0.1 m downstream) at spacing dx; `adjust` may change it further (its [sph]
-// settings, run length) before the solver geometry, settings and particles are derived.
+// upstream, 0.3 m basin, 0.1 m downstream) at spacing dx, with the fixture viscosity above; `adjust`
+// may change it further (its [sph] settings, run length) before the solver geometry, settings and
+// particles are derived.
 inline LoadedCase short_smooth_basin(double dx, const std::function<void(hydrojump::cases::Case&)>& adjust = {}) {
   LoadedCase out;
   out.study = hydrojump::cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/cases/ead2002.toml");
@@ -51,6 +65,7 @@ inline LoadedCase short_smooth_basin(double dx, const std::function<void(hydroju
   basin.upstream_length_m = 0.1;
   basin.basin_length_m = 0.3;
   basin.downstream_length_m = 0.1;
+  use_fixture_viscosity(out.spec);
   if (adjust) adjust(out.spec);
   out.geometry = hydrojump::sph::solver_geometry(out.spec, out.study.fluid, dx);
   out.settings = hydrojump::sph::make_settings(out.spec, out.study.fluid, out.geometry, dx);

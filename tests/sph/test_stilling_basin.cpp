@@ -70,6 +70,7 @@ ShortBasin short_smooth_basin() {
   // (see sph/README.md, "Stilling basins").
   out.spec.sph.boundary = "mdbc";
   out.spec.sph.sound_speed_coefficient = 20.0;
+  sph_test::use_fixture_viscosity(out.spec);
   out.geometry = cases::make_geometry(out.spec, out.study.fluid);
   out.settings = sph::make_settings(out.spec, out.study.fluid, out.geometry, 0.005);
   out.particles = sph::generate_particles(out.geometry, out.settings, out.spec.sph.boundary_layers);
