@@ -80,6 +80,9 @@ struct Resolution {
 };
 
 // [case.run]
+// Each output time is one file per method (particles, OpenFOAM time directory): a run has at most this many.
+inline constexpr double max_outputs_per_run = 100000.0;
+
 struct RunSettings {
   double end_time_s = 0.0;
   double output_interval_s = 0.05;

@@ -34,6 +34,16 @@ std::string toml_number(double v) {
 }
 
 // An allowed interval for a number, with its unit, for messages.
+// Case ids and resolution names become directory names and bare TOML keys: 1 to 64 letters, digits,
+// '_' or '-' (so never "." or "..", never a path).
+constexpr const char* plain_name_rule = "use 1 to 64 letters, digits, '_' or '-'";
+bool is_plain_name(const std::string& name) {
+  if (name.empty() || name.size() > 64) return false;
+  return std::all_of(name.begin(), name.end(), [](char ch) {
+    return (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') || ch == '_' || ch == '-';
+  });
+}
+
 struct Range {
   double low = -HUGE_VAL;
   double high = HUGE_VAL;
@@ -395,6 +405,9 @@ void read_resolutions(TableReader& parent, std::map<std::string, Resolution>& ou
   if (!t) return;
   for (const auto& [name, node] : t->raw()) {
     const std::string key(name.str());
+    if (!is_plain_name(key)) {
+      t->fail_at(&node, key, std::string("is not usable as a resolution name (it names directories and TOML tables): ") + plain_name_rule);
+    }
     auto level = t->table(key);
     Resolution r = out.count(key) ? out.at(key) : Resolution{};
     if (!require_all && !out.count(key)) {
@@ -413,7 +426,13 @@ void read_run(TableReader& t, RunSettings& run) {
   if (run.output_interval_s > run.end_time_s) {
     t.fail_at(t.raw().get("output_interval_s"), "output_interval_s", "= " + number_text(run.output_interval_s) + " is out of range: must be <= run.end_time_s (" + number_text(run.end_time_s) + " s)");
   }
-  run.average_start_s = t.number_or("average_start_s", 0.5 * run.end_time_s, between(0.0, run.end_time_s, "s, within the run"));
+  // Every output is a file per method: at most max_outputs_per_run of them.
+  if (run.end_time_s / run.output_interval_s > max_outputs_per_run) {
+    t.fail_at(t.raw().get("output_interval_s"), "output_interval_s",
+              "= " + number_text(run.output_interval_s) + " is out of range: must be >= run.end_time_s / " + number_text(max_outputs_per_run) + " (" +
+                  number_text(run.end_time_s / max_outputs_per_run) + " s; at most " + number_text(max_outputs_per_run) + " outputs a run)");
+  }
+  run.average_start_s = t.number_or("average_start_s", 0.5 * run.end_time_s, Range{0.0, run.end_time_s, false, true, "s, within the run and before its end"});
   run.average_end_s = t.number_or("average_end_s", run.end_time_s, Range{run.average_start_s, run.end_time_s, true, false, "s, after average_start_s and within the run"});
   t.reject_unknown_keys();
 }
@@ -606,8 +625,8 @@ Case read_case(TableReader& c, const Study& study, const SphSettings& sph,
                const std::filesystem::path& base_dir) {
   Case result;
   result.id = c.string("id");
-  if (result.id.empty() || result.id.find_first_of("/\\ \t") != std::string::npos) {
-    c.fail_at(c.raw().get("id"), "id", "= \"" + result.id + "\" is not usable as a directory name: use letters, digits, '_' or '-'");
+  if (!is_plain_name(result.id)) {
+    c.fail_at(c.raw().get("id"), "id", "= \"" + result.id + "\" is not usable as a directory name: " + std::string(plain_name_rule));
   }
   result.kind = c.choice("kind", "", {"stilling_basin", "dam_break", "still_water", "poiseuille"}, true);
   result.description = c.string_or("description", "");

@@ -3,6 +3,7 @@
 #include <iostream>
 #include <memory>
 
+#include "cases/cli_checks.hpp"
 #include "compare/case_comparison.hpp"
 
 namespace hydrojump::compare {
@@ -42,7 +43,7 @@ void register_commands(CLI::App& app) {
       ->check(CLI::ExistingFile);
   cmd->add_option("--station-spacing", o->station_spacing_m,
                   "spacing of the columns along the channel in m (default: the finer of SPH dx and the VOF bed cell)")
-      ->check(CLI::PositiveNumber);
+      ->check(cases::positive_finite_number());
   cmd->add_flag("--no-plots", o->no_plots, "skip the matplotlib figures");
   cmd->callback([o] {
     CompareOptions options;

@@ -87,10 +87,11 @@ std::vector<const cases::Case*> select_cases(const cases::Study& study,
     if (!c) {
       std::string known;
       for (const auto& k : study.cases) known += (known.empty() ? "" : ", ") + k.id;
-      throw cases::SpecError(study.source_file.string() + ": --case " + id +
-                             ": no such case (cases in this study: " + known + ")");
+      throw cases::SpecError(study.source_file.string() + ": --case \"" + id +
+                             "\": no such case (cases in this study: " + known + ")");
     }
-    selected.push_back(c);
+    // A case named twice runs once (two runs of one case would share its directory).
+    if (std::find(selected.begin(), selected.end(), c) == selected.end()) selected.push_back(c);
   }
   return selected;
 }

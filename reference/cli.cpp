@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "cases/atomic_file.hpp"
+#include "cases/cli_checks.hpp"
 #include "cases/spec_reader.hpp"
 #include "reference/case_writer.hpp"
 #include "reference/runner.hpp"
@@ -49,7 +50,7 @@ void register_commands(CLI::App& app) {
                 "run a body_fitted mesh even when the self-test shows the defect (for patched builds)");
   vof->add_option("--progress-interval", options->progress_interval_s,
                   "seconds between progress lines when the output is not a terminal (default 30)")
-      ->check(CLI::PositiveNumber);
+      ->check(cases::positive_finite_number());
   vof->callback([options]() {
     if (options->self_test) {
       const OpenFoamInstallation inst = check_openfoam(false);

@@ -1,11 +1,13 @@
 #include "sph/checkpoint.hpp"
 
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <istream>
 #include <ostream>
 #include <stdexcept>
+#include <string>
 
 #include "cases/atomic_file.hpp"
 
@@ -87,6 +89,37 @@ void write_checkpoint(const Checkpoint& c, const std::filesystem::path& file) {
   });
 }
 
+namespace {
+
+// A checkpoint whose structure is intact can still hold values no run writes (a damaged or edited
+// file): a clock that is not a finite time >= 0, unknown particle types, non-finite particle state,
+// no fluid at all. Resuming from it would run on garbage or not at all, so it is refused by name.
+void check_contents(const Checkpoint& c, const std::filesystem::path& file) {
+  const auto damaged = [&](const std::string& what) {
+    throw std::runtime_error("checkpoint '" + file.string() + "' is damaged: " + what + "; start the run again with --restart");
+  };
+  const auto& k = c.clock;
+  if (!std::isfinite(k.time) || k.time < 0.0) damaged("its time is " + std::to_string(k.time) + " s");
+  if (!std::isfinite(k.last_dt) || k.last_dt < 0.0) damaged("its last time step is " + std::to_string(k.last_dt) + " s");
+  if (k.steps < 0) damaged("its step count is negative");
+  if (!std::isfinite(k.inflow_mass) || !std::isfinite(k.outflow_mass)) damaged("its inflow/outflow mass is not finite");
+  if (!std::isfinite(c.next_output_time) || c.next_output_time < 0.0)
+    damaged("its next output time is " + std::to_string(c.next_output_time) + " s");
+  Eigen::Index fluid = 0;
+  for (Eigen::Index i = 0; i < c.particles.size(); ++i) {
+    const auto t = c.particles.type[i];
+    if (t > static_cast<std::uint8_t>(ParticleType::moving_wall))
+      damaged("particle " + std::to_string(i) + " has the unknown type " + std::to_string(t));
+    if (t == static_cast<std::uint8_t>(ParticleType::fluid)) ++fluid;
+  }
+  if (fluid == 0) damaged("it holds no fluid particle");
+  bool finite = true;
+  c.particles.for_each_real_array([&](const Vector& v) { finite = finite && v.allFinite(); });
+  if (!finite) damaged("a particle's state is not finite (NaN or Inf)");
+}
+
+}  // namespace
+
 Checkpoint read_checkpoint(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
   if (!in) throw std::runtime_error("cannot open checkpoint '" + file.string() + "'");
@@ -133,6 +166,7 @@ Checkpoint read_checkpoint(const std::filesystem::path& file) {
   }
   r.read(magic, sizeof magic);
   if (std::memcmp(magic, kMagic, sizeof magic) != 0) r.fail();
+  check_contents(c, file);
   return c;
 }
 

@@ -1,5 +1,6 @@
 #include "sph/cli.hpp"
 
+#include "cases/cli_checks.hpp"
 #include "cases/directory_lock.hpp"
 #include "cases/fingerprint.hpp"
 #include "hydrojump/version.hpp"
@@ -224,7 +225,7 @@ void register_commands(CLI::App& app) {
   sph->add_option("--threads", opt->threads, "OpenMP threads (default: OMP_NUM_THREADS or all cores)")
       ->check(CLI::Range(1, 1024));
   sph->add_option("--end-time", opt->end_time, "stop at this simulated time in s instead of the case's end_time_s")
-      ->check(CLI::PositiveNumber);
+      ->check(cases::positive_finite_number());
   sph->add_flag("--quiet", opt->quiet, "no progress line");
   sph->callback([opt]() {
     if (opt->resume && opt->restart) throw CLI::ValidationError("--resume and --restart", "choose one of them");
@@ -240,10 +241,10 @@ void register_commands(CLI::App& app) {
       "C2, h = sqrt(2) dx, artificial viscosity 0.02, Fourtakas diffusion 0.1, DBC, Verlet, CFL 0.2,\n"
       "c0 = 20 sqrt(g 2 m), 0.3 s of physical time. Prints particle-steps per second (all particles times\n"
       "steps over the wall time of the time loop) and the peak memory.");
-  bench->add_option("--steps", bench_opt->max_steps, "stop after N steps (a quick figure)")->check(CLI::PositiveNumber);
+  bench->add_option("--steps", bench_opt->max_steps, "stop after N steps (a quick figure)")->check(CLI::Range(std::int64_t{1}, std::int64_t{1000000000}));
   bench->add_option("--threads", bench_opt->threads, "OpenMP threads")->check(CLI::Range(1, 1024));
   bench->add_option("--end-time", bench_opt->end_time_s, "physical time to simulate in s (default 0.3)")
-      ->check(CLI::PositiveNumber);
+      ->check(cases::positive_finite_number());
   bench->add_option("--dx", bench_opt->particle_spacing_m, "particle spacing in m (default 0.01)")
       ->check(CLI::Range(0.002, 0.1));
   bench->add_flag("--json", *json, "print the result as one JSON object");

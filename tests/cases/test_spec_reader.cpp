@@ -189,7 +189,18 @@ TEST_CASE("Non-physical values are rejected with the allowed range", "[cases][sp
     const auto text = replaced(valid_spec, "average_start_s = 6.0", "average_start_s = 12.0");
     const auto msg = rejection(text);
     CHECK_THAT(msg, Catch::Contains("spec.toml:" + std::to_string(line_of(text, "average_start_s"))));
-    CHECK_THAT(msg, Catch::Contains("run.average_start_s = 12 is out of range: must be >= 0 and <= 10"));
+    CHECK_THAT(msg, Catch::Contains("run.average_start_s = 12 is out of range: must be >= 0 and < 10"));
+  }
+  SECTION("averaging window that starts at the end of the run (an empty window)") {
+    const auto msg = rejection(replaced(valid_spec, "average_start_s = 6.0", "average_start_s = 10.0"));
+    CHECK_THAT(msg, Catch::Contains("run.average_start_s = 10 is out of range: must be >= 0 and < 10"));
+  }
+  SECTION("an output interval so short that the run would write more than 100000 outputs") {
+    const auto text = replaced(valid_spec, "end_time_s = 10.0", "end_time_s = 10.0\noutput_interval_s = 1e-300");
+    const auto msg = rejection(text);
+    CHECK_THAT(msg, Catch::Contains("spec.toml:" + std::to_string(line_of(text, "output_interval_s"))));
+    CHECK_THAT(msg, Catch::Contains("run.output_interval_s = 1e-300 is out of range: must be >= run.end_time_s / 100000 (0.0001 s"));
+    CHECK_NOTHROW(parse_study(replaced(valid_spec, "end_time_s = 10.0", "end_time_s = 10.0\noutput_interval_s = 1e-4"), "spec.toml", "."));
   }
   SECTION("section outside the domain") {
     const auto text = valid_spec + "[[case.sections]]\nname = \"far\"\nx_m = 9.0\n";
@@ -292,6 +303,22 @@ TEST_CASE("Syntax errors and duplicate ids are reported with a line", "[cases][s
   const auto dup = valid_spec + valid_spec.substr(valid_spec.find("[[case]]"));
   CHECK_THAT(rejection(dup), Catch::Contains("used by two cases"));
   CHECK_THAT(rejection(replaced(valid_spec, "[study]\nname = \"mini\"\n", "[study]\n")), Catch::Contains("study.name"));
+}
+
+TEST_CASE("Case ids and resolution names are plain directory names", "[cases][spec][reject]") {
+  // They become directories (DIR/<case>/sph, a study's <out>/<case>) and bare TOML keys: ".." would
+  // write beside --out, and a study run would clear the directory above it.
+  for (const char* id : {"..", ".", "a.b", "a/b", "x y", ""}) {
+    INFO("id '" << id << "'");
+    const auto text = replaced(valid_spec, "id = \"A\"", std::string("id = \"") + id + "\"");
+    const auto msg = rejection(text);
+    CHECK_THAT(msg, Catch::Contains("spec.toml:" + std::to_string(line_of(text, "id = "))));
+    CHECK_THAT(msg, Catch::Contains("is not usable as a directory name: use 1 to 64 letters, digits, '_' or '-'"));
+  }
+  CHECK_NOTHROW(parse_study(replaced(valid_spec, "id = \"A\"", "id = \"run_A-2\""), "spec.toml", "."));
+  const auto text = replaced(valid_spec, "[resolution.quick]", "[resolution.\"v1.2\"]");
+  const auto msg = rejection(text);
+  CHECK_THAT(msg, Catch::Contains("resolution.v1.2 is not usable as a resolution name"));
 }
 
 TEST_CASE("A resolved case reloads to the same case", "[cases][spec]") {

@@ -155,6 +155,22 @@ TEST_CASE("hydrojump generate refuses an invalid spec, names the key and writes 
   CHECK_FALSE(fs::exists(out_dir));
 }
 
+TEST_CASE("numeric options refuse nan, inf and non-positive values, naming the option", "[compare][integration][cli]") {
+  // CLI11's PositiveNumber lets "nan" through: `sph --end-time nan` then ran the case's whole end time.
+  hydrojump::compare::testing::TempDir tmp("numbers");
+  const std::string study = std::string(HYDROJUMP_SOURCE_DIR) + "/cases/poiseuille.toml";
+  REQUIRE(run({"generate", study, "--out", (tmp.path() / "runs").string()}, tmp.path() / "generate.log") == 0);
+  const fs::path dir = tmp.path() / "runs" / "poiseuille" / "sph";
+  for (const std::string value : {"nan", "inf", "0", "-1", "1x"}) {
+    INFO("--end-time " << value);
+    CHECK(run({"sph", dir.string(), "--end-time", value, "--quiet"}, tmp.path() / "sph.log") != 0);
+    CHECK_THAT(read_text(tmp.path() / "sph.log"), Catch::Contains("--end-time") && Catch::Contains("must be a finite number > 0"));
+  }
+  CHECK_FALSE(fs::exists(dir / "checkpoint.bin"));
+  CHECK(run({"bench", "--steps", "0"}, tmp.path() / "bench.log") != 0);
+  CHECK_THAT(read_text(tmp.path() / "bench.log"), Catch::Contains("--steps: Value 0 not in range 1 to 1000000000"));
+}
+
 TEST_CASE("hydrojump bench --json prints particles, steps, threads, speed and memory", "[compare][integration][cli]") {
   hydrojump::compare::testing::TempDir tmp("bench");
   REQUIRE(run({"bench", "--steps", "3", "--threads", "1", "--json"}, tmp.path() / "bench.log") == 0);

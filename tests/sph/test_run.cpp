@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <regex>
 #include <sstream>
@@ -112,6 +113,31 @@ TEST_CASE("a run interrupted and resumed ends as the uninterrupted run", "[sph][
     fs::remove_all(a);
     fs::remove_all(b);
   }
+}
+
+TEST_CASE("a checkpoint whose contents are damaged is refused by name", "[sph][restart][robustness]") {
+  // Structure intact (magic, sizes, trailer), values no run writes: --resume must not run on them.
+  auto loaded = sph_test::load_case("dam_break.toml", 0.05);
+  Checkpoint good;
+  good.fingerprint = "test";
+  good.particles = loaded.particles;
+  good.clock.time = 0.25;
+  good.next_output_time = 0.3;
+  const fs::path file = fresh_dir("damaged_checkpoint") / "checkpoint.bin";
+  write_checkpoint(good, file);
+  CHECK_NOTHROW(read_checkpoint(file));
+  const auto refused = [&](const std::function<void(Checkpoint&)>& damage, const std::string& why) {
+    Checkpoint c = good;
+    damage(c);
+    write_checkpoint(c, file);
+    CHECK_THROWS_WITH(read_checkpoint(file), Catch::Contains("is damaged: " + why) && Catch::Contains("--restart"));
+  };
+  refused([](Checkpoint& c) { c.clock.time = std::numeric_limits<double>::quiet_NaN(); }, "its time is");
+  refused([](Checkpoint& c) { c.clock.time = -1e300; }, "its time is");
+  refused([](Checkpoint& c) { c.particles.type.setConstant(200); }, "particle 0 has the unknown type 200");
+  refused([](Checkpoint& c) { c.particles.type.setConstant(1); }, "it holds no fluid particle");
+  refused([](Checkpoint& c) { c.particles.x[3] = std::numeric_limits<double>::infinity(); }, "a particle's state is not finite");
+  refused([](Checkpoint& c) { c.next_output_time = std::numeric_limits<double>::quiet_NaN(); }, "its next output time");
 }
 
 TEST_CASE("the pvd series loads back with vtkXMLPolyDataReader", "[sph][output]") {

@@ -12,6 +12,8 @@
 #include <unistd.h>
 
 #include "cases/directory_lock.hpp"
+#include "cases/spec_reader.hpp"
+#include "compare/generate.hpp"
 #include "compare/study.hpp"
 
 namespace fs = std::filesystem;
@@ -200,6 +202,17 @@ TEST_CASE("Study runner: the report covers cases run earlier into the same direc
   CHECK(report_rows("A").empty());
   CHECK(report_rows("B").size() == 3);
   fs::remove_all(dir);
+}
+
+TEST_CASE("Study runner: a case named twice in --cases runs once, an unknown one is refused by name", "[study]") {
+  // Two workers on one case would share its directory (`--cases X,X --jobs 2` raced on case.toml).
+  const auto study = hydrojump::cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/cases/ead2002.toml");
+  const auto selected = hydrojump::compare::select_cases(study, {"B", "A", "B", "A"});
+  REQUIRE(selected.size() == 2u);
+  CHECK(selected[0]->id == "B");
+  CHECK(selected[1]->id == "A");
+  CHECK_THROWS_WITH(hydrojump::compare::select_cases(study, {"A", ""}),
+                    Catch::Contains("--case \"\": no such case") && Catch::Contains("A_smooth"));
 }
 
 TEST_CASE("Study runner validates before running anything", "[study]") {
