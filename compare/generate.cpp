@@ -6,6 +6,10 @@
 #include <iostream>
 #include <ostream>
 #include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include <stdlib.h>
 
 #include "cases/geometry.hpp"
 #include "cases/hydraulics.hpp"
@@ -75,6 +79,38 @@ void print_study_summary(const cases::Study& study, std::ostream& out) {
   out << "\n";
 }
 
+namespace {
+
+// The input of both solvers for one case: DIR/sph and DIR/vof.
+void write_case(const cases::Study& study, const cases::Case& c, const std::string& resolution,
+                const std::filesystem::path& dir) {
+  sph::write_sph_input(study, c, resolution, dir / "sph");
+  reference::write_vof_case(study, c, resolution, dir / "vof");
+}
+
+// A fresh directory under the system's temporary directory, removed with its contents at scope exit.
+class ScratchDirectory {
+ public:
+  ScratchDirectory() {
+    std::string name = (std::filesystem::temp_directory_path() / "hydrojump-generate-XXXXXX").string();
+    if (::mkdtemp(name.data()) == nullptr)
+      throw std::runtime_error("cannot create a scratch directory under " + std::filesystem::temp_directory_path().string());
+    path_ = name;
+  }
+  ~ScratchDirectory() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+  }
+  ScratchDirectory(const ScratchDirectory&) = delete;
+  ScratchDirectory& operator=(const ScratchDirectory&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+}  // namespace
+
 std::vector<const cases::Case*> select_cases(const cases::Study& study,
                                              const std::vector<std::string>& ids) {
   std::vector<const cases::Case*> selected;
@@ -99,12 +135,25 @@ std::vector<const cases::Case*> select_cases(const cases::Study& study,
 void generate_cases(const cases::Study& study, const std::vector<const cases::Case*>& selected,
                     const std::string& resolution, const std::filesystem::path& out_dir,
                     std::ostream& log) {
-  // Validate everything first: nothing is written while any selected case is invalid.
+  // Validate everything first: nothing is written while any selected case is invalid. The spec's
+  // rules, then what only the solvers' own derivations find (particle generation, gates, the
+  // OpenFOAM mesh plan): every selected case is written once into a scratch directory that is
+  // removed again, and a failure there is reported as the spec's, naming the file and the case.
   for (const auto* c : selected) cases::validate_for_resolution(study, *c, resolution);
+  const ScratchDirectory scratch;
+  for (const auto* c : selected) {
+    try {
+      write_case(study, *c, resolution, scratch.path() / c->id);
+    } catch (const cases::SpecError&) {
+      throw;
+    } catch (const std::exception& e) {
+      throw cases::SpecError(study.source_file.string() + ": case \"" + c->id + "\" at resolution \"" + resolution +
+                             "\": " + e.what());
+    }
+  }
   for (const auto* c : selected) {
     const auto dir = out_dir / c->id;
-    sph::write_sph_input(study, *c, resolution, dir / "sph");
-    reference::write_vof_case(study, *c, resolution, dir / "vof");
+    write_case(study, *c, resolution, dir);
     log << "generated " << (dir / "sph").string() << " and " << (dir / "vof").string() << "\n";
   }
 }

@@ -155,6 +155,27 @@ TEST_CASE("hydrojump generate refuses an invalid spec, names the key and writes 
   CHECK_FALSE(fs::exists(out_dir));
 }
 
+TEST_CASE("hydrojump generate refuses what only a solver's derivation finds, and writes nothing", "[compare][integration][cli]") {
+  // A VOF bed cell of 2 cm leaves fewer than 2 cells across y1 = 25.4 mm: the spec's rules pass,
+  // the OpenFOAM mesh plan refuses. It used to do so after DIR/A/sph had been written.
+  hydrojump::compare::testing::TempDir tmp("derived");
+  std::string spec = read_text(std::string(HYDROJUMP_SOURCE_DIR) + "/cases/ead2002.toml");
+  const std::string good = "vof_cell_size_bed_m = 0.005\nvof_cell_size_bulk_m = 0.01";
+  REQUIRE(spec.find(good) != std::string::npos);
+  spec.replace(spec.find(good), good.size(), "vof_cell_size_bed_m = 0.02\nvof_cell_size_bulk_m = 0.02");
+  {
+    std::ofstream out(tmp.path() / "coarse.toml");
+    out << spec;
+  }
+  const fs::path out_dir = tmp.path() / "runs";
+  CHECK(run({"generate", (tmp.path() / "coarse.toml").string(), "--out", out_dir.string(), "--case", "A"},
+            tmp.path() / "generate.log") == 2);
+  const std::string log = read_text(tmp.path() / "generate.log");
+  INFO(log);
+  CHECK_THAT(log, Catch::Contains("coarse.toml: case \"A\" at resolution \"quick\": ") && Catch::Contains("inflow depth"));
+  CHECK_FALSE(fs::exists(out_dir));
+}
+
 TEST_CASE("numeric options refuse nan, inf and non-positive values, naming the option", "[compare][integration][cli]") {
   // CLI11's PositiveNumber lets "nan" through: `sph --end-time nan` then ran the case's whole end time.
   hydrojump::compare::testing::TempDir tmp("numbers");
