@@ -13,6 +13,7 @@
 
 #include "cases/geometry.hpp"
 #include "cases/hydraulics.hpp"
+#include "cases/fingerprint.hpp"
 #include "cases/spec_reader.hpp"
 #include "reference/cli.hpp"
 #include "sph/cli.hpp"
@@ -88,6 +89,27 @@ void write_case(const cases::Study& study, const cases::Case& c, const std::stri
   reference::write_vof_case(study, c, resolution, dir / "vof");
 }
 
+// Whether a solver's directory holds results of a run (SPH outputs or checkpoint, an OpenFOAM log).
+bool holds_results(const std::filesystem::path& dir) {
+  for (const char* name : {"checkpoint.bin", "particles.pvd", "summary.json", "log.interFoam"})
+    if (std::filesystem::exists(dir / name)) return true;
+  return false;
+}
+
+// What identifies a resolved case.toml's run: its settings as the SPH resume check sees them
+// (sph::run_fingerprint: the settings a resumed run may change left out), without comment lines
+// (they name the spec file, however it was spelt on the command line).
+std::string resolved_settings(const std::filesystem::path& case_toml) {
+  std::istringstream in(cases::read_text_file(case_toml));
+  std::string kept;
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind('#', 0) != 0) {
+      kept += line;
+      kept += '\n';
+    }
+  return sph::run_fingerprint(kept);
+}
+
 // A fresh directory under the system's temporary directory, removed with its contents at scope exit.
 class ScratchDirectory {
  public:
@@ -149,6 +171,19 @@ void generate_cases(const cases::Study& study, const std::vector<const cases::Ca
     } catch (const std::exception& e) {
       throw cases::SpecError(study.source_file.string() + ": case \"" + c->id + "\" at resolution \"" + resolution +
                              "\": " + e.what());
+    }
+  }
+  // A directory holding a run's results keeps them only for the case that made them: regenerating
+  // it with other settings would leave results that `compare` then reports under the new ones.
+  for (const auto* c : selected) {
+    const auto dir = out_dir / c->id;
+    for (const char* method : {"sph", "vof"}) {
+      const auto existing = dir / method / "case.toml";
+      if (!holds_results(dir / method) || !std::filesystem::exists(existing)) continue;
+      if (resolved_settings(existing) != resolved_settings(scratch.path() / c->id / method / "case.toml"))
+        throw cases::SpecError((dir / method).string() + " holds the results of a run of case \"" + c->id +
+                               "\" with other settings (its case.toml differs from what " + study.source_file.string() +
+                               " gives at resolution \"" + resolution + "\"): move it away or choose another --out");
     }
   }
   for (const auto* c : selected) {

@@ -176,6 +176,42 @@ TEST_CASE("hydrojump generate refuses what only a solver's derivation finds, and
   CHECK_FALSE(fs::exists(out_dir));
 }
 
+TEST_CASE("hydrojump generate keeps a finished run's results only for the settings that made them", "[compare][integration][cli]") {
+  // Regenerating over a run with other settings left its results in place, and `compare` reported
+  // them under the new settings.
+  hydrojump::compare::testing::TempDir tmp("regenerate");
+  const std::string original = read_text(std::string(HYDROJUMP_SOURCE_DIR) + "/cases/poiseuille.toml");
+  const auto write_spec = [&](const std::string& text) {
+    std::ofstream out(tmp.path() / "spec.toml");
+    out << text;
+  };
+  write_spec(original);
+  const fs::path out_dir = tmp.path() / "runs";
+  const std::vector<std::string> generate = {"generate", (tmp.path() / "spec.toml").string(), "--out", out_dir.string()};
+  REQUIRE(run(generate, tmp.path() / "g1.log") == 0);
+  const fs::path sph_dir = out_dir / "poiseuille" / "sph";
+  { std::ofstream(sph_dir / "summary.json") << "{}\n"; }  // a finished run's product
+  // The same settings (the spec file spelt another way): regenerated, the results kept.
+  REQUIRE(run({"generate", (tmp.path() / "." / "spec.toml").string(), "--out", out_dir.string()}, tmp.path() / "g2.log") == 0);
+  CHECK(fs::exists(sph_dir / "summary.json"));
+  // Other settings: refused, nothing rewritten.
+  const std::string before = read_text(sph_dir / "case.toml");
+  const std::string end = "end_time_s = ";
+  REQUIRE(original.find(end) != std::string::npos);
+  std::string changed = original;
+  changed.insert(changed.find(end) + end.size(), "1");  // e.g. 2.0 s -> 12.0 s
+  write_spec(changed);
+  CHECK(run(generate, tmp.path() / "g3.log") == 2);
+  const std::string log = read_text(tmp.path() / "g3.log");
+  INFO(log);
+  CHECK_THAT(log, Catch::Contains(sph_dir.string() + " holds the results of a run of case \"poiseuille\" with other settings"));
+  CHECK(read_text(sph_dir / "case.toml") == before);
+  // Without results the directory is simply regenerated.
+  fs::remove(sph_dir / "summary.json");
+  CHECK(run(generate, tmp.path() / "g4.log") == 0);
+  CHECK(read_text(sph_dir / "case.toml") != before);
+}
+
 TEST_CASE("numeric options refuse nan, inf and non-positive values, naming the option", "[compare][integration][cli]") {
   // CLI11's PositiveNumber lets "nan" through: `sph --end-time nan` then ran the case's whole end time.
   hydrojump::compare::testing::TempDir tmp("numbers");
