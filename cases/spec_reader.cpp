@@ -33,7 +33,6 @@ std::string toml_number(double v) {
   return s;
 }
 
-// An allowed interval for a number, with its unit, for messages.
 // Case ids and resolution names become directory names and bare TOML keys: 1 to 64 letters, digits,
 // '_' or '-' (so never "." or "..", never a path).
 constexpr const char* plain_name_rule = "use 1 to 64 letters, digits, '_' or '-'";
@@ -44,6 +43,7 @@ bool is_plain_name(const std::string& name) {
   });
 }
 
+// An allowed interval for a number, with its unit, for messages.
 struct Range {
   double low = -HUGE_VAL;
   double high = HUGE_VAL;
