@@ -593,12 +593,33 @@ std::vector<Section> read_sections(TableReader& c, const toml::array& array, dou
   return sections;
 }
 
+// The most fluid particles a 2D case may start with (memory, and weeks of run time on a workstation).
+constexpr double max_fluid_particles = 5.0e6;
+
 // Resolution-dependent checks of one case at one resolution level.
 void check_resolution(const Case& c, const Resolution& r, const std::string& file) {
   const auto fail = [&](const std::string& what) {
     throw SpecError(file + ": case \"" + c.id + "\" at resolution \"" + r.name + "\": " + what);
   };
   const double dx = r.particle_spacing_m;
+  // The water a run starts with, per metre of width (m^2), for the particle-count bound below.
+  double water_area_m2 = 0.0;
+  if (const auto* b = c.stilling_basin()) {
+    water_area_m2 = (b->upstream_length_m + b->basin_length_m + b->downstream_length_m) *
+                    std::max({b->inflow_depth_m, b->tailwater_depth_m, b->bed.height_m});
+  } else if (const auto* d = c.dam_break()) {
+    water_area_m2 = d->column_width_m * d->column_height_m;
+  } else if (const auto* s = c.still_water()) {
+    water_area_m2 = s->tank_length_m * s->water_depth_m;
+  } else if (const auto* p = c.poiseuille()) {
+    water_area_m2 = p->channel_length_m * p->channel_width_m;
+  }
+  // Fluid particles ~ area / dx^2; each takes ~0.3 kB with its neighbour lists and checkpoint copy.
+  if (water_area_m2 / (dx * dx) > max_fluid_particles) {
+    fail("resolution." + r.name + ".particle_spacing_m = " + number_text(dx) + " gives about " + std::to_string(std::llround(water_area_m2 / (dx * dx))) +
+         " fluid particles: must be at most " + std::to_string(std::llround(max_fluid_particles)) + ", i.e. particle_spacing_m >= " +
+         number_text(std::sqrt(water_area_m2 / max_fluid_particles)) + " m");
+  }
   if (const auto* b = c.stilling_basin()) {
     if (b->bed.profile == "sinusoidal" && b->bed.wavelength_m < 4.0 * dx - 1e-12) {
       fail("resolution." + r.name + ".particle_spacing_m = " + number_text(dx) + " resolves bed.wavelength_m = " + number_text(b->bed.wavelength_m) + " with " + number_text(b->bed.wavelength_m / dx) + " spacings: must be at least 4, i.e. particle_spacing_m <= " + number_text(b->bed.wavelength_m / 4.0) + " m");

@@ -253,6 +253,11 @@ TEST_CASE("Non-physical values are rejected with the allowed range", "[cases][sp
     CHECK_NOTHROW(parse_study(replaced(valid_spec, "[[case]]", "[sph]\ninflow_condition = \"piston\"\nsluice_opening_m = 0.04\n\n[[case]]"),
                               "spec.toml", "."));
   }
+  SECTION("a particle spacing that would make more than 5 million fluid particles") {
+    // 1.76 m x 0.104 m of water at dx = 0.1 mm: 1.8e7 particles (a bad_alloc, or all the memory).
+    const auto msg = rejection(replaced(valid_spec, "particle_spacing_m = 0.005", "particle_spacing_m = 0.0001"));
+    CHECK_THAT(msg, Catch::Contains("spec.toml: case \"A\" at resolution \"quick\": resolution.quick.particle_spacing_m = 0.0001 gives about 18304000 fluid particles: must be at most 5000000"));
+  }
   SECTION("too few particles across y1") {
     const auto msg = rejection(replaced(valid_spec, "particle_spacing_m = 0.005", "particle_spacing_m = 0.0125"));
     CHECK_THAT(msg, Catch::Contains("inflow.depth_m = 0.0254"));
