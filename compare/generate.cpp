@@ -110,6 +110,21 @@ std::string resolved_settings(const std::filesystem::path& case_toml) {
   return sph::run_fingerprint(kept);
 }
 
+// Writes case `c` into `dir` as `generate` would, reporting what the solvers' derivations refuse
+// (particle generation, gates, the OpenFOAM mesh plan) as an error of the spec: its file, the case
+// and the resolution.
+void write_trial_case(const cases::Study& study, const cases::Case& c, const std::string& resolution,
+                      const std::filesystem::path& dir) {
+  try {
+    write_case(study, c, resolution, dir);
+  } catch (const cases::SpecError&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw cases::SpecError(study.source_file.string() + ": case \"" + c.id + "\" at resolution \"" + resolution +
+                           "\": " + e.what());
+  }
+}
+
 // A fresh directory under the system's temporary directory, removed with its contents at scope exit.
 class ScratchDirectory {
  public:
@@ -163,16 +178,7 @@ void generate_cases(const cases::Study& study, const std::vector<const cases::Ca
   // removed again, and a failure there is reported as the spec's, naming the file and the case.
   for (const auto* c : selected) cases::validate_for_resolution(study, *c, resolution);
   const ScratchDirectory scratch;
-  for (const auto* c : selected) {
-    try {
-      write_case(study, *c, resolution, scratch.path() / c->id);
-    } catch (const cases::SpecError&) {
-      throw;
-    } catch (const std::exception& e) {
-      throw cases::SpecError(study.source_file.string() + ": case \"" + c->id + "\" at resolution \"" + resolution +
-                             "\": " + e.what());
-    }
-  }
+  for (const auto* c : selected) write_trial_case(study, *c, resolution, scratch.path() / c->id);
   // A directory holding a run's results keeps them only for the case that made them: regenerating
   // it with other settings would leave results that `compare` then reports under the new ones.
   for (const auto* c : selected) {
@@ -202,7 +208,9 @@ void register_case_commands(CLI::App& app) {
   auto* check = app.add_subcommand(
       "check",
       "Validate a study spec and print every case with its derived quantities (q, Fr1, Belanger's y2*, "
-      "E1, E2, eta). Exit status 2 and one message naming file, line and key if the spec is invalid.");
+      "E1, E2, eta); then generate every case at every resolution into a scratch directory (removed "
+      "again), so that what the solvers' own derivations refuse is found here too. Exit status 2 and "
+      "one message naming file, line and key (or file, case and resolution) if the spec is invalid.");
   auto check_spec = std::make_shared<std::string>();
   check->add_option("SPEC", *check_spec,
                     "study file (TOML), or \"default\" for the embedded cases/ead2002.toml")
@@ -210,6 +218,13 @@ void register_case_commands(CLI::App& app) {
   check->callback([check_spec] {
     const auto study = load_spec_argument(*check_spec);
     print_study_summary(study, std::cout);
+    // What only the solvers' derivations find: every case at every resolution it defines is written
+    // once, as `generate` would, into a scratch directory that is removed again.
+    const ScratchDirectory scratch;
+    for (const auto& c : study.cases)
+      for (const auto& [resolution, level] : c.resolutions)
+        write_trial_case(study, c, resolution, scratch.path() / resolution / c.id);
+    std::cout << "every case generates at every resolution (" << study.cases.size() << " cases)\n";
   });
 
   struct GenerateOptions {

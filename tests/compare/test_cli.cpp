@@ -155,7 +155,7 @@ TEST_CASE("hydrojump generate refuses an invalid spec, names the key and writes 
   CHECK_FALSE(fs::exists(out_dir));
 }
 
-TEST_CASE("hydrojump generate refuses what only a solver's derivation finds, and writes nothing", "[compare][integration][cli]") {
+TEST_CASE("hydrojump generate and check refuse what only a solver's derivation finds; generate writes nothing", "[compare][integration][cli]") {
   // A VOF bed cell of 2 cm leaves fewer than 2 cells across y1 = 25.4 mm: the spec's rules pass,
   // the OpenFOAM mesh plan refuses. It used to do so after DIR/A/sph had been written.
   hydrojump::compare::testing::TempDir tmp("derived");
@@ -174,6 +174,10 @@ TEST_CASE("hydrojump generate refuses what only a solver's derivation finds, and
   INFO(log);
   CHECK_THAT(log, Catch::Contains("coarse.toml: case \"A\" at resolution \"quick\": ") && Catch::Contains("inflow depth"));
   CHECK_FALSE(fs::exists(out_dir));
+  // `check` finds it too (it had said the spec was fine).
+  CHECK(run({"check", (tmp.path() / "coarse.toml").string()}, tmp.path() / "check.log") == 2);
+  CHECK_THAT(read_text(tmp.path() / "check.log"), Catch::Contains("coarse.toml: case \"A\" at resolution \"quick\": ") &&
+                                                      Catch::Contains("inflow depth"));
 }
 
 TEST_CASE("hydrojump generate keeps a finished run's results only for the settings that made them", "[compare][integration][cli]") {
@@ -197,10 +201,9 @@ TEST_CASE("hydrojump generate keeps a finished run's results only for the settin
   // Other settings: refused, nothing rewritten.
   const std::string before = read_text(sph_dir / "case.toml");
   const std::string end = "end_time_s = ";
-  REQUIRE(original.find(end) != std::string::npos);
-  std::string changed = original;
-  changed.insert(changed.find(end) + end.size(), "1");  // e.g. 2.0 s -> 12.0 s
-  write_spec(changed);
+  const auto at = original.find(end);
+  REQUIRE(at != std::string::npos);
+  write_spec(original.substr(0, at + end.size()) + "1" + original.substr(at + end.size()));  // 3.0 s -> 13.0 s
   CHECK(run(generate, tmp.path() / "g3.log") == 2);
   const std::string log = read_text(tmp.path() / "g3.log");
   INFO(log);
