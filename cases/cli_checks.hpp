@@ -23,4 +23,9 @@ inline CLI::Validator positive_finite_number() {
       "NUMBER > 0");
 }
 
+// A path that is not empty (an empty --out would write into the current directory).
+inline CLI::Validator non_empty_path() {
+  return CLI::Validator([](std::string& text) -> std::string { return text.empty() ? "must not be empty" : ""; }, "PATH");
+}
+
 }  // namespace hydrojump::cases

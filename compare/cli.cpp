@@ -31,7 +31,7 @@ void register_commands(CLI::App& app) {
       "both against the laboratory values in the spec. Writes comparison.json, csv/*.csv, figures/*.png, "
       "report.md and report.html into RUN_DIR (or --out). A missing result is reported as missing.");
   cmd->add_option("RUN_DIR", o->run_dir, "case directory (holds sph/ and vof/)")->required()->check(CLI::ExistingDirectory);
-  cmd->add_option("--out,-o", o->out_dir, "output directory (default: RUN_DIR)");
+  cmd->add_option("--out,-o", o->out_dir, "output directory (default: RUN_DIR)")->check(cases::non_empty_path());
   cmd->add_option("--interpolation", o->interpolation,
                   "mls_linear: Shepard with a linear (moving-least-squares) correction, exact for linear fields; "
                   "shepard: plain Shepard normalisation")

@@ -13,6 +13,7 @@
 
 #include "cases/geometry.hpp"
 #include "cases/hydraulics.hpp"
+#include "cases/cli_checks.hpp"
 #include "cases/fingerprint.hpp"
 #include "cases/spec_reader.hpp"
 #include "reference/cli.hpp"
@@ -242,7 +243,7 @@ void register_case_commands(CLI::App& app) {
       "written if one fails.");
   generate->add_option("SPEC", options->spec, "study file (TOML), or \"default\" for the embedded one")
       ->required();
-  generate->add_option("--out,-o", options->out, "output directory")->required();
+  generate->add_option("--out,-o", options->out, "output directory")->required()->check(cases::non_empty_path());
   generate->add_option("--case,-c", options->cases, "case id to generate (repeatable; default: all)");
   generate->add_option("--resolution,-r", options->resolution,
                        "resolution level defined in the spec (quick, default, fine)")

@@ -15,6 +15,7 @@
 
 #include "cases/atomic_file.hpp"
 #include "cases/child_process.hpp"
+#include "cases/cli_checks.hpp"
 #include "cases/directory_lock.hpp"
 #include "cases/fingerprint.hpp"
 #include "cases/spec_reader.hpp"
@@ -341,7 +342,7 @@ void register_study_command(CLI::App& app) {
   cmd->add_option("--resolution,-r", options->resolution, "resolution level (quick, default, fine)")
       ->capture_default_str();
   cmd->add_option("--cases", options->cases, "comma-separated case ids (default: all)")->delimiter(',');
-  cmd->add_option("--out,-o", options->out, "study directory")->capture_default_str();
+  cmd->add_option("--out,-o", options->out, "study directory")->capture_default_str()->check(cases::non_empty_path());
   cmd->add_option("--jobs,-j", options->jobs, "cases run at the same time")->check(CLI::Range(1, 64))
       ->capture_default_str();
   cmd->add_option("--np", options->mpi_ranks, "MPI ranks for each OpenFOAM run")->check(CLI::Range(1, 256))

@@ -155,7 +155,7 @@ TEST_CASE("hydrojump generate refuses an invalid spec, names the key and writes 
   CHECK_FALSE(fs::exists(out_dir));
 }
 
-TEST_CASE("hydrojump generate and check refuse what only a solver's derivation finds; generate writes nothing", "[compare][integration][cli]") {
+TEST_CASE("hydrojump generate and check refuse what only a solver's derivation finds, and generate writes nothing", "[compare][integration][cli]") {
   // A VOF bed cell of 2 cm leaves fewer than 2 cells across y1 = 25.4 mm: the spec's rules pass,
   // the OpenFOAM mesh plan refuses. It used to do so after DIR/A/sph had been written.
   hydrojump::compare::testing::TempDir tmp("derived");
@@ -215,7 +215,7 @@ TEST_CASE("hydrojump generate keeps a finished run's results only for the settin
   CHECK(read_text(sph_dir / "case.toml") != before);
 }
 
-TEST_CASE("numeric options refuse nan, inf and non-positive values, naming the option", "[compare][integration][cli]") {
+TEST_CASE("options refuse nan, inf, non-positive numbers, empty paths and the wrong directory, naming the option", "[compare][integration][cli]") {
   // CLI11's PositiveNumber lets "nan" through: `sph --end-time nan` then ran the case's whole end time.
   hydrojump::compare::testing::TempDir tmp("numbers");
   const std::string study = std::string(HYDROJUMP_SOURCE_DIR) + "/cases/poiseuille.toml";
@@ -227,6 +227,21 @@ TEST_CASE("numeric options refuse nan, inf and non-positive values, naming the o
     CHECK_THAT(read_text(tmp.path() / "sph.log"), Catch::Contains("--end-time") && Catch::Contains("must be a finite number > 0"));
   }
   CHECK_FALSE(fs::exists(dir / "checkpoint.bin"));
+  // An empty --out wrote into the current directory.
+  for (const std::string command : {"generate", "study"}) {
+    INFO(command);
+    CHECK(run({command, study, "--out", ""}, tmp.path() / "out.log") != 0);
+    CHECK_THAT(read_text(tmp.path() / "out.log"), Catch::Contains("--out") && Catch::Contains("must not be empty"));
+  }
+  // The OpenFOAM case beside the SPH directory holds the same case.toml; sph refuses it by name.
+  const std::string tank = std::string(HYDROJUMP_SOURCE_DIR) + "/cases/still_water.toml";
+  REQUIRE(run({"generate", tank, "--out", (tmp.path() / "tank").string()}, tmp.path() / "generate_tank.log") == 0);
+  const fs::path vof_dir = tmp.path() / "tank" / "still_water" / "vof";
+  REQUIRE(fs::exists(vof_dir / "system" / "controlDict"));
+  CHECK(run({"sph", vof_dir.string(), "--quiet"}, tmp.path() / "vof_dir.log") != 0);
+  CHECK_THAT(read_text(tmp.path() / "vof_dir.log"),
+             Catch::Contains("is an OpenFOAM case") && Catch::Contains((vof_dir.parent_path() / "sph").string()));
+  CHECK_FALSE(fs::exists(vof_dir / "run_log.csv"));
   CHECK(run({"bench", "--steps", "0"}, tmp.path() / "bench.log") != 0);
   CHECK_THAT(read_text(tmp.path() / "bench.log"), Catch::Contains("--steps: Value 0 not in range 1 to 1000000000"));
 }
