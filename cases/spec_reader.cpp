@@ -597,7 +597,7 @@ std::vector<Section> read_sections(TableReader& c, const toml::array& array, dou
 constexpr double max_fluid_particles = 5.0e6;
 
 // Resolution-dependent checks of one case at one resolution level.
-void check_resolution(const Case& c, const Resolution& r, const std::string& file) {
+void check_resolution(const Case& c, const Resolution& r, double gravity_m_s2, const std::string& file) {
   const auto fail = [&](const std::string& what) {
     throw SpecError(file + ": case \"" + c.id + "\" at resolution \"" + r.name + "\": " + what);
   };
@@ -607,6 +607,15 @@ void check_resolution(const Case& c, const Resolution& r, const std::string& fil
   if (const auto* b = c.stilling_basin()) {
     water_area_m2 = (b->upstream_length_m + b->basin_length_m + b->downstream_length_m) *
                     std::max({b->inflow_depth_m, b->tailwater_depth_m, b->bed.height_m});
+    if (c.sph.inflow_condition == "piston") {
+      // The reservoir (cases/geometry.hpp, add_piston_reservoir): water at most at the energy head
+      // E1 = y1 + U1^2/(2g), over reservoir_length_m or the piston's travel plus 2 H_r.
+      const double head = b->inflow_depth_m + b->inflow_velocity_m_s * b->inflow_velocity_m_s / (2.0 * gravity_m_s2);
+      const double length = c.sph.reservoir_length_m > 0.0
+                                ? c.sph.reservoir_length_m
+                                : b->inflow_depth_m * b->inflow_velocity_m_s / head * c.run.end_time_s + 2.0 * head;
+      water_area_m2 += length * head;
+    }
   } else if (const auto* d = c.dam_break()) {
     water_area_m2 = d->column_width_m * d->column_height_m;
   } else if (const auto* s = c.still_water()) {
@@ -616,7 +625,8 @@ void check_resolution(const Case& c, const Resolution& r, const std::string& fil
   }
   // Fluid particles ~ area / dx^2; each takes ~0.3 kB with its neighbour lists and checkpoint copy.
   if (water_area_m2 / (dx * dx) > max_fluid_particles) {
-    fail("resolution." + r.name + ".particle_spacing_m = " + number_text(dx) + " gives about " + std::to_string(std::llround(water_area_m2 / (dx * dx))) +
+    const double count = std::min(water_area_m2 / (dx * dx), 1e18);  // dx = 1e-200 would square to 0
+    fail("resolution." + r.name + ".particle_spacing_m = " + number_text(dx) + " gives about " + std::to_string(std::llround(count)) +
          " fluid particles: must be at most " + std::to_string(std::llround(max_fluid_particles)) + ", i.e. particle_spacing_m >= " +
          number_text(std::sqrt(water_area_m2 / max_fluid_particles)) + " m");
   }
@@ -761,7 +771,7 @@ Study parse_study(std::string_view toml_text, const std::string& source_name,
     if (!ids.insert(parsed.id).second) {
       named.fail_at(node.as_table()->get("id"), "id", "= \"" + parsed.id + "\" is used by two cases: ids must be unique");
     }
-    for (const auto& [name, r] : parsed.resolutions) check_resolution(parsed, r, source_name);
+    for (const auto& [name, r] : parsed.resolutions) check_resolution(parsed, r, study.fluid.gravity_m_s2, source_name);
     study.cases.push_back(std::move(parsed));
     ++index;
   }
@@ -786,7 +796,7 @@ Study load_embedded_default_study() {
 }
 
 void validate_for_resolution(const Study& study, const Case& c, const std::string& resolution) {
-  check_resolution(c, c.resolution(resolution), study.source_file.string());
+  check_resolution(c, c.resolution(resolution), study.fluid.gravity_m_s2, study.source_file.string());
 }
 
 namespace {

@@ -1,6 +1,8 @@
 #include "compare/generate.hpp"
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
 #include <cstdio>
 #include <iomanip>
 #include <iostream>
@@ -8,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <stdlib.h>
 
@@ -116,14 +119,32 @@ std::string resolved_settings(const std::filesystem::path& case_toml) {
 // and the resolution.
 void write_trial_case(const cases::Study& study, const cases::Case& c, const std::string& resolution,
                       const std::filesystem::path& dir) {
+  // The derivations refuse a case with std::invalid_argument; anything else (a full disk, memory)
+  // is not the spec's fault and passes unchanged.
   try {
     write_case(study, c, resolution, dir);
-  } catch (const cases::SpecError&) {
-    throw;
-  } catch (const std::exception& e) {
+  } catch (const std::invalid_argument& e) {
     throw cases::SpecError(study.source_file.string() + ": case \"" + c.id + "\" at resolution \"" + resolution +
                            "\": " + e.what());
   }
+}
+
+// The first setting line (comments left out) where two resolved case.toml files differ, as
+// "'<line a>' where the spec now gives '<line b>'".
+std::string first_difference(const std::filesystem::path& a, const std::filesystem::path& b) {
+  const auto settings_lines = [](const std::filesystem::path& file) {
+    std::istringstream in(cases::read_text_file(file));
+    std::vector<std::string> lines;
+    for (std::string line; std::getline(in, line);)
+      if (line.rfind('#', 0) != 0) lines.push_back(line);
+    return lines;
+  };
+  const auto la = settings_lines(a), lb = settings_lines(b);
+  for (std::size_t k = 0; k < std::max(la.size(), lb.size()); ++k) {
+    const std::string x = k < la.size() ? la[k] : "(end)", y = k < lb.size() ? lb[k] : "(end)";
+    if (x != y) return "'" + x + "' where the spec now gives '" + y + "'";
+  }
+  return "the same lines but another fingerprint";
 }
 
 // A fresh directory under the system's temporary directory, removed with its contents at scope exit.
@@ -132,7 +153,8 @@ class ScratchDirectory {
   ScratchDirectory() {
     std::string name = (std::filesystem::temp_directory_path() / "hydrojump-generate-XXXXXX").string();
     if (::mkdtemp(name.data()) == nullptr)
-      throw std::runtime_error("cannot create a scratch directory under " + std::filesystem::temp_directory_path().string());
+      throw std::runtime_error("cannot create a scratch directory under " + std::filesystem::temp_directory_path().string() +
+                               ": " + std::strerror(errno));
     path_ = name;
   }
   ~ScratchDirectory() {
@@ -185,12 +207,16 @@ void generate_cases(const cases::Study& study, const std::vector<const cases::Ca
   for (const auto* c : selected) {
     const auto dir = out_dir / c->id;
     for (const char* method : {"sph", "vof"}) {
+      if (!holds_results(dir / method)) continue;
       const auto existing = dir / method / "case.toml";
-      if (!holds_results(dir / method) || !std::filesystem::exists(existing)) continue;
-      if (resolved_settings(existing) != resolved_settings(scratch.path() / c->id / method / "case.toml"))
-        throw cases::SpecError((dir / method).string() + " holds the results of a run of case \"" + c->id +
-                               "\" with other settings (its case.toml differs from what " + study.source_file.string() +
-                               " gives at resolution \"" + resolution + "\"): move it away or choose another --out");
+      const auto wanted = scratch.path() / c->id / method / "case.toml";
+      if (!std::filesystem::exists(existing))
+        throw std::runtime_error((dir / method).string() + " holds the results of a run but no case.toml: move it away or choose another --out");
+      if (resolved_settings(existing) != resolved_settings(wanted))
+        throw std::runtime_error((dir / method).string() + " holds the results of a run of case \"" + c->id +
+                                 "\" with other settings (its case.toml has " + first_difference(existing, wanted) + " from " +
+                                 study.source_file.string() + " at resolution \"" + resolution +
+                                 "\"): move it away or choose another --out");
     }
   }
   for (const auto* c : selected) {

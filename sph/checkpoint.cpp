@@ -1,6 +1,7 @@
 #include "sph/checkpoint.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -95,16 +96,21 @@ namespace {
 // file): a clock that is not a finite time >= 0, unknown particle types, non-finite particle state,
 // no fluid at all. Resuming from it would run on garbage or not at all, so it is refused by name.
 void check_contents(const Checkpoint& c, const std::filesystem::path& file) {
+  const auto seconds = [](double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g s", v);
+    return std::string(text);
+  };
   const auto damaged = [&](const std::string& what) {
     throw std::runtime_error("checkpoint '" + file.string() + "' is damaged: " + what + "; start the run again with --restart");
   };
   const auto& k = c.clock;
-  if (!std::isfinite(k.time) || k.time < 0.0) damaged("its time is " + std::to_string(k.time) + " s");
-  if (!std::isfinite(k.last_dt) || k.last_dt < 0.0) damaged("its last time step is " + std::to_string(k.last_dt) + " s");
+  if (!std::isfinite(k.time) || k.time < 0.0) damaged("its time is " + seconds(k.time));
+  if (!std::isfinite(k.last_dt) || k.last_dt < 0.0) damaged("its last time step is " + seconds(k.last_dt));
   if (k.steps < 0) damaged("its step count is negative");
   if (!std::isfinite(k.inflow_mass) || !std::isfinite(k.outflow_mass)) damaged("its inflow/outflow mass is not finite");
   if (!std::isfinite(c.next_output_time) || c.next_output_time < 0.0)
-    damaged("its next output time is " + std::to_string(c.next_output_time) + " s");
+    damaged("its next output time is " + seconds(c.next_output_time));
   Eigen::Index fluid = 0;
   for (Eigen::Index i = 0; i < c.particles.size(); ++i) {
     const auto t = c.particles.type[i];
@@ -113,9 +119,10 @@ void check_contents(const Checkpoint& c, const std::filesystem::path& file) {
     if (t == static_cast<std::uint8_t>(ParticleType::fluid)) ++fluid;
   }
   if (fluid == 0) damaged("it holds no fluid particle");
-  bool finite = true;
-  c.particles.for_each_real_array([&](const Vector& v) { finite = finite && v.allFinite(); });
-  if (!finite) damaged("a particle's state is not finite (NaN or Inf)");
+  // The integrated state (what the run's own check, diagnose(), watches); derived arrays are rebuilt.
+  const auto& ps = c.particles;
+  for (const Vector* v : {&ps.x, &ps.z, &ps.u, &ps.w, &ps.rho, &ps.mass})
+    if (!v->allFinite()) damaged("a particle's position, velocity, density or mass is not finite (NaN or Inf)");
 }
 
 }  // namespace

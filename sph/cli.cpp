@@ -71,9 +71,11 @@ int run_sph_directory(const SphOptions& opt) {
     throw std::runtime_error("'" + case_file.string() +
                              "' not found: DIR must be a directory written by `hydrojump generate` (DIR/<case>/sph)");
   // generate writes the same case.toml into DIR/<case>/vof: an OpenFOAM case is not an SPH run directory.
-  if (std::filesystem::exists(dir / "system" / "controlDict"))
+  if (std::filesystem::exists(dir / "system" / "controlDict")) {
+    const auto named = dir.has_filename() ? dir : dir.parent_path();  // "runs/A/vof/" names runs/A/vof
     throw std::runtime_error("'" + dir.string() + "' is an OpenFOAM case (it has system/controlDict; run it with `hydrojump vof`): " +
-                             "`hydrojump sph` runs the SPH directory beside it, " + (dir.parent_path() / "sph").string());
+                             "`hydrojump sph` runs the SPH directory beside it, " + (named.parent_path() / "sph").string());
+  }
   // One process per run directory (a second one stops here, naming the first).
   const cases::DirectoryLock lock(dir, "hydrojump sph");
   if (opt.threads > 0) omp_set_num_threads(opt.threads);

@@ -258,6 +258,14 @@ TEST_CASE("Non-physical values are rejected with the allowed range", "[cases][sp
     const auto msg = rejection(replaced(valid_spec, "particle_spacing_m = 0.005", "particle_spacing_m = 0.0001"));
     CHECK_THAT(msg, Catch::Contains("spec.toml: case \"A\" at resolution \"quick\": resolution.quick.particle_spacing_m = 0.0001 gives about 18304000 fluid particles: must be at most 5000000"));
   }
+  SECTION("a piston reservoir counts towards the 5 million fluid particles") {
+    // dx = 0.3 mm: the basin alone holds ~2.0 million, with the reservoir (E1 = 0.229 m deep, the
+    // piston's 10 s of travel plus 2 E1 long) ~8.8 million.
+    const std::string piston = "[sph]\ninflow_condition = \"piston\"\nsluice_opening_m = 0.04\n\n[[case]]";
+    CHECK_NOTHROW(parse_study(replaced(valid_spec, "particle_spacing_m = 0.005", "particle_spacing_m = 0.0003"), "spec.toml", "."));
+    const auto msg = rejection(replaced(replaced(valid_spec, "particle_spacing_m = 0.005", "particle_spacing_m = 0.0003"), "[[case]]", piston));
+    CHECK_THAT(msg, Catch::Contains("particle_spacing_m = 0.0003 gives about 88") && Catch::Contains("fluid particles: must be at most 5000000"));
+  }
   SECTION("too few particles across y1") {
     const auto msg = rejection(replaced(valid_spec, "particle_spacing_m = 0.005", "particle_spacing_m = 0.0125"));
     CHECK_THAT(msg, Catch::Contains("inflow.depth_m = 0.0254"));

@@ -136,7 +136,8 @@ TEST_CASE("a checkpoint whose contents are damaged is refused by name", "[sph][r
   refused([](Checkpoint& c) { c.clock.time = -1e300; }, "its time is");
   refused([](Checkpoint& c) { c.particles.type.setConstant(200); }, "particle 0 has the unknown type 200");
   refused([](Checkpoint& c) { c.particles.type.setConstant(1); }, "it holds no fluid particle");
-  refused([](Checkpoint& c) { c.particles.x[3] = std::numeric_limits<double>::infinity(); }, "a particle's state is not finite");
+  refused([](Checkpoint& c) { c.particles.x[3] = std::numeric_limits<double>::infinity(); }, "a particle's position, velocity, density or mass is not finite");
+  refused([](Checkpoint& c) { c.clock.last_dt = -1.0; }, "its last time step is -1 s");
   refused([](Checkpoint& c) { c.next_output_time = std::numeric_limits<double>::quiet_NaN(); }, "its next output time");
 }
 
