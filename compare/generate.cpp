@@ -100,17 +100,24 @@ bool holds_results(const std::filesystem::path& dir) {
   return false;
 }
 
-// What identifies a resolved case.toml's run: its settings as the SPH resume check sees them
-// (sph::run_fingerprint: the settings a resumed run may change left out), without comment lines
-// (they name the spec file, however it was spelt on the command line).
-std::string resolved_settings(const std::filesystem::path& case_toml) {
+// The setting lines of a resolved case.toml: every line but the comments (they name the spec file,
+// however it was spelt on the command line).
+std::vector<std::string> setting_lines(const std::filesystem::path& case_toml) {
   std::istringstream in(cases::read_text_file(case_toml));
-  std::string kept;
+  std::vector<std::string> lines;
   for (std::string line; std::getline(in, line);)
-    if (line.rfind('#', 0) != 0) {
-      kept += line;
-      kept += '\n';
-    }
+    if (line.rfind('#', 0) != 0) lines.push_back(line);
+  return lines;
+}
+
+// What identifies a resolved case.toml's run: its setting lines as the SPH resume check sees them
+// (sph::run_fingerprint: the settings a resumed run may change left out).
+std::string resolved_settings(const std::filesystem::path& case_toml) {
+  std::string kept;
+  for (const auto& line : setting_lines(case_toml)) {
+    kept += line;
+    kept += '\n';
+  }
   return sph::run_fingerprint(kept);
 }
 
@@ -132,14 +139,7 @@ void write_trial_case(const cases::Study& study, const cases::Case& c, const std
 // The first setting line (comments left out) where two resolved case.toml files differ, as
 // "'<line a>' where the spec now gives '<line b>'".
 std::string first_difference(const std::filesystem::path& a, const std::filesystem::path& b) {
-  const auto settings_lines = [](const std::filesystem::path& file) {
-    std::istringstream in(cases::read_text_file(file));
-    std::vector<std::string> lines;
-    for (std::string line; std::getline(in, line);)
-      if (line.rfind('#', 0) != 0) lines.push_back(line);
-    return lines;
-  };
-  const auto la = settings_lines(a), lb = settings_lines(b);
+  const auto la = setting_lines(a), lb = setting_lines(b);
   for (std::size_t k = 0; k < std::max(la.size(), lb.size()); ++k) {
     const std::string x = k < la.size() ? la[k] : "(end)", y = k < lb.size() ? lb[k] : "(end)";
     if (x != y) return "'" + x + "' where the spec now gives '" + y + "'";
