@@ -11,6 +11,7 @@
 #include "cases/fingerprint.hpp"
 #include "cases/geometry.hpp"
 #include "cases/hydraulics.hpp"
+#include "cases/results_case.hpp"
 #include "cases/spec_reader.hpp"
 #include "compare/readers.hpp"
 #include "compare/report.hpp"
@@ -21,8 +22,12 @@ namespace fs = std::filesystem;
 namespace hydrojump::compare {
 
 cases::Study load_run_case(const fs::path& run_dir) {
-  for (const fs::path& p : {run_dir / "sph" / "case.toml", run_dir / "vof" / "case.toml"})
-    if (fs::exists(p)) return cases::load_study(p);
+  for (const fs::path& p : {run_dir / "sph" / "case.toml", run_dir / "vof" / "case.toml"}) {
+    if (!fs::exists(p)) continue;
+    // Both methods' results are reported under this case: each must have been made with it.
+    for (const char* method : {"sph", "vof"}) cases::require_results_of(run_dir / method, p);
+    return cases::load_study(p);
+  }
   throw std::runtime_error(run_dir.string() + ": no case.toml in " + (run_dir / "sph").string() + " or " +
                            (run_dir / "vof").string() + " (is this a directory written by `hydrojump generate`?)");
 }

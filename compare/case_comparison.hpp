@@ -60,7 +60,8 @@ struct CaseComparison {
   std::vector<MetricRow> metrics;
 };
 
-// Reads the one-case spec in RUN_DIR/sph/case.toml or RUN_DIR/vof/case.toml. Throws naming both paths.
+// Reads the one-case spec in RUN_DIR/sph/case.toml or RUN_DIR/vof/case.toml. Throws naming both paths,
+// or when a method's results were made with other settings (cases/results_case.hpp).
 cases::Study load_run_case(const std::filesystem::path& run_dir);
 
 // Everything except writing: samples both methods and computes metrics and discrepancies.

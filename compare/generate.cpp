@@ -18,6 +18,7 @@
 #include "cases/hydraulics.hpp"
 #include "cases/cli_checks.hpp"
 #include "cases/fingerprint.hpp"
+#include "cases/results_case.hpp"
 #include "cases/spec_reader.hpp"
 #include "reference/cli.hpp"
 #include "sph/cli.hpp"
@@ -93,34 +94,6 @@ void write_case(const cases::Study& study, const cases::Case& c, const std::stri
   reference::write_vof_case(study, c, resolution, dir / "vof");
 }
 
-// Whether a solver's directory holds results of a run (SPH outputs or checkpoint, an OpenFOAM log).
-bool holds_results(const std::filesystem::path& dir) {
-  for (const char* name : {"checkpoint.bin", "particles.pvd", "summary.json", "log.interFoam"})
-    if (std::filesystem::exists(dir / name)) return true;
-  return false;
-}
-
-// The setting lines of a resolved case.toml: every line but the comments (they name the spec file,
-// however it was spelt on the command line).
-std::vector<std::string> setting_lines(const std::filesystem::path& case_toml) {
-  std::istringstream in(cases::read_text_file(case_toml));
-  std::vector<std::string> lines;
-  for (std::string line; std::getline(in, line);)
-    if (line.rfind('#', 0) != 0) lines.push_back(line);
-  return lines;
-}
-
-// What identifies a resolved case.toml's run: its setting lines as the SPH resume check sees them
-// (sph::run_fingerprint: the settings a resumed run may change left out).
-std::string resolved_settings(const std::filesystem::path& case_toml) {
-  std::string kept;
-  for (const auto& line : setting_lines(case_toml)) {
-    kept += line;
-    kept += '\n';
-  }
-  return sph::run_fingerprint(kept);
-}
-
 // Writes case `c` into `dir` as `generate` would, reporting what the solvers' derivations refuse
 // (particle generation, gates, the OpenFOAM mesh plan) as an error of the spec: its file, the case
 // and the resolution.
@@ -134,17 +107,6 @@ void write_trial_case(const cases::Study& study, const cases::Case& c, const std
     throw cases::SpecError(study.source_file.string() + ": case \"" + c.id + "\" at resolution \"" + resolution +
                            "\": " + e.what());
   }
-}
-
-// The first setting line (comments left out) where two resolved case.toml files differ, as
-// "'<line a>' where the spec now gives '<line b>'".
-std::string first_difference(const std::filesystem::path& a, const std::filesystem::path& b) {
-  const auto la = setting_lines(a), lb = setting_lines(b);
-  for (std::size_t k = 0; k < std::max(la.size(), lb.size()); ++k) {
-    const std::string x = k < la.size() ? la[k] : "(end)", y = k < lb.size() ? lb[k] : "(end)";
-    if (x != y) return "'" + x + "' where the spec now gives '" + y + "'";
-  }
-  return "the same lines but another fingerprint";
 }
 
 // A fresh directory under the system's temporary directory, removed with its contents at scope exit.
@@ -207,16 +169,21 @@ void generate_cases(const cases::Study& study, const std::vector<const cases::Ca
   for (const auto* c : selected) {
     const auto dir = out_dir / c->id;
     for (const char* method : {"sph", "vof"}) {
-      if (!holds_results(dir / method)) continue;
-      const auto existing = dir / method / "case.toml";
+      if (!cases::holds_results(dir / method)) continue;
+      // The case the results were made with (recorded when the run started; runs of earlier versions
+      // did not record it, their case.toml is it).
+      const auto recorded = std::filesystem::exists(dir / method / cases::results_case_file_name)
+                                ? dir / method / cases::results_case_file_name
+                                : dir / method / "case.toml";
       const auto wanted = scratch.path() / c->id / method / "case.toml";
-      if (!std::filesystem::exists(existing))
+      if (!std::filesystem::exists(recorded))
         throw std::runtime_error((dir / method).string() + " holds the results of a run but no case.toml: move it away or choose another --out");
-      if (resolved_settings(existing) != resolved_settings(wanted))
+      const auto d = cases::first_setting_difference(cases::read_text_file(recorded), cases::read_text_file(wanted));
+      if (d.any())
         throw std::runtime_error((dir / method).string() + " holds the results of a run of case \"" + c->id +
-                                 "\" with other settings (its case.toml has " + first_difference(existing, wanted) + " from " +
-                                 study.source_file.string() + " at resolution \"" + resolution +
-                                 "\"): move it away or choose another --out");
+                                 "\" with other settings (its " + recorded.filename().string() + " has '" + d.a +
+                                 "' where the spec now gives '" + d.b + "' from " + study.source_file.string() +
+                                 " at resolution \"" + resolution + "\"): move it away or choose another --out");
     }
   }
   for (const auto* c : selected) {

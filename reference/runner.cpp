@@ -25,6 +25,7 @@
 #include "cases/atomic_file.hpp"
 #include "cases/child_process.hpp"
 #include "cases/directory_lock.hpp"
+#include "cases/results_case.hpp"
 #include "cases/spec_reader.hpp"
 #include "reference/case_writer.hpp"
 #include "reference/foam_dictionary.hpp"
@@ -493,6 +494,9 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
                         "start again");
   }
   if (options.resume && start) {
+    // The dictionaries were written from the case the run started with: an edited case.toml would
+    // describe other results (checked before anything is moved).
+    cases::require_results_of(dir, dir / "case.toml");
     if (continue_decomposed && existing_ranks != options.np) {
       throw OpenFoamError(dir.string() + " was decomposed for " + std::to_string(existing_ranks) +
                           " MPI ranks: resume with --np " + std::to_string(existing_ranks));
@@ -524,6 +528,8 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
 
   const auto wall_begin = std::chrono::steady_clock::now();
   if (!start) {
+    // What `compare` and `generate` check these results against.
+    cases::record_results_case(dir);
     // ---- mesh, check, initial fields
     out << "Meshing (" << vof.mesh.strategy << ")\n";
     std::map<std::string, int> used;

@@ -3,6 +3,7 @@
 #include "cases/cli_checks.hpp"
 #include "cases/directory_lock.hpp"
 #include "cases/fingerprint.hpp"
+#include "cases/results_case.hpp"
 #include "hydrojump/version.hpp"
 
 #include <atomic>
@@ -40,9 +41,7 @@ std::string run_fingerprint(const std::string& case_text) {
   std::istringstream in(case_text);
   std::string kept;
   for (std::string line; std::getline(in, line);) {
-    const auto start = line.find_first_not_of(" \t");
-    const std::string_view body = start == std::string::npos ? std::string_view{} : std::string_view(line).substr(start);
-    if (body.rfind("max_density_variation", 0) == 0 || body.rfind("checkpoint_interval_wall_s", 0) == 0) continue;
+    if (cases::is_run_control_line(line)) continue;
     kept += line;
     kept += '\n';
   }
@@ -144,6 +143,8 @@ int run_sph_directory(const SphOptions& opt) {
       if (snapshot || name == "failure.txt" || name == "failure_state.vtp" || name == "checkpoint.bin")
         std::filesystem::remove(entry.path());
     }
+    // What `compare` and `generate` check these results against.
+    cases::record_results_case(dir);
   }
   std::unique_ptr<Solver> solver;
   if (checkpoint) {

@@ -216,6 +216,48 @@ TEST_CASE("hydrojump generate keeps a finished run's results only for the settin
   CHECK(read_text(sph_dir / "case.toml") != before);
 }
 
+TEST_CASE("hydrojump compare refuses results made with other settings than the case.toml it reads", "[compare][integration][cli]") {
+  // A hand-edited case.toml beside finished results made `compare` report them under the edited
+  // settings. Each solver now records the case its run started with (results_case.toml).
+  hydrojump::compare::testing::TempDir tmp("results_case");
+  const std::string spec = std::string(HYDROJUMP_SOURCE_DIR) + "/cases/poiseuille.toml";
+  REQUIRE(run({"generate", spec, "--out", (tmp.path() / "runs").string()}, tmp.path() / "generate.log") == 0);
+  const fs::path run_dir = tmp.path() / "runs" / "poiseuille";
+  const fs::path sph_dir = run_dir / "sph";
+  REQUIRE(run({"sph", sph_dir.string(), "--end-time", "0.01", "--threads", "1", "--quiet"}, tmp.path() / "sph.log") == 0);
+  REQUIRE(read_text(sph_dir / "results_case.toml") == read_text(sph_dir / "case.toml"));
+  const std::string original = read_text(sph_dir / "case.toml");
+  const auto replaced = [&](const std::string& from, const std::string& to) {
+    std::string text = original;
+    REQUIRE(text.find(from) != std::string::npos);
+    return text.replace(text.find(from), from.size(), to);
+  };
+  // The results' own case: compare goes on (and stops later: it compares stilling basins only).
+  CHECK(run({"compare", run_dir.string()}, tmp.path() / "c1.log") != 0);
+  CHECK_THAT(read_text(tmp.path() / "c1.log"), Catch::Contains("handles kind \"stilling_basin\" only"));
+  // Another setting in the case.toml beside the SPH results: refused, naming both lines.
+  { std::ofstream(sph_dir / "case.toml") << replaced("cfl_number = 0.2", "cfl_number = 0.1"); }
+  CHECK(run({"compare", run_dir.string()}, tmp.path() / "c2.log") != 0);
+  std::string log = read_text(tmp.path() / "c2.log");
+  INFO(log);
+  CHECK_THAT(log, Catch::Contains(sph_dir.string() + " holds results made with other settings") &&
+                      Catch::Contains("results_case.toml has 'cfl_number = 0.2'") && Catch::Contains("has 'cfl_number = 0.1'"));
+  // A relaxed stability limit (what a resumed run may change) is the same case.
+  { std::ofstream(sph_dir / "case.toml") << replaced("max_density_variation = 0.05", "max_density_variation = 0.2"); }
+  CHECK(run({"compare", run_dir.string()}, tmp.path() / "c3.log") != 0);
+  CHECK_THAT(read_text(tmp.path() / "c3.log"), Catch::Contains("handles kind \"stilling_basin\" only"));
+  // OpenFOAM results are reported under the same case.toml: an OpenFOAM case run with other settings
+  // (no record: a run of an earlier version, its own case.toml) is refused too.
+  { std::ofstream(sph_dir / "case.toml") << original; }
+  const fs::path vof_dir = run_dir / "vof";
+  { std::ofstream(vof_dir / "case.toml") << replaced("end_time_s = 3.0", "end_time_s = 4.0"); }
+  { std::ofstream(vof_dir / "log.interFoam") << "Time = 0.1\n"; }
+  CHECK(run({"compare", run_dir.string()}, tmp.path() / "c4.log") != 0);
+  log = read_text(tmp.path() / "c4.log");
+  CHECK_THAT(log, Catch::Contains(vof_dir.string() + " holds results made with other settings") &&
+                      Catch::Contains("case.toml has 'end_time_s = 4.0'"));
+}
+
 TEST_CASE("options refuse nan, inf, non-positive numbers, empty paths and the wrong directory, naming the option", "[compare][integration][cli]") {
   // CLI11's PositiveNumber lets "nan" through: `sph --end-time nan` then ran the case's whole end time.
   hydrojump::compare::testing::TempDir tmp("numbers");

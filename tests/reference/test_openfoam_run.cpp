@@ -134,6 +134,21 @@ TEST_CASE("a tiny corrugated basin meshes, passes checkMesh, runs and resumes", 
   }
   reference::RunOptions resume;
   resume.resume = true;
+  // The run recorded its case; a case.toml edited since would describe other results than the
+  // dictionaries the run uses: resuming is refused, naming the line.
+  const std::string case_text = read(dir / "case.toml");
+  CHECK(read(dir / "results_case.toml") == case_text);
+  {
+    std::string edited = case_text;
+    const std::string key = "description = \"";
+    REQUIRE(edited.find(key) != std::string::npos);
+    edited.replace(edited.find(key), key.size(), key + "edited ");
+    std::ofstream(dir / "case.toml") << edited;
+  }
+  std::ostringstream refused;
+  CHECK_THROWS_WITH(reference::run_vof_case(dir, resume, refused),
+                    Catch::Contains("holds results made with other settings") && Catch::Contains("edited "));
+  { std::ofstream(dir / "case.toml") << case_text; }
   std::ostringstream out2;
   reference::run_vof_case(dir, resume, out2);
   CHECK_THAT(out2.str(), Catch::Contains("Resuming from t = 0.01"));

@@ -1,0 +1,75 @@
+#include "cases/results_case.hpp"
+
+#include <algorithm>
+#include <sstream>
+#include <stdexcept>
+
+#include "cases/atomic_file.hpp"
+#include "cases/fingerprint.hpp"
+
+namespace fs = std::filesystem;
+
+namespace hydrojump::cases {
+
+bool is_run_control_line(std::string_view line) {
+  const auto start = line.find_first_not_of(" \t");
+  if (start == std::string_view::npos) return false;
+  const std::string_view body = line.substr(start);
+  for (const std::string_view key : {"max_density_variation", "checkpoint_interval_wall_s"}) {
+    if (body.rfind(key, 0) != 0) continue;
+    const auto next = body.find_first_not_of(" \t", key.size());
+    if (next != std::string_view::npos && body[next] == '=') return true;
+  }
+  return false;
+}
+
+std::vector<std::string> setting_lines(std::string_view case_text) {
+  std::istringstream in{std::string(case_text)};
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) {
+    const auto start = line.find_first_not_of(" \t");
+    if (start != std::string::npos && line[start] == '#') continue;
+    if (is_run_control_line(line)) continue;
+    lines.push_back(line);
+  }
+  return lines;
+}
+
+SettingDifference first_setting_difference(std::string_view case_text_a, std::string_view case_text_b) {
+  const auto la = setting_lines(case_text_a), lb = setting_lines(case_text_b);
+  for (std::size_t k = 0; k < std::max(la.size(), lb.size()); ++k) {
+    const std::string x = k < la.size() ? la[k] : "(end)", y = k < lb.size() ? lb[k] : "(end)";
+    if (x != y) return {x, y};
+  }
+  return {};
+}
+
+bool holds_results(const fs::path& solver_dir) {
+  for (const char* name : {"checkpoint.bin", "particles.pvd", "summary.json", "log.interFoam"})
+    if (fs::exists(solver_dir / name)) return true;
+  return false;
+}
+
+void record_results_case(const fs::path& solver_dir) {
+  const fs::path case_toml = solver_dir / "case.toml";
+  const std::string text = read_text_file(case_toml);
+  if (text.empty()) throw std::runtime_error("cannot read " + case_toml.string());
+  write_file_atomically(solver_dir / results_case_file_name, text);
+}
+
+void require_results_of(const fs::path& solver_dir, const fs::path& case_toml) {
+  if (!holds_results(solver_dir)) return;
+  const fs::path recorded = fs::exists(solver_dir / results_case_file_name) ? solver_dir / results_case_file_name
+                                                                              : solver_dir / "case.toml";
+  if (!fs::exists(recorded))
+    throw std::runtime_error(solver_dir.string() + " holds the results of a run but no case.toml: they cannot be "
+                             "told apart from another case's (move the directory away, or generate the case again "
+                             "and rerun it)");
+  const auto d = first_setting_difference(read_text_file(recorded), read_text_file(case_toml));
+  if (!d.any()) return;
+  throw std::runtime_error(solver_dir.string() + " holds results made with other settings than " + case_toml.string() +
+                           ": " + recorded.filename().string() + " has '" + d.a + "' where " + case_toml.string() +
+                           " has '" + d.b + "' (generate the case again and rerun it, or restore the case.toml)");
+}
+
+}  // namespace hydrojump::cases

@@ -1,0 +1,51 @@
+// The case a solver directory's results were made with. `generate` writes the resolved case.toml
+// into DIR/sph and DIR/vof; each solver copies it to results_case.toml when a run starts afresh, so
+// later readers (`compare`, `generate` over a finished run) can tell whether the results still
+// belong to the case.toml beside them.
+//
+// Two resolved cases are the same run when their setting lines agree: comments (which name the spec
+// file however it was spelt) and the run-control settings a resumed run may change
+// (sph.max_density_variation, sph.checkpoint_interval_wall_s) are left out.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace hydrojump::cases {
+
+// The file beside case.toml that records the case a run started with.
+inline constexpr const char* results_case_file_name = "results_case.toml";
+
+// Whether `line` (of a resolved case.toml) is a run-control setting: it never changes the trajectory
+// (the stability limit checked after each step, the checkpoint interval), so a run may be resumed
+// with another value.
+bool is_run_control_line(std::string_view line);
+
+// The lines of a resolved case text that define its run: every line but comments and run-control
+// settings.
+std::vector<std::string> setting_lines(std::string_view case_text);
+
+// The first setting line where two case texts differ, as {line of a, line of b} ("(end)" past the
+// last line); both empty when their settings agree.
+struct SettingDifference {
+  std::string a, b;
+  bool any() const { return !a.empty() || !b.empty(); }
+};
+SettingDifference first_setting_difference(std::string_view case_text_a, std::string_view case_text_b);
+
+// Whether a solver directory holds results of a run (SPH outputs or checkpoint, an OpenFOAM log).
+bool holds_results(const std::filesystem::path& solver_dir);
+
+// Records `solver_dir`/case.toml as the case of the run starting there (results_case.toml, written
+// atomically).
+void record_results_case(const std::filesystem::path& solver_dir);
+
+// Throws std::runtime_error when `solver_dir` holds results that were made with settings other than
+// those of `case_toml` (its results_case.toml, or its own case.toml for runs of earlier versions that
+// did not record one), naming the first differing setting and what to do. Nothing to check (returns)
+// when it holds no results.
+void require_results_of(const std::filesystem::path& solver_dir, const std::filesystem::path& case_toml);
+
+}  // namespace hydrojump::cases

@@ -1,0 +1,90 @@
+// The case a run's results were made with (cases/results_case.hpp): which lines define a run, the
+// first difference between two resolved cases, and the refusal of results made with other settings.
+#include <catch2/catch.hpp>
+
+#include <fstream>
+#include <unistd.h>
+
+#include "cases/fingerprint.hpp"
+#include "cases/results_case.hpp"
+
+namespace fs = std::filesystem;
+using namespace hydrojump::cases;
+
+namespace {
+
+void write(const fs::path& file, const std::string& text) {
+  std::ofstream(file) << text;
+}
+
+const std::string resolved_case =
+    "# Resolved by hydrojump from a.toml\n"
+    "[sph]\n"
+    "cfl_number = 0.2\n"
+    "max_density_variation = 0.3\n"
+    "checkpoint_interval_wall_s = 300.0\n"
+    "[case.run]\n"
+    "end_time_s = 10.0\n";
+
+}  // namespace
+
+TEST_CASE("results_case: run-control lines and comments do not define a run, every other line does", "[cases][results_case]") {
+  CHECK(is_run_control_line("max_density_variation = 0.3"));
+  CHECK(is_run_control_line("  checkpoint_interval_wall_s=60"));
+  CHECK_FALSE(is_run_control_line("max_density_variation_extra = 1"));
+  CHECK_FALSE(is_run_control_line("cfl_number = 0.2"));
+  CHECK_FALSE(is_run_control_line(""));
+  CHECK(setting_lines(resolved_case) ==
+        std::vector<std::string>{"[sph]", "cfl_number = 0.2", "[case.run]", "end_time_s = 10.0"});
+  // Another spec file's name, another stability limit or checkpoint interval: the same run.
+  std::string relaxed = resolved_case;
+  relaxed.replace(relaxed.find("a.toml"), 6, "./b.toml");
+  relaxed.replace(relaxed.find("0.3"), 3, "0.45");
+  relaxed.replace(relaxed.find("300.0"), 5, "60.0");
+  CHECK_FALSE(first_setting_difference(resolved_case, relaxed).any());
+  // Another setting: named by its lines.
+  std::string changed = resolved_case;
+  changed.replace(changed.find("end_time_s = 10.0"), 17, "end_time_s = 12.0");
+  const auto d = first_setting_difference(resolved_case, changed);
+  CHECK(d.a == "end_time_s = 10.0");
+  CHECK(d.b == "end_time_s = 12.0");
+  const auto shorter = first_setting_difference(resolved_case, "[sph]\ncfl_number = 0.2\n");
+  CHECK(shorter.a == "[case.run]");
+  CHECK(shorter.b == "(end)");
+}
+
+TEST_CASE("results_case: results are refused under a case.toml other than the one they were made with", "[cases][results_case]") {
+  const fs::path dir = fs::temp_directory_path() / ("hydrojump_test_results_case_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "sph");
+  const fs::path sph = dir / "sph";
+  write(sph / "case.toml", resolved_case);
+  // No results: nothing to check, whatever the case.
+  write(dir / "other.toml", "[case.run]\nend_time_s = 1.0\n");
+  CHECK_NOTHROW(require_results_of(sph, dir / "other.toml"));
+  // A run starts: its case is recorded; then the case.toml beside it is edited by hand.
+  record_results_case(sph);
+  CHECK(read_text_file(sph / results_case_file_name) == resolved_case);
+  write(sph / "summary.json", "{}\n");
+  CHECK_NOTHROW(require_results_of(sph, sph / "case.toml"));
+  std::string edited = resolved_case;
+  edited.replace(edited.find("cfl_number = 0.2"), 16, "cfl_number = 0.1");
+  write(sph / "case.toml", edited);
+  CHECK_THROWS_WITH(require_results_of(sph, sph / "case.toml"),
+                    Catch::Contains(sph.string() + " holds results made with other settings") &&
+                        Catch::Contains("results_case.toml has 'cfl_number = 0.2' where") &&
+                        Catch::Contains("has 'cfl_number = 0.1'"));
+  // A relaxed stability limit is not another case.
+  std::string relaxed = resolved_case;
+  relaxed.replace(relaxed.find("0.3"), 3, "0.45");
+  write(sph / "case.toml", relaxed);
+  CHECK_NOTHROW(require_results_of(sph, sph / "case.toml"));
+  // Results of an earlier version (no record): their own case.toml is what made them.
+  fs::remove(sph / results_case_file_name);
+  CHECK_NOTHROW(require_results_of(sph, sph / "case.toml"));
+  CHECK_THROWS_WITH(require_results_of(sph, dir / "other.toml"), Catch::Contains("case.toml has '[sph]'"));
+  // Results without any case.toml cannot be told apart.
+  fs::remove(sph / "case.toml");
+  CHECK_THROWS_WITH(require_results_of(sph, dir / "other.toml"), Catch::Contains("no case.toml"));
+  fs::remove_all(dir);
+}
