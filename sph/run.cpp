@@ -323,7 +323,10 @@ RunStatus run_case(Solver& solver, const RunOptions& o, const std::optional<Chec
     }
     if (solver.time() >= state.next_output_ - 1e-12) {
       state.write_output();
-      while (state.next_output_ <= solver.time() + 1e-12) state.next_output_ += o.output_interval_s;
+      // The next output time: one interval on, or the first multiple of the interval past t when a
+      // step has passed several (a loop adding the interval stalls once it is below t's round-off).
+      const double next_multiple = (std::floor((solver.time() + 1e-12) / o.output_interval_s) + 1.0) * o.output_interval_s;
+      state.next_output_ = std::max(state.next_output_ + o.output_interval_s, next_multiple);
     }
     if (seconds_since(last_checkpoint) >= o.checkpoint_interval_wall_s) {
       state.write_checkpoint_now();
