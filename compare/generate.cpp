@@ -154,6 +154,13 @@ std::vector<const cases::Case*> select_cases(const cases::Study& study,
   return selected;
 }
 
+void check_cases(const cases::Study& study, const std::vector<const cases::Case*>& selected,
+                 const std::string& resolution) {
+  for (const auto* c : selected) cases::validate_for_resolution(study, *c, resolution);
+  const ScratchDirectory scratch;
+  for (const auto* c : selected) write_trial_case(study, *c, resolution, scratch.path() / c->id);
+}
+
 void generate_cases(const cases::Study& study, const std::vector<const cases::Case*>& selected,
                     const std::string& resolution, const std::filesystem::path& out_dir,
                     std::ostream& log) {

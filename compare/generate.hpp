@@ -23,6 +23,13 @@ void print_study_summary(const cases::Study& study, std::ostream& out);
 std::vector<const cases::Case*> select_cases(const cases::Study& study,
                                              const std::vector<std::string>& ids);
 
+// Validates the selected cases at `resolution` as `generate` does before it writes anything: the
+// spec's rules, then what only the solvers' derivations find (particle generation, gates, the
+// OpenFOAM mesh plan; each case is written once into a scratch directory that is removed again).
+// Throws cases::SpecError naming the spec file, the case and the resolution.
+void check_cases(const cases::Study& study, const std::vector<const cases::Case*>& selected,
+                 const std::string& resolution);
+
 // Writes DIR/<case>/sph/ and DIR/<case>/vof/ for each selected case at `resolution`, after
 // validating every selected case at that resolution first (nothing is written if one fails).
 void generate_cases(const cases::Study& study, const std::vector<const cases::Case*>& selected,

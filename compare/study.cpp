@@ -300,8 +300,9 @@ void write_study_report(const StudyOptions& options, const cases::Study& study,
 int run_study(const StudyOptions& options, std::ostream& log) {
   const cases::Study study = load_spec_argument(options.spec);
   const auto selected = select_cases(study, options.cases);
-  // Validate every selected case first: nothing runs while one is invalid.
-  for (const auto* c : selected) cases::validate_for_resolution(study, *c, options.resolution);
+  // Validate every selected case first, with what only the solvers' derivations find: nothing runs
+  // (and no earlier results are moved aside) while one is invalid.
+  check_cases(study, selected, options.resolution);
   std::filesystem::create_directories(options.out);
   // One study per output directory (its case runs lock their own directories too).
   const cases::DirectoryLock lock(options.out, "hydrojump study " + options.spec);

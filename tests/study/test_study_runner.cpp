@@ -215,6 +215,30 @@ TEST_CASE("Study runner: a case named twice in --cases runs once, an unknown one
                     Catch::Contains("--case \"\": no such case") && Catch::Contains("A_smooth"));
 }
 
+TEST_CASE("Study runner: what only the solvers' derivations refuse stops the study before it runs or moves anything", "[study]") {
+  // A VOF bed cell of 2 cm leaves fewer than 2 cells across y1 = 25.4 mm: the spec's rules pass, the
+  // OpenFOAM mesh plan refuses. The study used to find it only when it reached the case, after
+  // moving that case's earlier results aside.
+  const fs::path dir = fs::temp_directory_path() / ("hydrojump_test_study_derived_" + std::to_string(::getpid()));
+  const fs::path calls = dir / "calls.txt";
+  const StudyOptions options = mini_study_with_stand_in(dir, "echo \"$*\" >> '" + calls.string() + "'\nexit 0\n");
+  std::ostringstream log;
+  REQUIRE(run_study(options, log) == 0);
+  write(options.out / "A" / "sph" / "result.txt", "hours of work");
+  std::string coarse = with_tailwater("0.11");
+  const std::string cells = "vof_cell_size_bed_m = 0.005\nvof_cell_size_bulk_m = 0.01";
+  REQUIRE(coarse.find(cells) != std::string::npos);
+  coarse.replace(coarse.find(cells), cells.size(), "vof_cell_size_bed_m = 0.02\nvof_cell_size_bulk_m = 0.02");
+  write(dir / "mini.toml", coarse);
+  fs::remove(calls);
+  CHECK_THROWS_WITH(run_study(options, log), Catch::Contains("mini.toml: case \"A\" at resolution \"quick\": ") &&
+                                                 Catch::Contains("inflow depth"));
+  CHECK_FALSE(fs::exists(calls));
+  CHECK(fs::exists(options.out / "A" / "sph" / "result.txt"));
+  CHECK_FALSE(fs::exists(options.out / "A.previous"));
+  fs::remove_all(dir);
+}
+
 TEST_CASE("Study runner validates before running anything", "[study]") {
   const fs::path dir = fs::temp_directory_path() / ("hydrojump_test_study_invalid_" + std::to_string(::getpid()));
   const StudyOptions options = mini_study_with_stand_in(dir, "exit 1\n", "-1");
