@@ -104,8 +104,12 @@ void write_trial_case(const cases::Study& study, const cases::Case& c, const std
   try {
     write_case(study, c, resolution, dir);
   } catch (const std::invalid_argument& e) {
+    // The derivations name the case themselves (for `hydrojump vof DIR`); here it is named once.
+    std::string what = e.what();
+    const std::string named = "case \"" + c.id + "\": ";
+    if (what.rfind(named, 0) == 0) what.erase(0, named.size());
     throw cases::SpecError(study.source_file.string() + ": case \"" + c.id + "\" at resolution \"" + resolution +
-                           "\": " + e.what());
+                           "\": " + what);
   }
 }
 

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "reference/foam_dictionary.hpp"
+
 namespace hydrojump::reference {
 
 namespace {
@@ -126,8 +128,8 @@ MeshPlan plan_mesh(const cases::Case& c, const cases::CaseGeometry& g, const cas
     if (y1 < 2.0 * h) {
       throw std::invalid_argument(
           "case \"" + c.id + "\": resolution." + r.name + ".vof_cell_size_bed_m = " +
-          std::to_string(h) + " m leaves fewer than 2 cells across the inflow depth y1 = " +
-          std::to_string(y1) + " m: must be <= y1/2");
+          foam::format_number(h) + " m leaves fewer than 2 cells across the inflow depth y1 = " +
+          foam::format_number(y1) + " m: must be <= y1/2");
     }
     plan.x_bands.push_back(uniform_band(g.x_min_m, g.x_max_m, h, 4));
     plan.z_floor_m = g.bed.elevation(in.x_m);

@@ -172,7 +172,8 @@ TEST_CASE("hydrojump generate and check refuse what only a solver's derivation f
             tmp.path() / "generate.log") == 2);
   const std::string log = read_text(tmp.path() / "generate.log");
   INFO(log);
-  CHECK_THAT(log, Catch::Contains("coarse.toml: case \"A\" at resolution \"quick\": ") && Catch::Contains("inflow depth"));
+  CHECK_THAT(log, Catch::Contains("coarse.toml: case \"A\" at resolution \"quick\": resolution.quick.vof_cell_size_bed_m = 0.02 m") &&
+                      Catch::Contains("inflow depth y1 = 0.0254 m"));
   CHECK_FALSE(fs::exists(out_dir));
   // `check` finds it too (it had said the spec was fine).
   CHECK(run({"check", (tmp.path() / "coarse.toml").string()}, tmp.path() / "check.log") == 2);
