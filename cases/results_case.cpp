@@ -57,10 +57,13 @@ void record_results_case(const fs::path& solver_dir) {
   write_file_atomically(solver_dir / results_case_file_name, text);
 }
 
+fs::path recorded_case_file(const fs::path& solver_dir) {
+  return fs::exists(solver_dir / results_case_file_name) ? solver_dir / results_case_file_name : solver_dir / "case.toml";
+}
+
 void require_results_of(const fs::path& solver_dir, const fs::path& case_toml) {
   if (!holds_results(solver_dir)) return;
-  const fs::path recorded = fs::exists(solver_dir / results_case_file_name) ? solver_dir / results_case_file_name
-                                                                              : solver_dir / "case.toml";
+  const fs::path recorded = recorded_case_file(solver_dir);
   if (!fs::exists(recorded))
     throw std::runtime_error(solver_dir.string() + " holds the results of a run but no case.toml: they cannot be "
                              "told apart from another case's (move the directory away, or generate the case again "

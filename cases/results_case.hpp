@@ -38,6 +38,10 @@ SettingDifference first_setting_difference(std::string_view case_text_a, std::st
 // Whether a solver directory holds results of a run (SPH outputs or checkpoint, an OpenFOAM log).
 bool holds_results(const std::filesystem::path& solver_dir);
 
+// The file holding the case `solver_dir`'s results were made with: its results_case.toml, or its own
+// case.toml for runs of earlier versions that did not record one.
+std::filesystem::path recorded_case_file(const std::filesystem::path& solver_dir);
+
 // Records `solver_dir`/case.toml as the case of the run starting there (results_case.toml, written
 // atomically).
 void record_results_case(const std::filesystem::path& solver_dir);

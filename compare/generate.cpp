@@ -181,11 +181,7 @@ void generate_cases(const cases::Study& study, const std::vector<const cases::Ca
     const auto dir = out_dir / c->id;
     for (const char* method : {"sph", "vof"}) {
       if (!cases::holds_results(dir / method)) continue;
-      // The case the results were made with (recorded when the run started; runs of earlier versions
-      // did not record it, their case.toml is it).
-      const auto recorded = std::filesystem::exists(dir / method / cases::results_case_file_name)
-                                ? dir / method / cases::results_case_file_name
-                                : dir / method / "case.toml";
+      const auto recorded = cases::recorded_case_file(dir / method);
       const auto wanted = scratch.path() / c->id / method / "case.toml";
       if (!std::filesystem::exists(recorded))
         throw std::runtime_error((dir / method).string() + " holds the results of a run but no case.toml: move it away or choose another --out");
