@@ -312,8 +312,13 @@ std::string BasinMonitor::status_line() const {
     o << " (jump swept downstream: tailwater too low?)";
   }
   else if (state == "at_inflow") o << s.toe_x << " m (jump drowned at the inflow: tailwater too high?)";
-  else o << s.toe_x << " m";
-  o << std::setprecision(4) << "  q_in " << s.q_in << "  q_out " << s.q_out << " m^2/s";
+  else if (std::isfinite(s.toe_x)) o << s.toe_x << " m";
+  else o << "not found";
+  // q is the mass passed between two outputs: the first output has none yet.
+  if (std::isfinite(s.q_in) && std::isfinite(s.q_out))
+    o << std::setprecision(4) << "  q_in " << s.q_in << "  q_out " << s.q_out << " m^2/s";
+  else
+    o << "  q_in, q_out from the second output on";
   const double from = steady_from();
   if (std::isfinite(from)) o << "  steady since t = " << std::setprecision(1) << from << " s";
   return o.str();

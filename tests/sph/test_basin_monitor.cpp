@@ -50,6 +50,9 @@ TEST_CASE("the monitor finds the toe of a step and reads the sections", "[sph][b
   CHECK(s.discharge[1] == Approx(q).epsilon(1e-9));
   CHECK(std::isnan(s.q_in));  // no interval before the first sample
   CHECK(monitor.jump_state() == "in_basin");
+  // The terminal line says when q will be known instead of printing NaN.
+  CHECK_THAT(monitor.status_line(), Catch::Contains("from the second output on"));
+  CHECK_THAT(monitor.status_line(), !Catch::Contains("nan"));
   // No rise anywhere: the jump has left the basin; a rise from the upstream section on: drowned.
   monitor.record(step_particles(2.0), 0.1, 0.0, 0.0);
   CHECK(monitor.jump_state() == "swept_downstream");
@@ -59,6 +62,7 @@ TEST_CASE("the monitor finds the toe of a step and reads the sections", "[sph][b
   CHECK(monitor.samples().back().toe_x == Approx(0.9).margin(2.5 * dx));
   CHECK(monitor.jump_state() == "swept_downstream");
   CHECK_THAT(monitor.status_line(), Catch::Contains("past the downstream section"));
+  CHECK_THAT(monitor.status_line(), Catch::Contains("q_in 0.0000"));
   monitor.record(step_particles(0.0), 0.2, 0.0, 0.0);
   CHECK(monitor.jump_state() == "at_inflow");
   CHECK_THAT(monitor.summary_json(), Catch::Contains("\"jump_state\": \"at_inflow\""));
