@@ -135,6 +135,15 @@ class ScratchDirectory {
   std::filesystem::path path_;
 };
 
+// The spec's rules for every selected case at `resolution`, then what only the solvers' derivations
+// find: each case written into `scratch`/<id> (the caller's scratch directory, which `generate` reads
+// the resolved case.toml files back from).
+void write_trial_cases(const cases::Study& study, const std::vector<const cases::Case*>& selected,
+                       const std::string& resolution, const std::filesystem::path& scratch) {
+  for (const auto* c : selected) cases::validate_for_resolution(study, *c, resolution);
+  for (const auto* c : selected) write_trial_case(study, *c, resolution, scratch / c->id);
+}
+
 }  // namespace
 
 std::vector<const cases::Case*> select_cases(const cases::Study& study,
@@ -160,9 +169,8 @@ std::vector<const cases::Case*> select_cases(const cases::Study& study,
 
 void check_cases(const cases::Study& study, const std::vector<const cases::Case*>& selected,
                  const std::string& resolution) {
-  for (const auto* c : selected) cases::validate_for_resolution(study, *c, resolution);
   const ScratchDirectory scratch;
-  for (const auto* c : selected) write_trial_case(study, *c, resolution, scratch.path() / c->id);
+  write_trial_cases(study, selected, resolution, scratch.path());
 }
 
 void generate_cases(const cases::Study& study, const std::vector<const cases::Case*>& selected,
@@ -172,9 +180,8 @@ void generate_cases(const cases::Study& study, const std::vector<const cases::Ca
   // rules, then what only the solvers' own derivations find (particle generation, gates, the
   // OpenFOAM mesh plan): every selected case is written once into a scratch directory that is
   // removed again, and a failure there is reported as the spec's, naming the file and the case.
-  for (const auto* c : selected) cases::validate_for_resolution(study, *c, resolution);
   const ScratchDirectory scratch;
-  for (const auto* c : selected) write_trial_case(study, *c, resolution, scratch.path() / c->id);
+  write_trial_cases(study, selected, resolution, scratch.path());
   // A directory holding a run's results keeps them only for the case that made them: regenerating
   // it with other settings would leave results that `compare` then reports under the new ones.
   for (const auto* c : selected) {
