@@ -1,6 +1,7 @@
 #include "cases/results_case.hpp"
 
 #include <algorithm>
+#include <initializer_list>
 #include <sstream>
 #include <stdexcept>
 
@@ -11,16 +12,29 @@ namespace fs = std::filesystem;
 
 namespace hydrojump::cases {
 
-bool is_run_control_line(std::string_view line) {
+namespace {
+
+// Whether `line` assigns one of `keys` (`key = ...`, any spacing).
+bool assigns_one_of(std::string_view line, std::initializer_list<std::string_view> keys) {
   const auto start = line.find_first_not_of(" \t");
   if (start == std::string_view::npos) return false;
   const std::string_view body = line.substr(start);
-  for (const std::string_view key : {"max_density_variation", "checkpoint_interval_wall_s"}) {
+  for (const std::string_view key : keys) {
     if (body.rfind(key, 0) != 0) continue;
     const auto next = body.find_first_not_of(" \t", key.size());
     if (next != std::string_view::npos && body[next] == '=') return true;
   }
   return false;
+}
+
+}  // namespace
+
+bool is_run_control_line(std::string_view line) {
+  return assigns_one_of(line, {"max_density_variation", "checkpoint_interval_wall_s"});
+}
+
+bool is_descriptive_line(std::string_view line) {
+  return assigns_one_of(line, {"description", "citations", "source"});
 }
 
 std::vector<std::string> setting_lines(std::string_view case_text) {
@@ -29,7 +43,7 @@ std::vector<std::string> setting_lines(std::string_view case_text) {
   for (std::string line; std::getline(in, line);) {
     const auto start = line.find_first_not_of(" \t");
     if (start != std::string::npos && line[start] == '#') continue;
-    if (is_run_control_line(line)) continue;
+    if (is_run_control_line(line) || is_descriptive_line(line)) continue;
     lines.push_back(line);
   }
   return lines;

@@ -4,8 +4,10 @@
 // belong to the case.toml beside them.
 //
 // Two resolved cases are the same run when their setting lines agree: comments (which name the spec
-// file however it was spelt) and the run-control settings a resumed run may change
-// (sph.max_density_variation, sph.checkpoint_interval_wall_s) are left out.
+// file however it was spelt), the descriptive texts (`description`, `citations`, `source`: readers
+// take them from the case.toml beside the results, never from the record) and the run-control
+// settings a resumed run may change (sph.max_density_variation, sph.checkpoint_interval_wall_s) are
+// left out.
 #pragma once
 
 #include <filesystem>
@@ -23,8 +25,12 @@ inline constexpr const char* results_case_file_name = "results_case.toml";
 // with another value.
 bool is_run_control_line(std::string_view line);
 
-// The lines of a resolved case text that define its run: every line but comments and run-control
-// settings.
+// Whether `line` holds one of the descriptive texts (study or case `description`, the study's
+// `citations`, the measurements' `source`): words about the run, not settings of it.
+bool is_descriptive_line(std::string_view line);
+
+// The lines of a resolved case text that define its run: every line but comments, descriptive texts
+// and run-control settings.
 std::vector<std::string> setting_lines(std::string_view case_text);
 
 // The first setting line where two case texts differ, as {line of a, line of b} ("(end)" past the

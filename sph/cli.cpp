@@ -32,16 +32,15 @@
 
 namespace hydrojump::sph {
 
-// The fingerprint that ties a checkpoint to its case: the case text and the solver code
-// (solver_fingerprint, cmake/write_version.cmake: a comparator change keeps checkpoints), without
-// the run-control settings that never change the trajectory (the stability limit checked after each
-// step and the checkpoint interval), so a run stopped at the density limit can be resumed from its
-// last good checkpoint with a relaxed limit.
+// The fingerprint that ties a checkpoint to its case: the case's setting lines and the solver code
+// (solver_fingerprint, cmake/write_version.cmake: a comparator change keeps checkpoints). Setting
+// lines (cases/results_case.hpp) leave out comments and descriptive texts, which a regenerated
+// case.toml may word differently, and the run-control settings that never change the trajectory
+// (the stability limit checked after each step and the checkpoint interval), so a run stopped at the
+// density limit can be resumed from its last good checkpoint with a relaxed limit.
 std::string run_fingerprint(const std::string& case_text) {
-  std::istringstream in(case_text);
   std::string kept;
-  for (std::string line; std::getline(in, line);) {
-    if (cases::is_run_control_line(line)) continue;
+  for (const std::string& line : cases::setting_lines(case_text)) {
     kept += line;
     kept += '\n';
   }

@@ -19,6 +19,8 @@ void write(const fs::path& file, const std::string& text) {
 
 const std::string resolved_case =
     "# Resolved by hydrojump from a.toml\n"
+    "description = \"Study a\"\n"
+    "citations = [\"Someone (2002).\"]\n"
     "[sph]\n"
     "cfl_number = 0.2\n"
     "max_density_variation = 0.3\n"
@@ -34,11 +36,20 @@ TEST_CASE("results_case: run-control lines and comments do not define a run, eve
   CHECK_FALSE(is_run_control_line("max_density_variation_extra = 1"));
   CHECK_FALSE(is_run_control_line("cfl_number = 0.2"));
   CHECK_FALSE(is_run_control_line(""));
+  CHECK(is_descriptive_line("description = \"Run C\""));
+  CHECK(is_descriptive_line("  citations=[\"a\"]"));
+  CHECK(is_descriptive_line("source = \"Ead & Rajaratnam (2002)\""));
+  CHECK_FALSE(is_descriptive_line("descriptions = 1"));
+  CHECK_FALSE(is_descriptive_line("source_depth_m = 0.1"));
+  CHECK_FALSE(is_descriptive_line("sequent_depth_m = 0.1"));
   CHECK(setting_lines(resolved_case) ==
         std::vector<std::string>{"[sph]", "cfl_number = 0.2", "[case.run]", "end_time_s = 10.0"});
-  // Another spec file's name, another stability limit or checkpoint interval: the same run.
+  // Another spec file's name, description or citation, another stability limit or checkpoint
+  // interval: the same run.
   std::string relaxed = resolved_case;
   relaxed.replace(relaxed.find("a.toml"), 6, "./b.toml");
+  relaxed.replace(relaxed.find("Study a"), 7, "Study a, reworded");
+  relaxed.replace(relaxed.find("Someone (2002)."), 15, "Someone (2003).");
   relaxed.replace(relaxed.find("0.3"), 3, "0.45");
   relaxed.replace(relaxed.find("300.0"), 5, "60.0");
   CHECK_FALSE(first_setting_difference(resolved_case, relaxed).any());

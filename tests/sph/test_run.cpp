@@ -270,6 +270,9 @@ TEST_CASE("hydrojump sph runs a generated dam-break directory and resumes it", "
     std::ofstream(dir / "case.toml") << edited;
   };
   edit_case(std::regex("max_density_variation = [^\\n]*"), "max_density_variation = 0.3");
+  // A reworded description (or a case.toml regenerated from the spec by another path) is the same run.
+  edit_case(std::regex("\ndescription = [^\\n]*"), "\ndescription = \"reworded by hand\"");
+  edit_case(std::regex("# Resolved[^\\n]*"), "# Resolved from ./elsewhere/ead2002.toml");
   opt.end_time = 0.05;
   CHECK(run_sph_directory(opt) == 0);
   edit_case(std::regex("cfl_number = [^\\n]*"), "cfl_number = 0.1");
@@ -277,6 +280,7 @@ TEST_CASE("hydrojump sph runs a generated dam-break directory and resumes it", "
   CHECK_THROWS_WITH(run_sph_directory(opt), Catch::Contains("changed since the checkpoint"));
   CHECK(run_fingerprint("a = 1\nmax_density_variation = 0.1\n") == run_fingerprint("a = 1\nmax_density_variation = 0.3\n"));
   CHECK(run_fingerprint("a = 1\n") != run_fingerprint("a = 2\n"));
+  CHECK(run_fingerprint("# from x.toml\ndescription = \"x\"\na = 1\n") == run_fingerprint("# from y.toml\ndescription = \"y\"\na = 1\n"));
   fs::remove_all(dir);
 }
 
