@@ -35,6 +35,8 @@ struct SphSettings {
   double sps_smagorinsky_constant = 0.12;          // Cs
   double sps_blin_constant = 0.0066;               // CI
   double sps_mixing_length_m = 0.0;               // > 0: nu_t = l^2 |S| with this l instead of (Cs dx)
+  std::string sps_wall_distance = "kernel_support"; // with a mixing length: "kernel_support" | "whole_domain"
+                                                    // (where d in l = min(l_m, kappa d) is measured; sph/wall_distance.hpp)
   std::string viscous_wall_condition = "no_slip";  // laminar_sps with mdbc: "no_slip" | "free_slip" | "wall_function"
   std::string boundary = "dbc";                    // "dbc" | "mdbc"
   std::string density_diffusion = "fourtakas";     // "none" | "molteni" | "fourtakas"

@@ -304,6 +304,7 @@ void read_sph(TableReader& t, SphSettings& s) {
   if (t.has("sps_smagorinsky_constant") && !t.has("sps_mixing_length_m")) s.sps_mixing_length_m = 0.0;
   s.sps_mixing_length_m = t.number_or("sps_mixing_length_m", s.sps_mixing_length_m,
                                       non_negative("m, 0: the Smagorinsky length sps_smagorinsky_constant dx", 1.0));
+  s.sps_wall_distance = t.choice("sps_wall_distance", s.sps_wall_distance, {"kernel_support", "whole_domain"});
   s.boundary = t.choice("boundary", s.boundary, {"dbc", "mdbc"});
   s.viscous_wall_condition = t.choice("viscous_wall_condition", s.viscous_wall_condition, {"no_slip", "free_slip", "wall_function"});
   // A case that switches to another viscosity model does not use the wall condition it inherits.
@@ -359,6 +360,11 @@ void read_sph(TableReader& t, SphSettings& s) {
     t.fail_at(t.raw().get(t.has("viscous_wall_condition") ? "viscous_wall_condition" : "boundary"), "viscous_wall_condition",
               "= \"" + s.viscous_wall_condition + "\" needs boundary = \"mdbc\" (the slip velocity is mirrored at mDBC's ghost nodes; here \"" +
                   s.boundary + "\")");
+  only_with("sps_wall_distance", s.viscosity == "laminar_sps" && s.sps_mixing_length_m > 0.0,
+            "viscosity = \"laminar_sps\" and sps_mixing_length_m > 0 (here \"" + s.viscosity + "\", " +
+                number_text(s.sps_mixing_length_m) + " m)");
+  // A case without a mixing length does not use the distance rule it inherits.
+  if (s.viscosity != "laminar_sps" || s.sps_mixing_length_m == 0.0) s.sps_wall_distance = "kernel_support";
   if (t.has("sps_mixing_length_m") && t.has("sps_smagorinsky_constant") && s.sps_mixing_length_m > 0.0)
     t.fail_at(t.raw().get("sps_mixing_length_m"), "sps_mixing_length_m",
               "and sps_smagorinsky_constant are both given: the mixing length replaces C_s dx, set one");
@@ -858,8 +864,12 @@ void write_sph(TomlWriter& w, const SphSettings& s) {
     else w.num("artificial_viscosity_alpha", s.artificial_viscosity_alpha);
     w.num("artificial_viscosity_wall_factor", s.artificial_viscosity_wall_factor);
   } else {
-    if (s.sps_mixing_length_m > 0.0) w.num("sps_mixing_length_m", s.sps_mixing_length_m);
-    else w.num("sps_smagorinsky_constant", s.sps_smagorinsky_constant);
+    if (s.sps_mixing_length_m > 0.0) {
+      w.num("sps_mixing_length_m", s.sps_mixing_length_m);
+      w.str("sps_wall_distance", s.sps_wall_distance);
+    } else {
+      w.num("sps_smagorinsky_constant", s.sps_smagorinsky_constant);
+    }
     w.num("sps_blin_constant", s.sps_blin_constant);
     w.str("viscous_wall_condition", s.viscous_wall_condition);
   }

@@ -41,7 +41,8 @@ int neighbour_ranges(const CellList& cells, int c, Range (&out)[9]) {
 // The symmetric pressure term conserves momentum pairwise (Monaghan 1992, Annu. Rev. Astron.
 // Astrophys. 30:543-574).
 template <class K>
-InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, const SolverSettings& s, const K& kernel) {
+InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, const SolverSettings& s, const K& kernel,
+                                     const WallDistanceTable* wall_distances) {
   const int n_cells = cells.cell_count();
   const double* x = ps.x.data();
   const double* z = ps.z.data();
@@ -92,7 +93,8 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
   std::vector<double> grad_store(sps ? 4 * static_cast<std::size_t>(n) : 0, 0.0);
   double* grad = grad_store.data();
   // With a mixing length: the distance from each fluid particle to the nearest wall particle within
-  // the kernel support (infinity: none), for Prandtl's l = min(l_m, kappa d).
+  // the kernel support (none: infinity, or the fixed walls' table value with "whole_domain"), for
+  // Prandtl's l = min(l_m, kappa d).
   const bool wall_distance_needed = sps && s.sps_length_near_walls;
   std::vector<double> wall_distance_store(wall_distance_needed ? static_cast<std::size_t>(n) : 0,
                                           std::numeric_limits<double>::infinity());
@@ -211,7 +213,8 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
         gi[1] = dudz;
         gi[2] = dwdx;
         gi[3] = dwdz;
-        if (wall_distance_needed) wall_distance[i] = std::sqrt(nearest_r2);
+        if (wall_distance_needed)
+          wall_distance[i] = nearest_wall < 0 && wall_distances != nullptr ? wall_distances->at(xi, zi) : std::sqrt(nearest_r2);
       }
       if (wall_function && nearest_wall >= 0) {
         // The log law's wall shear on the first fluid layer (wall_function.hpp). Wall normal n along the
@@ -260,9 +263,10 @@ void compute_pressure(ParticleSet& ps, const SolverSettings& s) {
   for (Eigen::Index i = 0; i < n; ++i) ps.p[i] = s.eos.pressure(ps.rho[i]);
 }
 
-InteractionSummary compute_interactions(ParticleSet& ps, const CellList& cells, const SolverSettings& s) {
-  if (s.kernel == KernelType::wendland_c2) return interactions_with(ps, cells, s, WendlandC2(s.h));
-  return interactions_with(ps, cells, s, CubicSpline(s.h));
+InteractionSummary compute_interactions(ParticleSet& ps, const CellList& cells, const SolverSettings& s,
+                                        const WallDistanceTable* wall_distances) {
+  if (s.kernel == KernelType::wendland_c2) return interactions_with(ps, cells, s, WendlandC2(s.h), wall_distances);
+  return interactions_with(ps, cells, s, CubicSpline(s.h), wall_distances);
 }
 
 }  // namespace hydrojump::sph

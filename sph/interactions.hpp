@@ -9,6 +9,7 @@
 #include "sph/cell_list.hpp"
 #include "sph/particles.hpp"
 #include "sph/settings.hpp"
+#include "sph/wall_distance.hpp"
 
 namespace hydrojump::sph {
 
@@ -24,6 +25,9 @@ void compute_pressure(ParticleSet& ps, const SolverSettings& s);
 // Fills ax, az, drho of every particle (boundary particles: drho only, DBC) and returns the
 // quantities of the time-step conditions. laminar_sps: uses the SPS stress tau/rho of the previous
 // call and leaves the new one (from this call's velocity gradients) in tau_xx, tau_xz, tau_zz.
-InteractionSummary compute_interactions(ParticleSet& ps, const CellList& cells, const SolverSettings& s);
+// `wall_distances` (sph.sps_wall_distance = "whole_domain"): the fixed walls' distance table, used for
+// the mixing length of fluid particles with no wall particle within the kernel support.
+InteractionSummary compute_interactions(ParticleSet& ps, const CellList& cells, const SolverSettings& s,
+                                        const WallDistanceTable* wall_distances = nullptr);
 
 }  // namespace hydrojump::sph

@@ -143,6 +143,7 @@ SolverSettings make_settings(const cases::Case& c, const cases::FluidProperties&
   // l = sph.sps_mixing_length_m if given, else Smagorinsky's C_s dx
   out.sps_length = s.sps_mixing_length_m > 0.0 ? s.sps_mixing_length_m : s.sps_smagorinsky_constant * dx;
   out.sps_length_near_walls = s.sps_mixing_length_m > 0.0;
+  out.sps_wall_distance_table = out.sps_length_near_walls && s.sps_wall_distance == "whole_domain";
   // free_slip and wall_function: mDBC's slip velocity in the viscous terms; wall_function adds the
   // log law's wall shear (wall_function.hpp).
   out.viscous_walls_free_slip = s.viscosity == "laminar_sps" && s.viscous_wall_condition != "no_slip";

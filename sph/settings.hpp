@@ -43,6 +43,8 @@ struct SolverSettings {
   double kinematic_viscosity = 1e-6; // nu0 (m^2/s)
   double sps_length = 0.0012;        // l in nu_t = l^2 |S| (m): C_s dx, or sph.sps_mixing_length_m
   bool sps_length_near_walls = false; // l = min(l, kappa d_wall) (Prandtl; with a mixing length)
+  bool sps_wall_distance_table = false; // ... with d beyond the kernel support from the fixed walls'
+                                        // distance table (sph.sps_wall_distance = "whole_domain")
   bool viscous_walls_free_slip = false; // laminar_sps + mdbc: walls mirror the tangential velocity
   bool wall_function_shear = false;     // ... and the first fluid layer takes the log law's wall shear
   double blin = 0.0066;

@@ -10,6 +10,13 @@ namespace hydrojump::sph {
 Solver::Solver(SolverSettings settings, ParticleSet particles, SolverClock clock, OpenBoundaries open)
     : settings_(std::move(settings)), particles_(std::move(particles)), clock_(clock), open_(std::move(open)) {
   settings_.validate();
+  if (settings_.sps_wall_distance_table) {
+    // Far enough for l = min(l_m, kappa d) to reach l_m (d is measured from wall particle centres,
+    // less dx/2); nodes at dx/2.
+    constexpr double kappa = 0.41;
+    wall_distances_ = WallDistanceTable::tabulate(particles_, settings_.sps_length / kappa + settings_.dx,
+                                                  0.5 * settings_.dx, settings_.periodic_x, settings_.x_min, settings_.x_max);
+  }
   open_.start(particles_);
   update_pressure();
 }
@@ -37,7 +44,7 @@ InteractionSummary Solver::interactions() {
   sort_by_cell();
   if (settings_.boundary == BoundaryMethod::mdbc) mdbc_boundary_density(particles_, cells_, settings_);
   compute_pressure(particles_, settings_);
-  return compute_interactions(particles_, cells_, settings_);
+  return compute_interactions(particles_, cells_, settings_, settings_.sps_wall_distance_table ? &wall_distances_ : nullptr);
 }
 
 void Solver::step() {

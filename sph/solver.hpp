@@ -22,6 +22,7 @@
 #include "sph/open_boundaries.hpp"
 #include "sph/particles.hpp"
 #include "sph/settings.hpp"
+#include "sph/wall_distance.hpp"
 
 namespace hydrojump::sph {
 
@@ -65,6 +66,8 @@ class Solver {
   SolverClock clock_;
   OpenBoundaries open_;
   CellList cells_;
+  // sph.sps_wall_distance = "whole_domain": the fixed walls' distance table (wall_distance.hpp).
+  WallDistanceTable wall_distances_;
 };
 
 }  // namespace hydrojump::sph

@@ -27,7 +27,11 @@
 //   |                | eddy viscosity nu_t = l^2 |S| of Prandtl's mixing length, fixed  |
 //   |                | in metres across resolutions, limited near walls to Prandtl's     |
 //   |                | kappa d (mixing_length_near_wall; without the limit the full      |
-//   |                | length braked a jump's inflow, sph/README.md)                     |
+//   |                | length braked a jump's inflow, sph/README.md);                    |
+//   |                | sph.sps_wall_distance: "kernel_support" (default) measures d only |
+//   |                | to wall particles within 2h, so l jumps from about 0.41 (2h -     |
+//   |                | dx/2) to l_m there; "whole_domain" also beyond, from the fixed    |
+//   |                | walls' distance table (wall_distance.hpp), as Prandtl's law has it|
 //   |                | sph.viscous_wall_condition "no_slip" (default), "free_slip" or    |
 //   |                | "wall_function" (mDBC only): the walls' velocity in both terms is |
 //   |                | mDBC's no-slip or slip velocity (boundary_mdbc.hpp); free slip    |
@@ -71,8 +75,8 @@ inline double laminar_viscosity_pair(double nu0, double gradient_factor, double 
 
 // Prandtl's mixing length near a wall: l = min(l_m, kappa d), kappa = 0.41, d the distance from the
 // wall, here from the centre of the nearest wall particle less dx/2 (the wall line lies halfway
-// between the first boundary layer and the outer fluid row). No wall within the kernel support
-// (d_centre = infinity): l_m.
+// between the first boundary layer and the outer fluid row). d_centre = infinity: l_m (no wall
+// within the kernel support and no distance table, sph.sps_wall_distance = "kernel_support").
 inline double mixing_length_near_wall(double length, double wall_centre_distance, double dx) {
   constexpr double kappa = 0.41;
   const double d = wall_centre_distance - 0.5 * dx;

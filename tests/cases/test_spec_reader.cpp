@@ -453,6 +453,25 @@ TEST_CASE("The SPS eddy viscosity takes a mixing length in metres instead of C_s
   CHECK(c.cases[0].sph.sps_smagorinsky_constant == 0.2);
 }
 
+TEST_CASE("The mixing length's wall distance is kernel_support or whole_domain, with a mixing length only", "[cases][spec]") {
+  const auto with = [](const std::string& lines) { return replaced(valid_spec, "[[case]]", "[sph]\n" + lines + "\n\n[[case]]"); };
+  const std::string mixing = "viscosity = \"laminar_sps\"\nsps_mixing_length_m = 0.015";
+  CHECK(parse_study(with(mixing), "spec.toml", ".").cases[0].sph.sps_wall_distance == "kernel_support");
+  const Study s = parse_study(with(mixing + "\nsps_wall_distance = \"whole_domain\""), "spec.toml", ".");
+  CHECK(s.cases[0].sph.sps_wall_distance == "whole_domain");
+  CHECK(resolved_reload(s, "whole_domain").cases[0].sph.sps_wall_distance == "whole_domain");
+  CHECK_THAT(rejection(with(mixing + "\nsps_wall_distance = \"everywhere\"")),
+             Catch::Contains("sps_wall_distance") && Catch::Contains("\"kernel_support\"") && Catch::Contains("\"whole_domain\""));
+  CHECK_THAT(rejection(with("viscosity = \"laminar_sps\"\nsps_wall_distance = \"whole_domain\"")),
+             Catch::Contains("sph.sps_wall_distance is only used with viscosity = \"laminar_sps\" and sps_mixing_length_m > 0"));
+  CHECK_THAT(rejection(with("sps_wall_distance = \"whole_domain\"")),
+             Catch::Contains("sph.sps_wall_distance is only used with"));
+  // A case that drops the mixing length (C_s instead) drops the inherited rule too.
+  const auto text = replaced(with(mixing + "\nsps_wall_distance = \"whole_domain\""), "[case.run]",
+                             "[case.sph]\nsps_smagorinsky_constant = 0.2\n[case.run]");
+  CHECK(parse_study(text, "spec.toml", ".").cases[0].sph.sps_wall_distance == "kernel_support");
+}
+
 TEST_CASE("The viscous wall condition is no_slip, free_slip or wall_function, with laminar_sps and mDBC only", "[cases][spec]") {
   const auto with = [](const std::string& lines) { return replaced(valid_spec, "[[case]]", "[sph]\n" + lines + "\n\n[[case]]"); };
   const Study s = parse_study(with("viscosity = \"laminar_sps\"\nboundary = \"mdbc\"\nviscous_wall_condition = \"free_slip\""),
