@@ -18,6 +18,7 @@
 #include "cases/cli_checks.hpp"
 #include "cases/directory_lock.hpp"
 #include "cases/fingerprint.hpp"
+#include "cases/results_case.hpp"
 #include "cases/spec_reader.hpp"
 #include "compare/generate.hpp"
 #include "compare/plots.hpp"
@@ -54,6 +55,16 @@ std::string case_fingerprint(const cases::Study& study, const cases::Case& c, co
   std::string text = cases::resolved_case_text(study, c, resolution);
   text = text.substr(text.find('\n') + 1);  // the first line names the source file: not part of the case
   return cases::fingerprint(text + "\ncode " + code);
+}
+
+// The fingerprint of the run that case `c` at `resolution` makes: its setting lines only
+// (cases/results_case.hpp: no comments, descriptive texts or run-control settings, which never change
+// the results) and the solvers' code. The sph and vof stamps hold it, so a reworded description or a
+// relaxed stability limit keeps the solver results (and resumes an interrupted run).
+std::string run_fingerprint_of(const cases::Study& study, const cases::Case& c, const std::string& resolution) {
+  std::string kept;
+  for (const auto& line : cases::setting_lines(cases::resolved_case_text(study, c, resolution))) kept += line + "\n";
+  return cases::fingerprint(kept + "\ncode " + solver_fingerprint);
 }
 
 struct StageResult {
@@ -98,10 +109,28 @@ class StudyRunner {
     CaseResult result{c.id, {}};
     const auto dir = options_.out / c.id;
     const std::string fingerprint = case_fingerprint(study_, c, options_.resolution, solver_fingerprint);
+    const std::string run_fingerprint = run_fingerprint_of(study_, c, options_.resolution);
     const std::string compare_fingerprint = case_fingerprint(study_, c, options_.resolution, source_fingerprint);
 
     // Regenerate the case directories only when the case changed (keeps finished results).
     const auto generated_stamp = dir / "generate.stamp";
+    const auto run_stamp = dir / "settings.stamp";
+    if (!options_.force && cases::read_text_file(generated_stamp) != fingerprint &&
+        cases::read_text_file(run_stamp) == run_fingerprint) {
+      // Only descriptive texts or run-control settings changed: the results still belong to the case.
+      // Rewrite its inputs in place (generate keeps results whose setting lines agree); the solver
+      // stamps stay valid, and the comparison runs again with the new texts.
+      std::vector<std::unique_ptr<cases::DirectoryLock>> runs_idle;
+      for (const char* method : {"sph", "vof"})
+        if (std::filesystem::is_directory(dir / method))
+          runs_idle.push_back(std::make_unique<cases::DirectoryLock>(dir / method, "hydrojump study (regenerating it)"));
+      std::ostringstream generated;
+      generate_cases(study_, {&c}, options_.resolution, options_.out, generated);
+      runs_idle.clear();
+      say(c.id + ": only descriptive texts or run-control settings changed: inputs rewritten, results kept");
+      cases::write_file_atomically(generated_stamp, fingerprint);
+      std::filesystem::remove(dir / "compare.stamp");
+    }
     if (options_.force || cases::read_text_file(generated_stamp) != fingerprint) {
       // The results of a changed case are stale: start its directory afresh, keeping the previous
       // results (hours of runs) as <case>.previous (replacing an older one) instead of deleting them.
@@ -112,7 +141,10 @@ class StudyRunner {
         for (const char* method : {"sph", "vof"})
           if (std::filesystem::is_directory(top / method))
             runs_idle.push_back(std::make_unique<cases::DirectoryLock>(top / method, "hydrojump study (moving it)"));
-      if (std::filesystem::exists(generated_stamp)) {
+      // Results in a directory the study did not make (no stamp: `generate` and `sph` run by hand)
+      // are kept the same way.
+      const bool holds_results = cases::holds_results(dir / "sph") || cases::holds_results(dir / "vof");
+      if (std::filesystem::exists(generated_stamp) || holds_results) {
         std::filesystem::remove_all(previous);
         std::filesystem::rename(dir, previous);
         say(c.id + ": the case or the program changed: its previous results are kept in " + previous.string());
@@ -124,6 +156,7 @@ class StudyRunner {
       generate_cases(study_, {&c}, options_.resolution, options_.out, generated);
       say(c.id + ": " + generated.str().substr(0, generated.str().find_last_not_of('\n') + 1));
       cases::write_file_atomically(generated_stamp, fingerprint);
+      cases::write_file_atomically(run_stamp, run_fingerprint);
     }
     bool any_solver_ok = false, any_solver_ran = false;
     for (const auto& method : options_.methods) {
@@ -138,7 +171,7 @@ class StudyRunner {
       const bool resumable = method == "sph" ? std::filesystem::exists(dir / "sph" / "checkpoint.bin")
                                              : std::filesystem::exists(dir / "vof" / "constant" / "polyMesh");
       if (std::filesystem::exists(started) && resumable) args.push_back("--resume");
-      const auto stage = run_stage(c.id, method, args, dir, fingerprint, started);
+      const auto stage = run_stage(c.id, method, args, dir, run_fingerprint, started);
       any_solver_ok = any_solver_ok || stage.state == "done" || stage.state == "cached";
       any_solver_ran = any_solver_ran || stage.state == "done" || stage.state == "failed";
       result.stages.push_back(stage);

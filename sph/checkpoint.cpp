@@ -33,7 +33,11 @@ void put_array(std::ostream& out, const V& v) {
 
 class Reader {
  public:
-  Reader(std::istream& in, std::filesystem::path file) : in_(in), file_(std::move(file)) {}
+  Reader(std::istream& in, std::filesystem::path file) : in_(in), file_(std::move(file)) {
+    std::error_code error;
+    const auto bytes = std::filesystem::file_size(file_, error);
+    file_bytes_ = error ? 0 : static_cast<std::uint64_t>(bytes);
+  }
   template <class T>
   T get() {
     T v{};
@@ -42,7 +46,8 @@ class Reader {
   }
   std::string get_string() {
     const auto n = get<std::uint64_t>();
-    if (n > (1ull << 32)) fail();
+    // A length the rest of the file cannot hold is damage, not a reason to allocate.
+    if (n > remaining_bytes()) fail();
     std::string s(n, '\0');
     read(s.data(), n);
     return s;
@@ -51,6 +56,13 @@ class Reader {
     in_.read(static_cast<char*>(p), static_cast<std::streamsize>(n));
     if (!in_) fail();
   }
+  // Bytes after the read position (2^32 when the file's size is unknown).
+  std::uint64_t remaining_bytes() {
+    const auto pos = in_.tellg();
+    if (file_bytes_ == 0 || pos < 0) return 1ull << 32;
+    const auto at = static_cast<std::uint64_t>(pos);
+    return at <= file_bytes_ ? file_bytes_ - at : 0;
+  }
   [[noreturn]] void fail() const {
     throw std::runtime_error("checkpoint '" + file_.string() + "' is truncated or corrupt");
   }
@@ -58,6 +70,7 @@ class Reader {
  private:
   std::istream& in_;
   std::filesystem::path file_;
+  std::uint64_t file_bytes_ = 0;
 };
 
 }  // namespace

@@ -133,18 +133,6 @@ int run_sph_directory(const SphOptions& opt) {
                              "start over (overwriting its outputs)");
   }
 
-  if (!checkpoint) {
-    // A fresh start (possibly --restart): outputs of an earlier run in DIR are removed so the new
-    // series is not mixed with stale snapshots.
-    for (const auto& entry : std::filesystem::directory_iterator(dir)) {
-      const std::string name = entry.path().filename().string();
-      const bool snapshot = name.rfind("particles_", 0) == 0 && entry.path().extension() == ".vtp";
-      if (snapshot || name == "failure.txt" || name == "failure_state.vtp" || name == "checkpoint.bin")
-        std::filesystem::remove(entry.path());
-    }
-    // What `compare` and `generate` check these results against.
-    cases::record_results_case(dir);
-  }
   std::unique_ptr<Solver> solver;
   if (checkpoint) {
     solver = std::make_unique<Solver>(settings, checkpoint->particles, checkpoint->clock,
@@ -153,6 +141,17 @@ int run_sph_directory(const SphOptions& opt) {
   } else {
     solver = std::make_unique<Solver>(settings, generate_particles(geometry, settings, c.sph.boundary_layers),
                                       SolverClock{}, OpenBoundaries::from_geometry(geometry, buffer_parameters(settings)));
+    // A fresh start (possibly --restart) that has its particles: outputs of an earlier run in DIR are
+    // removed so the new series is not mixed with stale snapshots, and the case is recorded. (Not
+    // before: a case the generator refuses leaves the earlier results beside the record that made them.)
+    for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+      const std::string name = entry.path().filename().string();
+      const bool snapshot = name.rfind("particles_", 0) == 0 && entry.path().extension() == ".vtp";
+      if (snapshot || name == "failure.txt" || name == "failure_state.vtp" || name == "checkpoint.bin")
+        std::filesystem::remove(entry.path());
+    }
+    // What `compare` and `generate` check these results against.
+    cases::record_results_case(dir);
   }
   std::cerr << "hydrojump sph: case \"" << c.id << "\" (" << c.kind << "), dx = " << settings.dx << " m, "
             << solver->particles().fluid_count() << " fluid + "

@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "cases/directory_lock.hpp"
+#include "cases/fingerprint.hpp"
 #include "cases/spec_reader.hpp"
 #include "compare/generate.hpp"
 #include "compare/study.hpp"
@@ -297,5 +298,56 @@ TEST_CASE("Study runner: --methods runs only the chosen solvers, --force re-runs
   REQUIRE(lines.size() >= 2);
   CHECK(lines[0].rfind("start ", 0) == 0);
   CHECK(lines[1].rfind("start ", 0) == 0);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("Study runner: a reworded description or a relaxed stability limit keeps the solver results; hand-made results are kept",
+          "[study]") {
+  const fs::path dir = fs::temp_directory_path() / ("hydrojump_test_study_wording_" + std::to_string(::getpid()));
+  const fs::path calls = dir / "calls.txt";
+  // The stand-in fails A's SPH run once (leaving a checkpoint, as a run stopped at the density limit
+  // does) while dir/fail_A exists.
+  StudyOptions options = mini_study_with_stand_in(
+      dir, "echo \"$*\" >> '" + calls.string() + "'\ncase \"$1 $2\" in\n  \"sph \"*/A/sph) if [ -e '" +
+               (dir / "fail_A").string() + "' ]; then touch \"$2/checkpoint.bin\"; exit 1; fi ;;\nesac\nexit 0\n");
+  write(dir / "fail_A", "");
+  std::ostringstream log;
+  CHECK(run_study(options, log) == 1);
+
+  // Another description and a relaxed density limit: no directory is moved, A's SPH run resumes, B's
+  // solver stages stay cached, both comparisons run again, and the case.toml has the new description.
+  fs::remove(calls);
+  fs::remove(dir / "fail_A");
+  std::string text = with_tailwater("0.104");
+  text.replace(text.find("name = \"mini\""), 13, "name = \"mini\"\ndescription = \"reworded\"\n[sph]\nmax_density_variation = 0.4");
+  write(dir / "mini.toml", text);
+  CHECK(run_study(options, log) == 0);
+  const auto second = lines_of(calls);
+  CHECK(second.size() == 3);
+  CHECK(std::count(second.begin(), second.end(), "sph " + (options.out / "A" / "sph").string() + " --resume") == 1);
+  CHECK(std::count_if(second.begin(), second.end(), [](const std::string& l) { return l.rfind("compare", 0) == 0; }) == 2);
+  CHECK_FALSE(fs::exists(options.out / "A.previous"));
+  CHECK_FALSE(fs::exists(options.out / "B.previous"));
+  CHECK_THAT(hydrojump::cases::read_text_file(options.out / "B" / "sph" / "case.toml"), Catch::Contains("description = \"reworded\""));
+  CHECK_THAT(log.str(), Catch::Contains("inputs rewritten, results kept"));
+
+  // A setting that changes the run still starts the case afresh (previous results kept aside).
+  fs::remove(calls);
+  text.replace(text.find("max_density_variation = 0.4"), 27, "cfl_number = 0.1");
+  write(dir / "mini.toml", text);
+  CHECK(run_study(options, log) == 0);
+  CHECK(lines_of(calls).size() == 6);
+  CHECK(fs::exists(options.out / "A.previous"));
+
+  // Results made by hand (generate and sph run outside the study: no stamps) are kept aside, not
+  // deleted, when the study starts the case.
+  const fs::path by_hand = dir / "by_hand";
+  fs::create_directories(by_hand / "A" / "sph");
+  write(by_hand / "A" / "sph" / "case.toml", "[case.run]\nend_time_s = 1.0\n");
+  write(by_hand / "A" / "sph" / "summary.json", "{\"hours\": 3}\n");
+  options.out = by_hand;
+  options.cases = {"A"};
+  CHECK(run_study(options, log) == 0);
+  CHECK(hydrojump::cases::read_text_file(by_hand / "A.previous" / "sph" / "summary.json") == "{\"hours\": 3}\n");
   fs::remove_all(dir);
 }
