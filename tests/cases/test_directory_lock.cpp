@@ -52,11 +52,13 @@ TEST_CASE("A lock held by a process goes with it, even when it is killed", "[cas
   const fs::path dir = fresh_dir() / "run";
   fs::create_directories(dir);
   // flock(1) from util-linux (essential in Debian) takes the same kind of lock on the same file and,
-  // with --no-fork, becomes the sleeping holder itself.
+  // with --no-fork, becomes the sleeping holder itself. It waits for the lock (no --nonblock): the
+  // probe below holds it for an instant, and a non-blocking flock that met the probe gave up at once
+  // and left the loop waiting for a holder that never came (seen on a loaded machine).
   const auto flock_program = find_on_path("flock");
   if (!flock_program) FAIL("flock(1) (util-linux) is needed for this test");
   const pid_t holder = start_child(ChildCommand(
-      {flock_program->string(), "--no-fork", "--nonblock", (dir / DirectoryLock::file_name).string(), "sleep", "30"}));
+      {flock_program->string(), "--no-fork", (dir / DirectoryLock::file_name).string(), "sleep", "30"}));
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
   std::string message;
   while ((message = busy_message(dir)) == "not refused") {

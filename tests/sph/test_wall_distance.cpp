@@ -76,7 +76,7 @@ TEST_CASE("wall distance table: within spacing/sqrt(2) of the brute-force distan
   CHECK(table.at(0.0, std::numeric_limits<double>::quiet_NaN()) == reach);
 }
 
-TEST_CASE("wall distance table: a periodic channel sees the walls across the period; bad arguments are refused",
+TEST_CASE("wall distance table: a periodic channel sees the walls across the period, and bad arguments are refused",
           "[sph][wall_distance]") {
   // Two walls of a periodic channel of period 1 m: floor z = 0 at 0.005 <= x < 0.5 only, so that the
   // nearest wall of a point near x = 1 is the image of the floor's start.

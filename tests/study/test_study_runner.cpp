@@ -301,7 +301,7 @@ TEST_CASE("Study runner: --methods runs only the chosen solvers, --force re-runs
   fs::remove_all(dir);
 }
 
-TEST_CASE("Study runner: a reworded description or a relaxed stability limit keeps the solver results; hand-made results are kept",
+TEST_CASE("Study runner: a reworded description or a relaxed stability limit keeps the solver results, and hand-made results are kept",
           "[study]") {
   const fs::path dir = fs::temp_directory_path() / ("hydrojump_test_study_wording_" + std::to_string(::getpid()));
   const fs::path calls = dir / "calls.txt";
