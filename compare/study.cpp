@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <ctime>
 #include <fstream>
+#include <initializer_list>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -23,6 +24,7 @@
 #include "compare/generate.hpp"
 #include "compare/plots.hpp"
 #include "compare/study_summary.hpp"
+#include "sph/cli.hpp"
 #include "hydrojump/version.hpp"
 
 namespace hydrojump::compare {
@@ -57,14 +59,24 @@ std::string case_fingerprint(const cases::Study& study, const cases::Case& c, co
   return cases::fingerprint(text + "\ncode " + code);
 }
 
-// The fingerprint of the run that case `c` at `resolution` makes: its setting lines only
-// (cases/results_case.hpp: no comments, descriptive texts or run-control settings, which never change
-// the results) and the solvers' code. The sph and vof stamps hold it, so a reworded description or a
-// relaxed stability limit keeps the solver results (and resumes an interrupted run).
+// The fingerprint of the run that case `c` at `resolution` makes: the one its SPH checkpoint carries
+// (sph::run_fingerprint: setting lines only, no comments, descriptive texts or run-control settings,
+// and the solvers' code). The sph and vof stamps hold it, so a reworded description or a relaxed
+// stability limit keeps the solver results (and resumes an interrupted run).
 std::string run_fingerprint_of(const cases::Study& study, const cases::Case& c, const std::string& resolution) {
-  std::string kept;
-  for (const auto& line : cases::setting_lines(cases::resolved_case_text(study, c, resolution))) kept += line + "\n";
-  return cases::fingerprint(kept + "\ncode " + solver_fingerprint);
+  return sph::run_fingerprint(cases::resolved_case_text(study, c, resolution));
+}
+
+// Locks the sph and vof directories under each of `tops` that exist, so that no run started by hand
+// writes in them while the study rewrites or moves them (a run holding one makes this throw).
+std::vector<std::unique_ptr<cases::DirectoryLock>> lock_solver_directories(
+    std::initializer_list<std::filesystem::path> tops, const std::string& holder) {
+  std::vector<std::unique_ptr<cases::DirectoryLock>> locks;
+  for (const auto& top : tops)
+    for (const char* method : {"sph", "vof"})
+      if (std::filesystem::is_directory(top / method))
+        locks.push_back(std::make_unique<cases::DirectoryLock>(top / method, holder));
+  return locks;
 }
 
 struct StageResult {
@@ -120,10 +132,7 @@ class StudyRunner {
       // Only descriptive texts or run-control settings changed: the results still belong to the case.
       // Rewrite its inputs in place (generate keeps results whose setting lines agree); the solver
       // stamps stay valid, and the comparison runs again with the new texts.
-      std::vector<std::unique_ptr<cases::DirectoryLock>> runs_idle;
-      for (const char* method : {"sph", "vof"})
-        if (std::filesystem::is_directory(dir / method))
-          runs_idle.push_back(std::make_unique<cases::DirectoryLock>(dir / method, "hydrojump study (regenerating it)"));
+      auto runs_idle = lock_solver_directories({dir}, "hydrojump study (regenerating it)");
       std::ostringstream generated;
       generate_cases(study_, {&c}, options_.resolution, options_.out, generated);
       runs_idle.clear();
@@ -136,11 +145,7 @@ class StudyRunner {
       // results (hours of runs) as <case>.previous (replacing an older one) instead of deleting them.
       // Not while a run started by hand is still writing in it (that run keeps its directory).
       const auto previous = options_.out / (c.id + ".previous");
-      std::vector<std::unique_ptr<cases::DirectoryLock>> runs_idle;
-      for (const auto& top : {dir, previous})
-        for (const char* method : {"sph", "vof"})
-          if (std::filesystem::is_directory(top / method))
-            runs_idle.push_back(std::make_unique<cases::DirectoryLock>(top / method, "hydrojump study (moving it)"));
+      auto runs_idle = lock_solver_directories({dir, previous}, "hydrojump study (moving it)");
       // Results in a directory the study did not make (no stamp: `generate` and `sph` run by hand)
       // are kept the same way.
       const bool holds_results = cases::holds_results(dir / "sph") || cases::holds_results(dir / "vof");

@@ -11,10 +11,8 @@ Solver::Solver(SolverSettings settings, ParticleSet particles, SolverClock clock
     : settings_(std::move(settings)), particles_(std::move(particles)), clock_(clock), open_(std::move(open)) {
   settings_.validate();
   if (settings_.sps_wall_distance_table) {
-    // Far enough for l = min(l_m, kappa d) to reach l_m (d is measured from wall particle centres,
-    // less dx/2); nodes at dx/2.
-    constexpr double kappa = 0.41;
-    wall_distances_ = WallDistanceTable::tabulate(particles_, settings_.sps_length / kappa + settings_.dx,
+    // Far enough for l = min(l_m, kappa d) to reach l_m; nodes at dx/2.
+    wall_distances_ = WallDistanceTable::tabulate(particles_, mixing_length_wall_reach(settings_.sps_length, settings_.dx),
                                                   0.5 * settings_.dx, settings_.periodic_x, settings_.x_min, settings_.x_max);
   }
   open_.start(particles_);

@@ -47,6 +47,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "sph/wall_function.hpp"
+
 namespace hydrojump::sph {
 
 enum class Viscosity { artificial, laminar_sps };
@@ -78,10 +80,13 @@ inline double laminar_viscosity_pair(double nu0, double gradient_factor, double 
 // between the first boundary layer and the outer fluid row). d_centre = infinity: l_m (no wall
 // within the kernel support and no distance table, sph.sps_wall_distance = "kernel_support").
 inline double mixing_length_near_wall(double length, double wall_centre_distance, double dx) {
-  constexpr double kappa = 0.41;
   const double d = wall_centre_distance - 0.5 * dx;
-  return std::min(length, kappa * std::max(0.0, d));
+  return std::min(length, kVonKarman * std::max(0.0, d));
 }
+
+// The wall-centre distance beyond which mixing_length_near_wall gives l_m whatever the distance:
+// l_m / kappa + dx/2, plus dx/2 of margin for an interpolated distance (wall_distance.hpp).
+inline double mixing_length_wall_reach(double length, double dx) { return length / kVonKarman + dx; }
 
 struct SpsStress {
   double xx = 0.0, xz = 0.0, zz = 0.0;  // tau/rho (m^2/s^2)

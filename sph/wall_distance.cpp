@@ -25,7 +25,6 @@ WallDistanceTable WallDistanceTable::tabulate(const ParticleSet& particles, doub
   t.reach_ = reach;
   t.spacing_ = spacing;
   t.periodic_x_ = periodic_x;
-  t.x0_ = x_min;
   t.period_origin_ = x_min;
   t.period_ = periodic_x ? x_max - x_min : 0.0;
 

@@ -125,7 +125,7 @@ std::vector<ShearSample> mixing_lengths_in_shear(const std::string& wall_distanc
   for (Eigen::Index i = 0; i < ps.size(); ++i)
     if (ps.is_fluid(i)) ps.u[i] = S * (ps.z[i] - c.geometry.bed.elevation(ps.x[i]));
   // As the solver makes it: from the particles at the start, reach l_m / kappa + dx, nodes at dx/2.
-  const auto table = sph::WallDistanceTable::tabulate(ps, lm / 0.41 + dx, 0.5 * dx);
+  const auto table = sph::WallDistanceTable::tabulate(ps, sph::mixing_length_wall_reach(lm, dx), 0.5 * dx);
   sph::CellList cells;
   cells.build(ps.x, ps.z, sph::CellGrid::enclosing(ps.x, ps.z, c.settings.support()));
   ps.permute(cells.order());
