@@ -10,6 +10,7 @@
 #include <toml++/toml.h>
 
 #include "cases/atomic_file.hpp"
+#include "cases/fingerprint.hpp"
 #include "cases/geometry.hpp"
 #include "cases/hydraulics.hpp"
 
@@ -913,6 +914,15 @@ void write_vof(TomlWriter& w, const VofSettings& v) {
 
 void write_resolved_case(const Study& study, const Case& c, const std::string& resolution,
                          const std::filesystem::path& out_file) {
+  // The measured data travel with the case: copied beside it first (so the case file never names a
+  // file that is not there) and named relative to it, so the run directory can be moved and its
+  // text does not depend on where the spec was read from.
+  if (const auto* d = c.dam_break(); d != nullptr && !d->measured_front_file.empty()) {
+    const std::filesystem::path copy = out_file.parent_path() / kResolvedFrontFileName;
+    std::error_code ec;
+    if (!std::filesystem::equivalent(d->measured_front_file, copy, ec))
+      write_file_atomically(copy, read_text_file(d->measured_front_file));
+  }
   write_file_atomically(out_file, resolved_case_text(study, c, resolution));
 }
 
@@ -993,7 +1003,7 @@ std::string resolved_case_text(const Study& study, const Case& c, const std::str
     }
     if (!d->measured_front_file.empty()) {
       w.header("[case.measured]");
-      w.str("front_file", d->measured_front_file.string());
+      w.str("front_file", kResolvedFrontFileName);  // the copy write_resolved_case puts beside it
     }
   } else if (const auto* s = c.still_water()) {
     w.header("[case.tank]");

@@ -38,8 +38,12 @@ Study load_embedded_default_study();
 // least 4 particle spacings, y1 at least 5). Throws SpecError naming the case and resolution.
 void validate_for_resolution(const Study& study, const Case& c, const std::string& resolution);
 
+inline constexpr const char* kResolvedFrontFileName = "measured_front.csv";
+
 // Writes a single-case study file that reproduces `c` exactly at resolution `resolution` (all
-// defaults made explicit), so a run directory carries its resolved spec. Written atomically.
+// defaults made explicit), so a run directory carries its resolved spec. Written atomically. A dam
+// break's measured front (case.measured.front_file) is copied beside it as kResolvedFrontFileName
+// and named relatively, so the directory can be moved.
 void write_resolved_case(const Study& study, const Case& c, const std::string& resolution,
                          const std::filesystem::path& out_file);
 

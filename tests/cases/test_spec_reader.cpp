@@ -6,7 +6,9 @@
 #include <regex>
 #include <string>
 
+#include "cases/fingerprint.hpp"
 #include "cases/geometry.hpp"
+#include "cases/results_case.hpp"
 #include "cases/spec_reader.hpp"
 
 using namespace hydrojump::cases;
@@ -129,6 +131,31 @@ TEST_CASE("The verification specs load", "[cases][spec]") {
   const Study dam = load_study(source_dir + "/cases/dam_break.toml");
   CHECK(std::filesystem::exists(dam.cases[0].dam_break()->measured_front_file));
   CHECK(dam.cases[0].sections.size() == 4);
+}
+
+TEST_CASE("A resolved dam-break case carries its measured front and can be moved", "[cases][spec]") {
+  namespace fs = std::filesystem;
+  const Study dam = load_study(source_dir + "/cases/dam_break.toml");
+  const fs::path first = fs::temp_directory_path() / "hydrojump_test_dam_first";
+  const fs::path moved = fs::temp_directory_path() / "hydrojump_test_dam_moved";
+  fs::remove_all(first);
+  fs::remove_all(moved);
+  fs::create_directories(first);
+  write_resolved_case(dam, dam.cases[0], "quick", first / "case.toml");
+  // The case file names its copy relatively, not the spec's data file by an absolute path.
+  const std::string text = read_text_file(first / "case.toml");
+  CHECK(text.find("front_file = \"measured_front.csv\"") != std::string::npos);
+  CHECK(text.find(dam.cases[0].dam_break()->measured_front_file.string()) == std::string::npos);
+  fs::rename(first, moved);
+  const Study reloaded = load_study(moved / "case.toml");
+  const fs::path copy = reloaded.cases[0].dam_break()->measured_front_file;
+  CHECK(fs::equivalent(copy, moved / "measured_front.csv"));
+  CHECK(read_text_file(copy) == read_text_file(dam.cases[0].dam_break()->measured_front_file));
+  // Written again into its own directory (as `sph` does), the copy stays as it is.
+  write_resolved_case(reloaded, reloaded.cases[0], "quick", moved / "case.toml");
+  CHECK(read_text_file(copy) == read_text_file(dam.cases[0].dam_break()->measured_front_file));
+  CHECK(setting_lines(read_text_file(moved / "case.toml")) == setting_lines(text));
+  fs::remove_all(moved);
 }
 
 TEST_CASE("Unknown keys are rejected with file, line and key", "[cases][spec][reject]") {
