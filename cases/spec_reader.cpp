@@ -343,6 +343,11 @@ void read_sph(TableReader& t, SphSettings& s) {
                     number_text(2.0 * std::sqrt(2.0) * s.coef_h) + " dx (coef_h = " + number_text(s.coef_h) +
                     "): use 0 (automatic) or at least " + std::to_string(needed));
   }
+  s.particle_shifting = t.choice("particle_shifting", s.particle_shifting, {"none", "fickian"});
+  s.particle_shifting_coefficient = t.number_or("particle_shifting_coefficient", s.particle_shifting_coefficient,
+                                                Range{0.0, 10.0, true, false, "A in delta r = -A h |v| dt grad C"});
+  s.particle_shifting_surface_threshold = t.number_or("particle_shifting_surface_threshold", s.particle_shifting_surface_threshold,
+                                                      Range{0.0, 2.0, false, false, "div r (2 in the bulk of a 2D fluid)"});
   s.max_density_variation = t.number_or("max_density_variation", s.max_density_variation, Range{0.0, 0.5, true, false, "|rho/rho0 - 1|"});
   s.checkpoint_interval_wall_s = t.number_or("checkpoint_interval_wall_s", s.checkpoint_interval_wall_s, positive("s", 1e6));
   // A parameter of a model this table's settings do not use is an error (it would be silently ignored).
@@ -371,6 +376,11 @@ void read_sph(TableReader& t, SphSettings& s) {
               "and sps_smagorinsky_constant are both given: the mixing length replaces C_s dx, set one");
   only_with("density_diffusion_coefficient", s.density_diffusion != "none",
             "density_diffusion = \"molteni\" or \"fourtakas\" (here \"none\")");
+  for (const char* key : {"particle_shifting_coefficient", "particle_shifting_surface_threshold"})
+    only_with(key, s.particle_shifting == "fickian", "particle_shifting = \"fickian\" (here \"" + s.particle_shifting + "\")");
+  if (s.particle_shifting != "none" && s.time_integrator != "symplectic")
+    t.fail_at(t.raw().get(t.has("particle_shifting") ? "particle_shifting" : "time_integrator"), "particle_shifting",
+              "= \"" + s.particle_shifting + "\" needs time_integrator = \"symplectic\" (here \"" + s.time_integrator + "\")");
   only_with("verlet_euler_interval", s.time_integrator == "verlet",
             "time_integrator = \"verlet\" (here \"" + s.time_integrator + "\")");
   for (const char* key : {"sound_speed_coefficient", "sound_speed_min_flow_ratio"})
@@ -897,6 +907,11 @@ void write_sph(TomlWriter& w, const SphSettings& s) {
   }
   w.str("outflow_condition", s.outflow_condition);
   if (s.outflow_condition == "tailgate") w.num("tailgate_height_m", s.tailgate_height_m);
+  w.str("particle_shifting", s.particle_shifting);
+  if (s.particle_shifting != "none") {
+    w.num("particle_shifting_coefficient", s.particle_shifting_coefficient);
+    w.num("particle_shifting_surface_threshold", s.particle_shifting_surface_threshold);
+  }
   w.num("max_density_variation", s.max_density_variation);
   w.num("checkpoint_interval_wall_s", s.checkpoint_interval_wall_s);
 }

@@ -106,6 +106,12 @@ void SolverSettings::validate() const {
   require(cfl > 0.0 && cfl <= 1.0, "cfl_number", cfl, "(0, 1]");
   require(verlet_euler_interval >= 1, "verlet_euler_interval", verlet_euler_interval, ">= 1");
   require(max_density_variation > 0.0, "max_density_variation", max_density_variation, "> 0");
+  require(shifting_coefficient > 0.0 && shifting_coefficient <= 10.0, "particle_shifting_coefficient", shifting_coefficient, "(0, 10]");
+  require(shifting_surface_threshold >= 0.0 && shifting_surface_threshold <= 2.0, "particle_shifting_surface_threshold",
+          shifting_surface_threshold, "[0, 2]");
+  if (particle_shifting != ParticleShifting::none && time_integrator != TimeIntegrator::symplectic)
+    throw std::invalid_argument("sph.particle_shifting = \"fickian\" needs time_integrator = \"symplectic\" (the shift is applied "
+                                "after the corrector with the corrector's concentration gradient; here \"verlet\")");
   require(x_max > x_min && z_max > z_min, "domain box", x_max - x_min, "must have positive size");
 }
 
@@ -148,6 +154,9 @@ SolverSettings make_settings(const cases::Case& c, const cases::FluidProperties&
   // log law's wall shear (wall_function.hpp).
   out.viscous_walls_free_slip = s.viscosity == "laminar_sps" && s.viscous_wall_condition != "no_slip";
   out.wall_function_shear = s.viscosity == "laminar_sps" && s.viscous_wall_condition == "wall_function";
+  out.particle_shifting = parse_particle_shifting(s.particle_shifting);
+  out.shifting_coefficient = s.particle_shifting_coefficient;
+  out.shifting_surface_threshold = s.particle_shifting_surface_threshold;
   out.blin = s.sps_blin_constant;
   out.diffusion_delta = s.density_diffusion_coefficient;
   out.cfl = s.cfl_number;

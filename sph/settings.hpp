@@ -7,6 +7,7 @@
 
 #include "sph/density_diffusion.hpp"
 #include "sph/kernel.hpp"
+#include "sph/particle_shifting.hpp"
 #include "sph/equation_of_state.hpp"
 #include "sph/viscosity.hpp"
 #include "sph/wall_motion.hpp"
@@ -47,6 +48,9 @@ struct SolverSettings {
                                         // distance table (sph.sps_wall_distance = "whole_domain")
   bool viscous_walls_free_slip = false; // laminar_sps + mdbc: walls mirror the tangential velocity
   bool wall_function_shear = false;     // ... and the first fluid layer takes the log law's wall shear
+  ParticleShifting particle_shifting = ParticleShifting::none;  // particle_shifting.hpp
+  double shifting_coefficient = 2.0;        // A in delta r = -A h |v| dt grad C
+  double shifting_surface_threshold = 1.5;  // div r below this: free surface, not shifted
   double blin = 0.0066;
   double diffusion_delta = 0.1;
   double cfl = 0.2;

@@ -54,7 +54,10 @@ void Solver::step() {
     symplectic_predictor(particles_, settings_, dt);
     move_walls(particles_, walls, t, t + 0.5 * dt);
     interactions();
+    const bool shifting = settings_.particle_shifting != ParticleShifting::none;
+    if (shifting) concentration_gradients(particles_, cells_, settings_, shifting_gradients_);
     symplectic_corrector(particles_, settings_, dt);
+    if (shifting) shift_particles(particles_, shifting_gradients_, settings_, dt);
     move_walls(particles_, walls, t + 0.5 * dt, t + dt);
   } else {
     const bool euler = clock_.steps % settings_.verlet_euler_interval == 0;

@@ -1,7 +1,8 @@
 // The SPH solver: particles, settings and the time step as a script.
 //
 //   symplectic:  interactions(); dt = time_step(); predictor(dt); move_walls(t, t + dt/2);
-//                interactions(); corrector(dt); move_walls(t + dt/2, t + dt); open_boundaries(dt);
+//                interactions(); [shifting_gradients();] corrector(dt); [shift_particles(dt);]
+//                move_walls(t + dt/2, t + dt); open_boundaries(dt);
 //   verlet:      interactions(); dt = time_step(); verlet(dt); move_walls(t, t + dt); open_boundaries(dt);
 //
 // move_walls() moves the moving_wall particles by their prescribed motion (sph/wall_motion.hpp).
@@ -9,6 +10,10 @@
 // open_boundaries() advances the inflow/outflow buffers (sph/open_boundaries.hpp) of a stilling
 // basin: it moves the buffer particles, turns inflow particles into fluid and fluid into outflow
 // particles; nothing for closed cases.
+//
+// shifting_gradients() and shift_particles() (sph.particle_shifting = "fickian", particle_shifting.hpp):
+// the concentration gradient at the corrector's positions, then the fluid particles' displacement
+// down it after the corrector.
 //
 // interactions() sorts the particles by cell (the order of the neighbour search), computes the
 // boundary densities (mDBC), pressures, SPS stresses and the rates. All loops gather per particle,
@@ -20,6 +25,7 @@
 #include "sph/cell_list.hpp"
 #include "sph/interactions.hpp"
 #include "sph/open_boundaries.hpp"
+#include "sph/particle_shifting.hpp"
 #include "sph/particles.hpp"
 #include "sph/settings.hpp"
 #include "sph/wall_distance.hpp"
@@ -68,6 +74,8 @@ class Solver {
   CellList cells_;
   // sph.sps_wall_distance = "whole_domain": the fixed walls' distance table (wall_distance.hpp).
   WallDistanceTable wall_distances_;
+  // sph.particle_shifting: the last concentration gradients (storage reused from step to step).
+  ConcentrationGradients shifting_gradients_;
 };
 
 }  // namespace hydrojump::sph

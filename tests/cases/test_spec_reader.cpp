@@ -499,6 +499,34 @@ TEST_CASE("The mixing length's wall distance is kernel_support or whole_domain, 
   CHECK(parse_study(text, "spec.toml", ".").cases[0].sph.sps_wall_distance == "kernel_support");
 }
 
+TEST_CASE("Particle shifting is none or fickian, its numbers only with fickian and the symplectic integrator", "[cases][spec]") {
+  const auto with = [](const std::string& lines) { return replaced(valid_spec, "[[case]]", "[sph]\n" + lines + "\n\n[[case]]"); };
+  CHECK(parse_study(with(""), "spec.toml", ".").cases[0].sph.particle_shifting == "none");
+  const Study s = parse_study(with("particle_shifting = \"fickian\"\nparticle_shifting_coefficient = 3\n"
+                                   "particle_shifting_surface_threshold = 1.4"),
+                              "spec.toml", ".");
+  CHECK(s.cases[0].sph.particle_shifting == "fickian");
+  CHECK(s.cases[0].sph.particle_shifting_coefficient == 3.0);
+  const Study again = resolved_reload(s, "shifting");
+  CHECK(again.cases[0].sph.particle_shifting == "fickian");
+  CHECK(again.cases[0].sph.particle_shifting_coefficient == 3.0);
+  CHECK(again.cases[0].sph.particle_shifting_surface_threshold == 1.4);
+  CHECK_THAT(rejection(with("particle_shifting = \"lind\"")),
+             Catch::Contains("particle_shifting") && Catch::Contains("\"none\"") && Catch::Contains("\"fickian\""));
+  CHECK_THAT(rejection(with("particle_shifting_coefficient = 2")),
+             Catch::Contains("sph.particle_shifting_coefficient is only used with particle_shifting = \"fickian\" (here \"none\")"));
+  CHECK_THAT(rejection(with("particle_shifting = \"fickian\"\nparticle_shifting_coefficient = 0")),
+             Catch::Contains("sph.particle_shifting_coefficient = 0 is out of range"));
+  CHECK_THAT(rejection(with("particle_shifting = \"fickian\"\nparticle_shifting_surface_threshold = 2.5")),
+             Catch::Contains("sph.particle_shifting_surface_threshold = 2.5 is out of range"));
+  CHECK_THAT(rejection(with("particle_shifting = \"fickian\"\ntime_integrator = \"verlet\"")),
+             Catch::Contains("needs time_integrator = \"symplectic\""));
+  // A case that switches shifting off drops the study's coefficient.
+  const auto text = replaced(with("particle_shifting = \"fickian\"\nparticle_shifting_coefficient = 3"), "[case.run]",
+                             "[case.sph]\nparticle_shifting = \"none\"\n[case.run]");
+  CHECK(parse_study(text, "spec.toml", ".").cases[0].sph.particle_shifting == "none");
+}
+
 TEST_CASE("The viscous wall condition is no_slip, free_slip or wall_function, with laminar_sps and mDBC only", "[cases][spec]") {
   const auto with = [](const std::string& lines) { return replaced(valid_spec, "[[case]]", "[sph]\n" + lines + "\n\n[[case]]"); };
   const Study s = parse_study(with("viscosity = \"laminar_sps\"\nboundary = \"mdbc\"\nviscous_wall_condition = \"free_slip\""),

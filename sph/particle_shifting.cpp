@@ -1,0 +1,103 @@
+#include "sph/particle_shifting.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "sph/kernel.hpp"
+#include "sph/parallel.hpp"
+#include "sph/settings.hpp"
+#include "sph/time_integration.hpp"
+
+namespace hydrojump::sph {
+
+ParticleShifting parse_particle_shifting(const std::string& name) {
+  if (name == "none") return ParticleShifting::none;
+  if (name == "fickian") return ParticleShifting::fickian;
+  throw std::invalid_argument("sph.particle_shifting = \"" + name + "\" is not allowed: use \"none\" or \"fickian\"");
+}
+
+namespace {
+
+constexpr std::uint8_t kFluid = static_cast<std::uint8_t>(ParticleType::fluid);
+
+// grad C_i = sum_j V_j grad_i W_ij,  div r_i = -sum_j V_j (r_i - r_j) . grad_i W_ij,
+// with grad_i W_ij = F(r_ij) (r_i - r_j), gathered by particle i over all its neighbours.
+template <class K>
+void gradients_with(const ParticleSet& ps, const CellList& cells, const SolverSettings& s, const K& kernel,
+                    ConcentrationGradients& out) {
+  const Eigen::Index n = ps.size();
+  out.grad_x.assign(static_cast<std::size_t>(n), 0.0);
+  out.grad_z.assign(static_cast<std::size_t>(n), 0.0);
+  out.div_r.assign(static_cast<std::size_t>(n), 0.0);
+  const double support2 = s.support() * s.support();
+  const double* x = ps.x.data();
+  const double* z = ps.z.data();
+  const double* m = ps.mass.data();
+  const double* rho = ps.rho.data();
+  const std::uint8_t* type = ps.type.data();
+  double* gx_out = out.grad_x.data();
+  double* gz_out = out.grad_z.data();
+  double* div_out = out.div_r.data();
+  const int n_cells = cells.cell_count();
+#pragma omp parallel for schedule(dynamic, 16) if (use_threads(n))
+  for (int c = 0; c < n_cells; ++c) {
+    const int first = cells.cell_start(c), last = cells.cell_start(c + 1);
+    for (int i = first; i < last; ++i) {
+      if (type[i] != kFluid) continue;
+      double gx = 0.0, gz = 0.0, div = 0.0;
+      cells.for_each_neighbour_range(c, [&](int begin, int end, double shift) {
+        for (int j = begin; j < end; ++j) {
+          if (j == i) continue;
+          const double dx = x[i] - (x[j] + shift), dz = z[i] - z[j];
+          const double r2 = dx * dx + dz * dz;
+          if (r2 >= support2) continue;
+          const double vf = m[j] / rho[j] * kernel.gradient_factor(std::sqrt(r2));
+          gx += vf * dx;
+          gz += vf * dz;
+          div -= vf * r2;
+        }
+      });
+      gx_out[i] = gx;
+      gz_out[i] = gz;
+      div_out[i] = div;
+    }
+  }
+}
+
+}  // namespace
+
+void concentration_gradients(const ParticleSet& ps, const CellList& cells, const SolverSettings& s,
+                             ConcentrationGradients& out) {
+  if (s.kernel == KernelType::wendland_c2) gradients_with(ps, cells, s, WendlandC2(s.h), out);
+  else gradients_with(ps, cells, s, CubicSpline(s.h), out);
+}
+
+// delta r_i = -A h |v_i| dt grad C_i  where div r_i >= threshold (not at the free surface).
+ShiftSummary shift_particles(ParticleSet& ps, const ConcentrationGradients& g, const SolverSettings& s, double dt) {
+  const Eigen::Index n = ps.size();
+  if (static_cast<Eigen::Index>(g.grad_x.size()) != n)
+    throw std::logic_error("shift_particles: the concentration gradients are of another particle set");
+  const double a_h_dt = s.shifting_coefficient * s.h * dt;
+  Eigen::Index shifted = 0, at_surface = 0;
+  double max_d2 = 0.0;
+#pragma omp parallel for schedule(static) reduction(+ : shifted, at_surface) reduction(max : max_d2) if (use_threads(n))
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (!ps.is_fluid(i)) continue;
+    const auto k = static_cast<std::size_t>(i);
+    if (g.div_r[k] < s.shifting_surface_threshold) {
+      ++at_surface;
+      continue;
+    }
+    const double d = a_h_dt * std::hypot(ps.u[i], ps.w[i]);
+    const double sx = -d * g.grad_x[k], sz = -d * g.grad_z[k];
+    ps.x[i] += sx;
+    ps.z[i] += sz;
+    max_d2 = std::max(max_d2, sx * sx + sz * sz);
+    ++shifted;
+  }
+  wrap_periodic(ps, s);
+  return ShiftSummary{shifted, at_surface, std::sqrt(max_d2)};
+}
+
+}  // namespace hydrojump::sph

@@ -1,0 +1,61 @@
+// Particle shifting: a small displacement of each fluid particle down the gradient of the particle
+// concentration, which keeps the particle distribution uniform where the flow stretches it, so that
+// voids and clumps (the tensile instability of WCSPH in low-pressure vortices) do not form.
+//
+// Fickian shifting (Lind, Xu, Stansby & Rogers 2012, J. Comput. Phys. 231:1499-1523) with the
+// velocity-scaled diffusion coefficient of Skillen, Lind, Stansby & Rogers (2013, Comput. Methods
+// Appl. Mech. Engrg. 265:163-173), as DualSPHysics applies it to WCSPH (Mokos, Rogers & Stansby
+// 2017, J. Hydraul. Res. 55:143-162):
+//   delta r_i = -A h |v_i| dt grad C_i,      grad C_i = sum_j V_j grad_i W_ij
+// over every neighbour j (fluid, wall and open-boundary buffer particles, so a particle next to a
+// wall is not pushed into it). At the free surface the kernel is truncated and grad C points out of
+// the water; particles there are not shifted. They are found by the divergence of position
+//   div r_i = -sum_j V_j (r_i - r_j) . grad_i W_ij          (= 2 in the bulk of a 2D fluid)
+// being below a threshold (DualSPHysics' ShiftTFS, 1.5 in 2D). Velocity and density are not
+// corrected for the displacement (it is O(h |v| dt), second order small; as in DualSPHysics).
+// With the CFL condition |v| dt <= 0.2 h |v| / c0 <= 0.02 h (Mach 0.1), so |delta r| <= 0.04 A h^2
+// |grad C|: a few percent of h per step.
+//
+// Usage:
+//   | sph.particle_shifting                | "none" (default) | "fickian": the shifting above      |
+//   | sph.particle_shifting_coefficient    | A, in (0, 10], default 2 (Skillen et al.: 1-6)         |
+//   | sph.particle_shifting_surface_threshold | div r below which a particle is at the free surface |
+//   |                                      | and not shifted, in [0, 2], default 1.5                |
+// The two numbers are only allowed with "fickian"; shifting needs time_integrator = "symplectic"
+// (the shift is applied after the corrector, with grad C from the corrector's interaction).
+// Example (spec): `[case.sph]  particle_shifting = "fickian"   particle_shifting_coefficient = 2`
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "sph/cell_list.hpp"
+#include "sph/particles.hpp"
+
+namespace hydrojump::sph {
+
+struct SolverSettings;
+
+enum class ParticleShifting { none, fickian };
+
+ParticleShifting parse_particle_shifting(const std::string& name);
+
+// grad C and div r of every fluid particle (zero for the others), at the current positions; the
+// particle arrays must be in the order of `cells`.
+struct ConcentrationGradients {
+  std::vector<double> grad_x, grad_z, div_r;
+};
+void concentration_gradients(const ParticleSet& ps, const CellList& cells, const SolverSettings& s,
+                             ConcentrationGradients& out);
+
+// What one shift did (for diagnostics and tests).
+struct ShiftSummary {
+  Eigen::Index shifted = 0;        // fluid particles moved
+  Eigen::Index at_surface = 0;     // fluid particles left alone at the free surface
+  double max_displacement = 0.0;   // largest |delta r| (m)
+};
+
+// r_i += -A h |v_i| dt grad C_i for every fluid particle with div r_i >= the surface threshold.
+ShiftSummary shift_particles(ParticleSet& ps, const ConcentrationGradients& g, const SolverSettings& s, double dt);
+
+}  // namespace hydrojump::sph

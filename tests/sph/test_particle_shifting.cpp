@@ -1,0 +1,249 @@
+// Particle shifting (sph/particle_shifting.hpp, sph.particle_shifting = "fickian"):
+//  - the cell-list gradients grad C and div r equal a brute-force O(N^2) sum over all pairs (Cabana
+//    style oracle), with walls, a free surface and periodic wrap;
+//  - on a uniform lattice grad C vanishes in the bulk and div r is the dimension, 2, within 3 %;
+//    the free-surface row has div r < 1.5 and is not shifted;
+//  - a displaced particle is shifted back towards its lattice site by exactly -A h |v| dt grad C;
+//  - repeated shifting makes a jittered block uniform: the spread of the kernel sum sum_j V_j W_ij
+//    over the interior falls by more than half.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <random>
+#include <vector>
+
+#include "sph/cell_list.hpp"
+#include "sph/kernel.hpp"
+#include "sph/particle_shifting.hpp"
+#include "sph/settings.hpp"
+
+using namespace hydrojump::sph;
+
+namespace {
+
+constexpr double kDx = 0.01;
+constexpr double kRho0 = 1000.0;
+
+SolverSettings shifting_settings(bool periodic, double x_max) {
+  SolverSettings s;
+  s.dx = kDx;
+  s.h = smoothing_length(1.0, kDx);
+  s.eos = TaitEquationOfState(kRho0, 20.0);
+  s.particle_shifting = ParticleShifting::fickian;
+  s.periodic_x = periodic;
+  s.x_min = 0.0;
+  s.x_max = x_max;
+  s.z_min = -1.0;
+  s.z_max = 1.0;
+  return s;
+}
+
+// A block of nx x nz fluid particles on the lattice ((i + 1/2) dx, (k + 1/2) dx), at rest, with
+// `wall_rows` rows of wall particles below it; (jitter * dx) uniform random offsets if jitter > 0.
+ParticleSet lattice_block(int nx, int nz, int wall_rows, double jitter, unsigned seed = 7) {
+  ParticleSet ps;
+  ps.resize(static_cast<Eigen::Index>(nx) * (nz + wall_rows));
+  std::mt19937 gen(seed);
+  std::uniform_real_distribution<double> offset(-jitter * kDx, jitter * kDx);
+  const double mass = kRho0 * kDx * kDx;
+  Eigen::Index n = 0;
+  for (int k = -wall_rows; k < nz; ++k)
+    for (int i = 0; i < nx; ++i) {
+      const bool wall = k < 0;
+      const double ox = wall || jitter == 0.0 ? 0.0 : offset(gen), oz = wall || jitter == 0.0 ? 0.0 : offset(gen);
+      ps.assign(n, wall ? ParticleType::boundary : ParticleType::fluid, (i + 0.5) * kDx + ox, (k + 0.5) * kDx + oz,
+                kRho0, mass, n);
+      ++n;
+    }
+  return ps;
+}
+
+// Sorts the particles by cell as the solver does and returns the cell list.
+CellList sorted_cells(ParticleSet& ps, const SolverSettings& s) {
+  CellList cells;
+  const CellGrid grid = s.periodic_x ? CellGrid::periodic_x(s.x_min, s.x_max, ps.z, s.support())
+                                     : CellGrid::enclosing(ps.x, ps.z, s.support());
+  cells.build(ps.x, ps.z, grid);
+  ps.permute(cells.order());
+  cells.mark_sorted();
+  return cells;
+}
+
+// grad C and div r of particle i by brute force over every particle (minimum image if periodic).
+struct Oracle {
+  double gx = 0.0, gz = 0.0, div = 0.0;
+};
+Oracle brute_force(const ParticleSet& ps, const SolverSettings& s, Eigen::Index i) {
+  const WendlandC2 kernel(s.h);
+  const double period = s.x_max - s.x_min;
+  Oracle o;
+  for (Eigen::Index j = 0; j < ps.size(); ++j) {
+    if (j == i) continue;
+    double dx = ps.x[i] - ps.x[j];
+    if (s.periodic_x) dx -= period * std::round(dx / period);
+    const double dz = ps.z[i] - ps.z[j];
+    const double r = std::hypot(dx, dz);
+    if (r >= s.support()) continue;
+    const double vf = ps.mass[j] / ps.rho[j] * kernel.gradient_factor(r);
+    o.gx += vf * dx;
+    o.gz += vf * dz;
+    o.div -= vf * r * r;
+  }
+  return o;
+}
+
+// sum_j V_j W_ij (including j = i) of particle i: 1 where the particles are uniform.
+double kernel_sum(const ParticleSet& ps, const SolverSettings& s, Eigen::Index i) {
+  const WendlandC2 kernel(s.h);
+  const double period = s.x_max - s.x_min;
+  double sum = 0.0;
+  for (Eigen::Index j = 0; j < ps.size(); ++j) {
+    double dx = ps.x[i] - ps.x[j];
+    if (s.periodic_x) dx -= period * std::round(dx / period);
+    const double r = std::hypot(dx, ps.z[i] - ps.z[j]);
+    if (r < s.support()) sum += ps.mass[j] / ps.rho[j] * kernel.value(r);
+  }
+  return sum;
+}
+
+}  // namespace
+
+TEST_CASE("particle shifting: cell-list gradients equal the brute-force sums", "[sph][shifting]") {
+  for (const bool periodic : {false, true}) {
+    INFO("periodic " << periodic);
+    const SolverSettings s = shifting_settings(periodic, 0.3);
+    ParticleSet ps = lattice_block(30, 12, 3, 0.25);
+    const CellList cells = sorted_cells(ps, s);
+    ConcentrationGradients g;
+    concentration_gradients(ps, cells, s, g);
+    REQUIRE(g.grad_x.size() == static_cast<std::size_t>(ps.size()));
+    double worst = 0.0;
+    for (Eigen::Index i = 0; i < ps.size(); ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      if (!ps.is_fluid(i)) {
+        CHECK(g.grad_x[k] == 0.0);
+        CHECK(g.div_r[k] == 0.0);
+        continue;
+      }
+      const Oracle o = brute_force(ps, s, i);
+      worst = std::max({worst, std::abs(g.grad_x[k] - o.gx) * s.h, std::abs(g.grad_z[k] - o.gz) * s.h, std::abs(g.div_r[k] - o.div)});
+    }
+    CHECK(worst < 1e-12);
+  }
+}
+
+TEST_CASE("particle shifting: a uniform lattice has no gradient in the bulk, div r = 2, a detected free surface",
+          "[sph][shifting]") {
+  const SolverSettings s = shifting_settings(true, 0.3);
+  ParticleSet ps = lattice_block(30, 10, 3, 0.0);
+  const CellList cells = sorted_cells(ps, s);
+  ConcentrationGradients g;
+  concentration_gradients(ps, cells, s, g);
+  double max_bulk_grad = 0.0, min_bulk_div = 9.0, max_bulk_div = 0.0, max_top_div = 0.0;
+  for (Eigen::Index i = 0; i < ps.size(); ++i) {
+    if (!ps.is_fluid(i)) continue;
+    const auto k = static_cast<std::size_t>(i);
+    const double top_distance = 10 * kDx - ps.z[i];  // from the free surface at z = 10 dx
+    if (top_distance < kDx) {
+      max_top_div = std::max(max_top_div, g.div_r[k]);
+    } else if (top_distance > s.support()) {
+      max_bulk_grad = std::max(max_bulk_grad, std::hypot(g.grad_x[k], g.grad_z[k]) * s.h);
+      min_bulk_div = std::min(min_bulk_div, g.div_r[k]);
+      max_bulk_div = std::max(max_bulk_div, g.div_r[k]);
+    }
+  }
+  std::cout << "uniform lattice: bulk |grad C| h <= " << max_bulk_grad << ", bulk div r in [" << min_bulk_div << ", "
+            << max_bulk_div << "], top row div r <= " << max_top_div << "\n";
+  // The bulk includes the rows next to the wall layers (walls fill the kernel like fluid).
+  CHECK(max_bulk_grad < 1e-10);
+  CHECK(std::abs(min_bulk_div - 2.0) < 0.06);
+  CHECK(std::abs(max_bulk_div - 2.0) < 0.06);
+  CHECK(max_top_div < s.shifting_surface_threshold);
+
+  // At rest nothing moves; moving, the bulk does not move either, and the top row is left alone.
+  for (Eigen::Index i = 0; i < ps.size(); ++i) ps.u[i] = 1.0;
+  const ParticleSet before = ps;
+  const ShiftSummary summary = shift_particles(ps, g, s, 1e-4);
+  CHECK(summary.at_surface >= 30);
+  for (Eigen::Index i = 0; i < ps.size(); ++i) {
+    if (10 * kDx - before.z[i] < kDx) {
+      CHECK(ps.x[i] == before.x[i]);
+      CHECK(ps.z[i] == before.z[i]);
+    }
+  }
+}
+
+TEST_CASE("particle shifting: a displaced particle is moved back by -A h |v| dt grad C", "[sph][shifting]") {
+  SolverSettings s = shifting_settings(true, 0.3);
+  s.shifting_coefficient = 3.0;
+  ParticleSet ps = lattice_block(30, 12, 3, 0.0);
+  // Particle in column 15, row 5 (well inside), pushed 0.2 dx to the right and 0.1 dx up.
+  Eigen::Index moved = -1;
+  for (Eigen::Index i = 0; i < ps.size(); ++i)
+    if (ps.is_fluid(i) && std::abs(ps.x[i] - 15.5 * kDx) < 1e-9 && std::abs(ps.z[i] - 5.5 * kDx) < 1e-9) moved = i;
+  REQUIRE(moved >= 0);
+  const std::int64_t moved_id = ps.id[moved];
+  ps.x[moved] += 0.2 * kDx;
+  ps.z[moved] += 0.1 * kDx;
+  ps.u[moved] = 2.0;
+  ps.w[moved] = -1.0;
+  const CellList cells = sorted_cells(ps, s);
+  ConcentrationGradients g;
+  concentration_gradients(ps, cells, s, g);
+  Eigen::Index i = 0;
+  while (ps.id[i] != moved_id) ++i;
+  const double x0 = ps.x[i], z0 = ps.z[i], dt = 1e-4;
+  const double d = s.shifting_coefficient * s.h * std::hypot(2.0, -1.0) * dt;
+  const auto k = static_cast<std::size_t>(i);
+  shift_particles(ps, g, s, dt);
+  CHECK(ps.x[i] - x0 == Approx(-d * g.grad_x[k]).epsilon(1e-12));
+  CHECK(ps.z[i] - z0 == Approx(-d * g.grad_z[k]).epsilon(1e-12));
+  CHECK(ps.x[i] < x0);  // back towards its site
+  CHECK(ps.z[i] < z0);
+}
+
+TEST_CASE("particle shifting: repeated shifts make a jittered block uniform", "[sph][shifting]") {
+  const SolverSettings s = shifting_settings(true, 0.4);
+  ParticleSet ps = lattice_block(40, 24, 3, 0.2);
+  for (Eigen::Index i = 0; i < ps.size(); ++i) ps.u[i] = ps.is_fluid(i) ? 1.0 : 0.0;
+  // Interior: at least 3 h from the free surface at z ~ 24 dx (walls below fill the kernel).
+  const auto spread = [&](const ParticleSet& p) {
+    double sum = 0.0, sum2 = 0.0, n = 0.0;
+    for (Eigen::Index i = 0; i < p.size(); ++i) {
+      if (!p.is_fluid(i) || p.z[i] > 24 * kDx - 3.0 * s.h) continue;
+      const double c = kernel_sum(p, s, i);
+      sum += c;
+      sum2 += c * c;
+      n += 1.0;
+    }
+    const double mean = sum / n;
+    return std::sqrt(std::max(0.0, sum2 / n - mean * mean));
+  };
+  const double before = spread(ps);
+  // A h |v| dt = 0.05 h^2 per shift: 100 shifts.
+  const double dt = 0.05 * s.h / (s.shifting_coefficient * 1.0);
+  ConcentrationGradients g;
+  for (int iteration = 0; iteration < 100; ++iteration) {
+    const CellList cells = sorted_cells(ps, s);
+    concentration_gradients(ps, cells, s, g);
+    shift_particles(ps, g, s, dt);
+  }
+  const double after = spread(ps);
+  std::cout << "jittered block: spread of sum V W over the interior " << before << " -> " << after << "\n";
+  CHECK(after < 0.5 * before);
+}
+
+TEST_CASE("particle shifting: options and ranges", "[sph][shifting]") {
+  CHECK(parse_particle_shifting("none") == ParticleShifting::none);
+  CHECK(parse_particle_shifting("fickian") == ParticleShifting::fickian);
+  CHECK_THROWS_WITH(parse_particle_shifting("lind"), Catch::Contains("\"none\" or \"fickian\""));
+  SolverSettings s = shifting_settings(false, 1.0);
+  CHECK_NOTHROW(s.validate());
+  s.time_integrator = TimeIntegrator::verlet;
+  CHECK_THROWS_WITH(s.validate(), Catch::Contains("symplectic"));
+  s.time_integrator = TimeIntegrator::symplectic;
+  s.shifting_coefficient = 0.0;
+  CHECK_THROWS_WITH(s.validate(), Catch::Contains("particle_shifting_coefficient"));
+}
