@@ -40,6 +40,13 @@ struct CellGrid {
   static CellGrid periodic_x(double x_begin, double x_end, const Eigen::VectorXd& z, double support);
 };
 
+// A run [begin, end) of sorted positions in the 3x3 block of cells around a cell; a neighbour j in it
+// is at x[j] + shift_x as seen from that cell.
+struct NeighbourRange {
+  int begin, end;
+  double shift_x;
+};
+
 class CellList {
  public:
   // Assigns every particle to its cell and sorts them by cell (stable). Non-finite positions go to
@@ -84,6 +91,14 @@ class CellList {
         }
       }
     }
+  }
+
+  // The (at most 9) runs of for_each_neighbour_range(c, ...) written to out; returns how many. Cells
+  // whose particles all loop over the same neighbours gather them once per cell with this.
+  int neighbour_ranges(int c, NeighbourRange (&out)[9]) const {
+    int n = 0;
+    for_each_neighbour_range(c, [&](int begin, int end, double shift_x) { out[n++] = NeighbourRange{begin, end, shift_x}; });
+    return n;
   }
 
  private:

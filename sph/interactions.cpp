@@ -18,18 +18,6 @@ namespace {
 
 constexpr std::uint8_t kFluid = static_cast<std::uint8_t>(ParticleType::fluid);
 
-struct Range {
-  int begin, end;
-  double shift;
-};
-
-// The (at most 9) runs of neighbour candidates of cell c.
-int neighbour_ranges(const CellList& cells, int c, Range (&out)[9]) {
-  int n = 0;
-  cells.for_each_neighbour_range(c, [&](int b, int e, double shift) { out[n++] = Range{b, e, shift}; });
-  return n;
-}
-
 // The weakly compressible SPH equations (Monaghan 1994, J. Comput. Phys. 110:399-406), gathered for
 // each particle i over its neighbours j within 2h, with grad_i W_ij = F(r_ij) (r_i - r_j):
 //   continuity (fluid):  D_i = d rho_i/dt = sum_j m_j (v_i - v_j) . grad_i W_ij + diffusion_i
@@ -108,8 +96,8 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
   for (int c = 0; c < n_cells; ++c) {
     const int first = cells.cell_start(c), last = cells.cell_start(c + 1);
     if (first == last) continue;
-    Range ranges[9];
-    const int n_ranges = neighbour_ranges(cells, c, ranges);
+    NeighbourRange ranges[9];
+    const int n_ranges = cells.neighbour_ranges(c, ranges);
     for (int i = first; i < last; ++i) {
       const double xi = x[i], zi = z[i], ui = u[i], wi = w[i], rhoi = rho[i];
       if (type[i] != kFluid) {
@@ -119,10 +107,10 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
         double d = 0.0;
         if (dbc && is_wall_type(type[i])) {
           for (int k = 0; k < n_ranges; ++k) {
-            const Range rg = ranges[k];
+            const NeighbourRange rg = ranges[k];
             for (int j = rg.begin; j < rg.end; ++j) {
               if (is_wall_type(type[j])) continue;
-              const double dx = xi - (x[j] + rg.shift), dz = zi - z[j];
+              const double dx = xi - (x[j] + rg.shift_x), dz = zi - z[j];
               const double r2 = dx * dx + dz * dz;
               if (r2 >= support2) continue;
               // relative to the wall's own velocity (zero unless it is a moving wall)
@@ -142,9 +130,9 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
       int nearest_wall = -1;
       double nearest_r2 = std::numeric_limits<double>::infinity(), nearest_dx = 0.0, nearest_dz = 0.0;
       for (int k = 0; k < n_ranges; ++k) {
-        const Range rg = ranges[k];
+        const NeighbourRange rg = ranges[k];
         for (int j = rg.begin; j < rg.end; ++j) {
-          const double dx = xi - (x[j] + rg.shift), dz = zi - z[j];
+          const double dx = xi - (x[j] + rg.shift_x), dz = zi - z[j];
           const double r2 = dx * dx + dz * dz;
           if (r2 >= support2 || j == i) continue;
           const double f = kernel.gradient_factor(std::sqrt(r2));

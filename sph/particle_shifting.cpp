@@ -43,13 +43,17 @@ void gradients_with(const ParticleSet& ps, const CellList& cells, const SolverSe
 #pragma omp parallel for schedule(dynamic, 16) if (use_threads(n))
   for (int c = 0; c < n_cells; ++c) {
     const int first = cells.cell_start(c), last = cells.cell_start(c + 1);
+    if (first == last) continue;
+    NeighbourRange ranges[9];
+    const int n_ranges = cells.neighbour_ranges(c, ranges);
     for (int i = first; i < last; ++i) {
       if (type[i] != kFluid) continue;
       double gx = 0.0, gz = 0.0, div = 0.0;
-      cells.for_each_neighbour_range(c, [&](int begin, int end, double shift) {
-        for (int j = begin; j < end; ++j) {
+      for (int k = 0; k < n_ranges; ++k) {
+        const NeighbourRange rg = ranges[k];
+        for (int j = rg.begin; j < rg.end; ++j) {
           if (j == i) continue;
-          const double dx = x[i] - (x[j] + shift), dz = z[i] - z[j];
+          const double dx = x[i] - (x[j] + rg.shift_x), dz = z[i] - z[j];
           const double r2 = dx * dx + dz * dz;
           if (r2 >= support2) continue;
           const double vf = m[j] / rho[j] * kernel.gradient_factor(std::sqrt(r2));
@@ -57,7 +61,7 @@ void gradients_with(const ParticleSet& ps, const CellList& cells, const SolverSe
           gz += vf * dz;
           div -= vf * r2;
         }
-      });
+      }
       gx_out[i] = gx;
       gz_out[i] = gz;
       div_out[i] = div;

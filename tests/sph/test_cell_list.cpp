@@ -37,16 +37,29 @@ PairSet cell_search(const Eigen::VectorXd& x, const Eigen::VectorXd& z, double r
   const auto& order = cells.order();
   for (int k = 0; k < static_cast<int>(order.size()); ++k) {
     const int i = order[k];
+    // The solver's loops gather the runs once per cell (neighbour_ranges); they must be exactly the
+    // runs for_each_neighbour_range visits.
+    hydrojump::sph::NeighbourRange ranges[9];
+    const int n_ranges = cells.neighbour_ranges(cells.cell_of_sorted(k), ranges);
+    int visited = 0;
     cells.for_each_neighbour_range(cells.cell_of_sorted(k), [&](int begin, int end, double shift) {
-      for (int m = begin; m < end; ++m) {
+      REQUIRE(visited < n_ranges);
+      REQUIRE(ranges[visited].begin == begin);
+      REQUIRE(ranges[visited].end == end);
+      REQUIRE(ranges[visited].shift_x == shift);
+      ++visited;
+    });
+    REQUIRE(visited == n_ranges);
+    for (int r = 0; r < n_ranges; ++r) {
+      for (int m = ranges[r].begin; m < ranges[r].end; ++m) {
         const int j = order[m];
-        const double dx = x[i] - (x[j] + shift), dz = z[i] - z[j];
+        const double dx = x[i] - (x[j] + ranges[r].shift_x), dz = z[i] - z[j];
         if (dx * dx + dz * dz < radius * radius) {
           const bool fresh = pairs.insert({i, j}).second;
           REQUIRE(fresh);  // no pair is visited twice
         }
       }
-    });
+    }
   }
   return pairs;
 }
