@@ -3,6 +3,7 @@
 #include <chrono>
 #include <ctime>
 #include <sstream>
+#include <stdexcept>
 
 #include <omp.h>
 #include <sys/resource.h>
@@ -17,17 +18,21 @@ namespace hydrojump::sph {
 
 namespace {
 
-// The benchmark case, as a study file (parsed and validated like any other spec).
-constexpr const char* kBenchmarkStudy = R"(
+// The benchmark case, as a study file (parsed and validated like any other spec): the [sph] table of
+// the chosen model, then the case.
+constexpr const char* kStudyTable = R"(
 [study]
 name = "benchmark"
-description = "hydrojump bench: dam break, DualSPHysics-comparable settings"
+description = "hydrojump bench: dam break"
 
 [fluid]
 density_kg_m3 = 1000.0
 kinematic_viscosity_m2_s = 1.0e-6
 gravity_m_s2 = 9.81
+)";
 
+// DualSPHysics-comparable settings.
+constexpr const char* kDualSphysicsModel = R"(
 [sph]
 kernel = "wendland_c2"
 viscosity = "artificial"
@@ -39,7 +44,27 @@ sound_speed_coefficient = 20.0
 cfl_number = 0.2
 coef_h = 1.0
 time_integrator = "verlet"
+)";
 
+// The most expensive model set of the stilling-basin runs (README, SPH corrugated beds, note f).
+constexpr const char* kJumpModel = R"(
+[sph]
+kernel = "wendland_c2"
+viscosity = "laminar_sps"
+sps_mixing_length_m = 0.1
+sps_wall_distance = "whole_domain"
+viscous_wall_condition = "wall_function"
+boundary = "mdbc"
+density_diffusion = "fourtakas"
+density_diffusion_coefficient = 0.1
+sound_speed_coefficient = 20.0
+cfl_number = 0.2
+coef_h = 1.0
+time_integrator = "symplectic"
+particle_shifting = "fickian"
+)";
+
+constexpr const char* kBenchmarkCase = R"(
 [resolution.bench]
 particle_spacing_m = 0.01
 vof_cell_size_bed_m = 0.01
@@ -64,9 +89,19 @@ type = "instant"
 
 }  // namespace
 
+const std::vector<std::string>& benchmark_models() {
+  static const std::vector<std::string> models{"dualsphysics", "jump"};
+  return models;
+}
+
 BenchmarkResult run_benchmark(const BenchmarkOptions& options) {
+  const char* model = nullptr;
+  if (options.model == "dualsphysics") model = kDualSphysicsModel;
+  else if (options.model == "jump") model = kJumpModel;
+  else throw std::invalid_argument("hydrojump bench: model \"" + options.model + "\" is not allowed: use \"dualsphysics\" or \"jump\"");
   if (options.threads > 0) omp_set_num_threads(options.threads);
-  const cases::Study study = cases::parse_study(kBenchmarkStudy, "<hydrojump bench>", ".");
+  const std::string text = std::string(kStudyTable) + model + kBenchmarkCase;
+  const cases::Study study = cases::parse_study(text, "<hydrojump bench, model " + options.model + ">", ".");
   const cases::Case& c = study.cases.front();
   const cases::CaseGeometry geometry = cases::make_geometry(c, study.fluid);
   const SolverSettings settings = make_settings(c, study.fluid, geometry, options.particle_spacing_m);
@@ -76,6 +111,7 @@ BenchmarkResult run_benchmark(const BenchmarkOptions& options) {
   r.particles = solver.particles().size();
   r.fluid_particles = solver.particles().fluid_count();
   r.threads = omp_get_max_threads();
+  r.model = options.model;
   timespec cpu0{}, cpu1{};
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &cpu0);
   const auto t0 = std::chrono::steady_clock::now();
@@ -96,7 +132,7 @@ BenchmarkResult run_benchmark(const BenchmarkOptions& options) {
 
 std::string to_json(const BenchmarkResult& r) {
   std::ostringstream o;
-  o << "{\"particles\": " << r.particles << ", \"steps\": " << r.steps << ", \"threads\": " << r.threads
+  o << "{\"model\": \"" << r.model << "\", \"particles\": " << r.particles << ", \"steps\": " << r.steps << ", \"threads\": " << r.threads
     << ", \"particle_steps_per_second\": " << static_cast<std::int64_t>(r.particle_steps_per_second)
     << ", \"peak_memory_bytes\": " << r.peak_memory_bytes << "}";
   return o.str();

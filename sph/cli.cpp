@@ -245,13 +245,17 @@ void register_commands(CLI::App& app) {
       "SPH benchmark: 2D dam break (column 1 m x 2 m, tank 4 m), dx = 0.01 m (20,000 fluid particles), Wendland\n"
       "C2, h = sqrt(2) dx, artificial viscosity 0.02, Fourtakas diffusion 0.1, DBC, Verlet, CFL 0.2,\n"
       "c0 = 20 sqrt(g 2 m), 0.3 s of physical time. Prints particle-steps per second (all particles times\n"
-      "steps over the wall time of the time loop) and the peak memory.");
+      "steps over the wall time of the time loop) and the peak memory. --model jump runs the same dam break with\n"
+      "the stilling-basin runs' costliest models instead: symplectic, mDBC, laminar + SPS (mixing length,\n"
+      "whole-domain wall distance, log-law wall function) and Fickian particle shifting.");
   bench->add_option("--steps", bench_opt->max_steps, "stop after N steps (a quick figure)")->check(CLI::Range(std::int64_t{1}, std::int64_t{1000000000}));
   bench->add_option("--threads", bench_opt->threads, "OpenMP threads")->check(CLI::Range(1, 1024));
   bench->add_option("--end-time", bench_opt->end_time_s, "physical time to simulate in s (default 0.3)")
       ->check(cases::positive_finite_number());
   bench->add_option("--dx", bench_opt->particle_spacing_m, "particle spacing in m (default 0.01)")
       ->check(CLI::Range(0.002, 0.1));
+  bench->add_option("--model", bench_opt->model, "\"dualsphysics\" (default: DualSPHysics-comparable settings) or \"jump\"")
+      ->check(CLI::IsMember(benchmark_models()));
   bench->add_flag("--json", *json, "print the result as one JSON object");
   bench->callback([bench_opt, json]() {
     const BenchmarkResult r = run_benchmark(*bench_opt);
@@ -259,7 +263,7 @@ void register_commands(CLI::App& app) {
       std::cout << to_json(r) << "\n";
       return;
     }
-    std::cout << "hydrojump bench: dam break dx = " << bench_opt->particle_spacing_m << " m, " << r.particles
+    std::cout << "hydrojump bench (model " << r.model << "): dam break dx = " << bench_opt->particle_spacing_m << " m, " << r.particles
               << " particles (" << r.fluid_particles << " fluid), " << r.threads << " thread(s)\n"
               << "  " << r.steps << " steps to t = " << r.simulated_time_s << " s in " << r.seconds << " s wall, "
               << r.cpu_seconds << " s CPU (a CPU time well above threads x wall, or a wall time well above the CPU\n"

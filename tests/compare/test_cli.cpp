@@ -301,4 +301,15 @@ TEST_CASE("hydrojump bench --json prints particles, steps, threads, speed and me
   const auto at = log.find("\"particles\": ");
   REQUIRE(at != std::string::npos);
   CHECK(std::stol(log.substr(at + 13)) > 20000);
+  CHECK_THAT(log, Catch::Contains("\"model\": \"dualsphysics\""));
+}
+
+TEST_CASE("hydrojump bench --model jump runs the stilling-basin models and refuses unknown models", "[compare][integration][cli]") {
+  hydrojump::compare::testing::TempDir tmp("bench_jump");
+  REQUIRE(run({"bench", "--model", "jump", "--steps", "2", "--threads", "1", "--json"}, tmp.path() / "bench.log") == 0);
+  const std::string log = read_text(tmp.path() / "bench.log");
+  INFO(log);
+  CHECK_THAT(log, Catch::Contains("\"model\": \"jump\"") && Catch::Contains("\"steps\": 2"));
+  CHECK(run({"bench", "--model", "verlet"}, tmp.path() / "bad.log") != 0);
+  CHECK_THAT(read_text(tmp.path() / "bad.log"), Catch::Contains("--model") && Catch::Contains("verlet"));
 }
