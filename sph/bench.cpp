@@ -19,7 +19,7 @@ namespace hydrojump::sph {
 namespace {
 
 // The benchmark case, as a study file (parsed and validated like any other spec): the [sph] table of
-// the chosen model, then the case.
+// the shared keys and the chosen model's, then the case.
 constexpr const char* kStudyTable = R"(
 [study]
 name = "benchmark"
@@ -31,35 +31,32 @@ kinematic_viscosity_m2_s = 1.0e-6
 gravity_m_s2 = 9.81
 )";
 
-// DualSPHysics-comparable settings.
-constexpr const char* kDualSphysicsModel = R"(
+// The [sph] keys both models share, then each model's own.
+constexpr const char* kCommonSph = R"(
 [sph]
 kernel = "wendland_c2"
-viscosity = "artificial"
-artificial_viscosity_alpha = 0.02
-boundary = "dbc"
 density_diffusion = "fourtakas"
 density_diffusion_coefficient = 0.1
 sound_speed_coefficient = 20.0
 cfl_number = 0.2
 coef_h = 1.0
+)";
+
+// DualSPHysics-comparable settings.
+constexpr const char* kDualSphysicsModel = R"(
+viscosity = "artificial"
+artificial_viscosity_alpha = 0.02
+boundary = "dbc"
 time_integrator = "verlet"
 )";
 
-// The most expensive model set of the stilling-basin runs (README, SPH corrugated beds, note f).
+// The costliest model set of the stilling-basin runs (README, SPH corrugated beds, note f).
 constexpr const char* kJumpModel = R"(
-[sph]
-kernel = "wendland_c2"
 viscosity = "laminar_sps"
 sps_mixing_length_m = 0.1
 sps_wall_distance = "whole_domain"
 viscous_wall_condition = "wall_function"
 boundary = "mdbc"
-density_diffusion = "fourtakas"
-density_diffusion_coefficient = 0.1
-sound_speed_coefficient = 20.0
-cfl_number = 0.2
-coef_h = 1.0
 time_integrator = "symplectic"
 particle_shifting = "fickian"
 )";
@@ -100,7 +97,7 @@ BenchmarkResult run_benchmark(const BenchmarkOptions& options) {
   else if (options.model == "jump") model = kJumpModel;
   else throw std::invalid_argument("hydrojump bench: model \"" + options.model + "\" is not allowed: use \"dualsphysics\" or \"jump\"");
   if (options.threads > 0) omp_set_num_threads(options.threads);
-  const std::string text = std::string(kStudyTable) + model + kBenchmarkCase;
+  const std::string text = std::string(kStudyTable) + kCommonSph + model + kBenchmarkCase;
   const cases::Study study = cases::parse_study(text, "<hydrojump bench, model " + options.model + ">", ".");
   const cases::Case& c = study.cases.front();
   const cases::CaseGeometry geometry = cases::make_geometry(c, study.fluid);
