@@ -77,31 +77,41 @@ void concentration_gradients(const ParticleSet& ps, const CellList& cells, const
   else gradients_with(ps, cells, s, CubicSpline(s.h), out);
 }
 
-// delta r_i = -A h |v_i| dt grad C_i  where div r_i >= threshold (not at the free surface).
+// delta r_i = -A h |v_i| dt f_i grad C_i,  f_i = (div r_i - TFS) / (2 - TFS)  where div r_i >= TFS
+// (not at the free surface), |delta r_i| capped at 0.1 dx.
 ShiftSummary shift_particles(ParticleSet& ps, const ConcentrationGradients& g, const SolverSettings& s, double dt) {
   const Eigen::Index n = ps.size();
   if (static_cast<Eigen::Index>(g.grad_x.size()) != n)
     throw std::logic_error("shift_particles: the concentration gradients are of another particle set");
   const double a_h_dt = s.shifting_coefficient * s.h * dt;
-  Eigen::Index shifted = 0, at_surface = 0;
+  const double tfs = s.shifting_surface_threshold;
+  const double ramp_width = 2.0 - tfs;  // > 0: SolverSettings::validate keeps TFS <= 1.9
+  const double max_shift = 0.1 * s.dx;
+  Eigen::Index shifted = 0, at_surface = 0, capped = 0;
   double max_d2 = 0.0;
-#pragma omp parallel for schedule(static) reduction(+ : shifted, at_surface) reduction(max : max_d2) if (use_threads(n))
+#pragma omp parallel for schedule(static) reduction(+ : shifted, at_surface, capped) reduction(max : max_d2) if (use_threads(n))
   for (Eigen::Index i = 0; i < n; ++i) {
     if (!ps.is_fluid(i)) continue;
     const auto k = static_cast<std::size_t>(i);
-    if (g.div_r[k] < s.shifting_surface_threshold) {
+    if (g.div_r[k] < tfs) {
       ++at_surface;
       continue;
     }
-    const double d = a_h_dt * std::hypot(ps.u[i], ps.w[i]);
-    const double sx = -d * g.grad_x[k], sz = -d * g.grad_z[k];
+    const double d = a_h_dt * std::hypot(ps.u[i], ps.w[i]) * (g.div_r[k] - tfs) / ramp_width;
+    double sx = -d * g.grad_x[k], sz = -d * g.grad_z[k];
+    const double length = std::hypot(sx, sz);
+    if (length > max_shift) {
+      sx *= max_shift / length;
+      sz *= max_shift / length;
+      ++capped;
+    }
     ps.x[i] += sx;
     ps.z[i] += sz;
     max_d2 = std::max(max_d2, sx * sx + sz * sz);
     ++shifted;
   }
   wrap_periodic(ps, s);
-  return ShiftSummary{shifted, at_surface, std::sqrt(max_d2)};
+  return ShiftSummary{shifted, at_surface, capped, std::sqrt(max_d2)};
 }
 
 }  // namespace hydrojump::sph

@@ -6,21 +6,26 @@
 // velocity-scaled diffusion coefficient of Skillen, Lind, Stansby & Rogers (2013, Comput. Methods
 // Appl. Mech. Engrg. 265:163-173), as DualSPHysics applies it to WCSPH (Mokos, Rogers & Stansby
 // 2017, J. Hydraul. Res. 55:143-162):
-//   delta r_i = -A h |v_i| dt grad C_i,      grad C_i = sum_j V_j grad_i W_ij
+//   delta r_i = -A h |v_i| dt f_i grad C_i,      grad C_i = sum_j V_j grad_i W_ij
 // over every neighbour j (fluid, wall and open-boundary buffer particles, so a particle next to a
-// wall is not pushed into it). At the free surface the kernel is truncated and grad C points out of
-// the water; particles there are not shifted. They are found by the divergence of position
+// wall is not pushed into it). grad C points towards more particles: into the water at the free
+// surface, where the kernel is truncated, so there -grad C would push particles out of the water.
+// Particles there are not shifted. They are found by the divergence of position
 //   div r_i = -sum_j V_j (r_i - r_j) . grad_i W_ij          (= 2 in the bulk of a 2D fluid)
-// being below a threshold (DualSPHysics' ShiftTFS, 1.5 in 2D). Velocity and density are not
-// corrected for the displacement (it is O(h |v| dt), second order small; as in DualSPHysics).
-// With the CFL condition |v| dt <= 0.2 h |v| / c0 <= 0.02 h (Mach 0.1), so |delta r| <= 0.04 A h^2
-// |grad C|: a few percent of h per step.
+// being below a threshold TFS (DualSPHysics' ShiftTFS, 1.5 in 2D), and the shift fades in below the
+// surface with DualSPHysics' ramp
+//   f_i = 0 where div r_i < TFS,   f_i = (div r_i - TFS) / (2 - TFS) elsewhere,
+// so the rows just under the surface are not pulled up at full strength. Each displacement is
+// capped at 0.1 dx (DualSPHysics caps each component at 0.1 dp; here the length, keeping the
+// direction). Velocity and density are not corrected for the displacement (it is O(h |v| dt),
+// second order small; as in DualSPHysics). With the CFL condition dt <= 0.2 h / c0 and |v| <= 0.1 c0
+// (Mach 0.1), |v| dt <= 0.02 h, so |delta r| <= 0.02 A f h^2 |grad C|: a few percent of h per step.
 //
 // Usage:
 //   | sph.particle_shifting                | "none" (default) | "fickian": the shifting above      |
 //   | sph.particle_shifting_coefficient    | A, in (0, 10], default 2 (Skillen et al.: 1-6)         |
-//   | sph.particle_shifting_surface_threshold | div r below which a particle is at the free surface |
-//   |                                      | and not shifted, in [0, 2], default 1.5                |
+//   | sph.particle_shifting_surface_threshold | TFS: div r below which a particle is at the free |
+//   |                                      | surface and not shifted, in [0, 1.9], default 1.5      |
 // The two numbers are only allowed with "fickian"; shifting needs time_integrator = "symplectic"
 // (the shift is applied after the corrector, with grad C from the corrector's interaction).
 // Example (spec): `[case.sph]  particle_shifting = "fickian"   particle_shifting_coefficient = 2`
@@ -52,10 +57,12 @@ void concentration_gradients(const ParticleSet& ps, const CellList& cells, const
 struct ShiftSummary {
   Eigen::Index shifted = 0;        // fluid particles moved
   Eigen::Index at_surface = 0;     // fluid particles left alone at the free surface
+  Eigen::Index capped = 0;         // fluid particles whose displacement was capped at 0.1 dx
   double max_displacement = 0.0;   // largest |delta r| (m)
 };
 
-// r_i += -A h |v_i| dt grad C_i for every fluid particle with div r_i >= the surface threshold.
+// r_i += -A h |v_i| dt f_i grad C_i (length at most 0.1 dx) for every fluid particle with div r_i at or
+// above the surface threshold.
 ShiftSummary shift_particles(ParticleSet& ps, const ConcentrationGradients& g, const SolverSettings& s, double dt);
 
 }  // namespace hydrojump::sph

@@ -107,8 +107,8 @@ void SolverSettings::validate() const {
   require(verlet_euler_interval >= 1, "verlet_euler_interval", verlet_euler_interval, ">= 1");
   require(max_density_variation > 0.0, "max_density_variation", max_density_variation, "> 0");
   require(shifting_coefficient > 0.0 && shifting_coefficient <= 10.0, "particle_shifting_coefficient", shifting_coefficient, "(0, 10]");
-  require(shifting_surface_threshold >= 0.0 && shifting_surface_threshold <= 2.0, "particle_shifting_surface_threshold",
-          shifting_surface_threshold, "[0, 2]");
+  require(shifting_surface_threshold >= 0.0 && shifting_surface_threshold <= 1.9, "particle_shifting_surface_threshold",
+          shifting_surface_threshold, "[0, 1.9]");
   if (particle_shifting != ParticleShifting::none && time_integrator != TimeIntegrator::symplectic)
     throw std::invalid_argument("sph.particle_shifting = \"fickian\" needs time_integrator = \"symplectic\" (the shift is applied "
                                 "after the corrector with the corrector's concentration gradient; here \"verlet\")");

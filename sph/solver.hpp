@@ -1,7 +1,7 @@
 // The SPH solver: particles, settings and the time step as a script.
 //
 //   symplectic:  interactions(); dt = time_step(); predictor(dt); move_walls(t, t + dt/2);
-//                interactions(); [shifting_gradients();] corrector(dt); [shift_particles(dt);]
+//                interactions(); [concentration_gradients();] corrector(dt); [shift_particles(dt);]
 //                move_walls(t + dt/2, t + dt); open_boundaries(dt);
 //   verlet:      interactions(); dt = time_step(); verlet(dt); move_walls(t, t + dt); open_boundaries(dt);
 //
@@ -11,9 +11,9 @@
 // basin: it moves the buffer particles, turns inflow particles into fluid and fluid into outflow
 // particles; nothing for closed cases.
 //
-// shifting_gradients() and shift_particles() (sph.particle_shifting = "fickian", particle_shifting.hpp):
-// the concentration gradient at the corrector's positions, then the fluid particles' displacement
-// down it after the corrector.
+// concentration_gradients() and shift_particles() (sph.particle_shifting = "fickian", particle_shifting.hpp):
+// the concentration gradient from the corrector's interaction (at the predictor's half-step
+// positions), then the fluid particles' displacement down it after the corrector.
 //
 // interactions() sorts the particles by cell (the order of the neighbour search), computes the
 // boundary densities (mDBC), pressures, SPS stresses and the rates. All loops gather per particle,

@@ -517,8 +517,8 @@ TEST_CASE("Particle shifting is none or fickian, its numbers only with fickian a
              Catch::Contains("sph.particle_shifting_coefficient is only used with particle_shifting = \"fickian\" (here \"none\")"));
   CHECK_THAT(rejection(with("particle_shifting = \"fickian\"\nparticle_shifting_coefficient = 0")),
              Catch::Contains("sph.particle_shifting_coefficient = 0 is out of range"));
-  CHECK_THAT(rejection(with("particle_shifting = \"fickian\"\nparticle_shifting_surface_threshold = 2.5")),
-             Catch::Contains("sph.particle_shifting_surface_threshold = 2.5 is out of range"));
+  CHECK_THAT(rejection(with("particle_shifting = \"fickian\"\nparticle_shifting_surface_threshold = 1.95")),
+             Catch::Contains("sph.particle_shifting_surface_threshold = 1.95 is out of range"));
   CHECK_THAT(rejection(with("particle_shifting = \"fickian\"\ntime_integrator = \"verlet\"")),
              Catch::Contains("needs time_integrator = \"symplectic\""));
   // A case that switches shifting off drops the study's coefficient.

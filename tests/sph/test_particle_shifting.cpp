@@ -3,7 +3,8 @@
 //    style oracle), with walls, a free surface and periodic wrap;
 //  - on a uniform lattice grad C vanishes in the bulk and div r is the dimension, 2, within 3 %;
 //    the free-surface row has div r < 1.5 and is not shifted;
-//  - a displaced particle is shifted back towards its lattice site by exactly -A h |v| dt grad C;
+//  - a displaced particle is shifted back towards its lattice site by exactly -A h |v| dt f grad C;
+//  - on prescribed gradients the surface ramp f = (div r - TFS)/(2 - TFS) and the 0.1 dx cap hold;
 //  - repeated shifting makes a jittered block uniform: the spread of the kernel sum sum_j V_j W_ij
 //    over the interior falls by more than half.
 #include <catch2/catch.hpp>
@@ -167,15 +168,63 @@ TEST_CASE("particle shifting: a uniform lattice has no gradient in the bulk, div
   const ParticleSet before = ps;
   const ShiftSummary summary = shift_particles(ps, g, s, 1e-4);
   CHECK(summary.at_surface >= 30);
+  CHECK(summary.capped == 0);
+  double max_bulk_move = 0.0, max_near_surface_move = 0.0;
   for (Eigen::Index i = 0; i < ps.size(); ++i) {
-    if (10 * kDx - before.z[i] < kDx) {
+    const double top_distance = 10 * kDx - before.z[i];
+    const double move = std::hypot(ps.x[i] - before.x[i], ps.z[i] - before.z[i]);
+    if (top_distance < kDx) {
       CHECK(ps.x[i] == before.x[i]);
       CHECK(ps.z[i] == before.z[i]);
+    } else if (top_distance > s.support()) {
+      max_bulk_move = std::max(max_bulk_move, move);
+    } else {
+      max_near_surface_move = std::max(max_near_surface_move, move);
     }
   }
+  std::cout << "uniform lattice shifted at |v| = 1 m/s, dt = 1e-4 s: bulk moves <= " << max_bulk_move
+            << " m, rows under the surface row <= " << max_near_surface_move << " m (0.1 dx = " << 0.1 * kDx << " m)\n";
+  CHECK(max_bulk_move < 1e-12);
+  // A h |v| dt |grad C| with |grad C| < 1/h: the rows under the surface move at most A |v| dt.
+  CHECK(max_near_surface_move <= s.shifting_coefficient * 1.0 * 1e-4);
 }
 
-TEST_CASE("particle shifting: a displaced particle is moved back by -A h |v| dt grad C", "[sph][shifting]") {
+TEST_CASE("particle shifting: the surface ramp and the 0.1 dx cap on prescribed gradients", "[sph][shifting]") {
+  // Five fluid particles moving at |v| = 5 m/s, each given grad C and div r by hand (not computed):
+  // div r below, at, half-way above and at the bulk value of the threshold ramp, and one with a
+  // gradient so large that its displacement is capped.
+  const SolverSettings s = shifting_settings(false, 1.0);  // A = 2, TFS = 1.5
+  ParticleSet ps = lattice_block(5, 1, 0, 0.0);
+  for (Eigen::Index i = 0; i < ps.size(); ++i) {
+    ps.u[i] = 3.0;
+    ps.w[i] = 4.0;
+  }
+  ConcentrationGradients g;
+  g.grad_x = {30.0, 30.0, 30.0, 30.0, 3.0e5};
+  g.grad_z = {-40.0, -40.0, -40.0, -40.0, -4.0e5};
+  g.div_r = {1.49, 1.5, 1.75, 2.0, 2.0};
+  const ParticleSet before = ps;
+  const double dt = 1e-5;
+  const ShiftSummary summary = shift_particles(ps, g, s, dt);
+  const double full = 2.0 * s.h * 5.0 * dt;  // A h |v| dt
+  const auto moved = [&](Eigen::Index i) { return Eigen::Vector2d(ps.x[i] - before.x[i], ps.z[i] - before.z[i]); };
+  CHECK(summary.at_surface == 1);
+  CHECK(summary.shifted == 4);
+  CHECK(summary.capped == 1);
+  CHECK(moved(0).norm() == 0.0);                                  // at the surface
+  CHECK(moved(1).norm() == 0.0);                                  // f = 0 at the threshold
+  CHECK(moved(2).x() == Approx(-0.5 * full * 30.0).epsilon(1e-12));  // f = 1/2
+  CHECK(moved(2).y() == Approx(0.5 * full * 40.0).epsilon(1e-12));
+  CHECK(moved(3).x() == Approx(-full * 30.0).epsilon(1e-12));        // f = 1
+  CHECK(moved(3).y() == Approx(full * 40.0).epsilon(1e-12));
+  // Capped: length 0.1 dx, direction -grad C = (-3, 4)/5.
+  CHECK(moved(4).norm() == Approx(0.1 * kDx).epsilon(1e-12));
+  CHECK(moved(4).x() == Approx(-0.6 * 0.1 * kDx).epsilon(1e-12));
+  CHECK(moved(4).y() == Approx(0.8 * 0.1 * kDx).epsilon(1e-12));
+  CHECK(summary.max_displacement == Approx(0.1 * kDx).epsilon(1e-12));
+}
+
+TEST_CASE("particle shifting: a displaced particle is moved back by -A h |v| dt f grad C", "[sph][shifting]") {
   SolverSettings s = shifting_settings(true, 0.3);
   s.shifting_coefficient = 3.0;
   ParticleSet ps = lattice_block(30, 12, 3, 0.0);
@@ -195,8 +244,9 @@ TEST_CASE("particle shifting: a displaced particle is moved back by -A h |v| dt 
   Eigen::Index i = 0;
   while (ps.id[i] != moved_id) ++i;
   const double x0 = ps.x[i], z0 = ps.z[i], dt = 1e-4;
-  const double d = s.shifting_coefficient * s.h * std::hypot(2.0, -1.0) * dt;
   const auto k = static_cast<std::size_t>(i);
+  const double ramp = (g.div_r[k] - s.shifting_surface_threshold) / (2.0 - s.shifting_surface_threshold);
+  const double d = s.shifting_coefficient * s.h * std::hypot(2.0, -1.0) * dt * ramp;
   shift_particles(ps, g, s, dt);
   CHECK(ps.x[i] - x0 == Approx(-d * g.grad_x[k]).epsilon(1e-12));
   CHECK(ps.z[i] - z0 == Approx(-d * g.grad_z[k]).epsilon(1e-12));
@@ -246,4 +296,7 @@ TEST_CASE("particle shifting: options and ranges", "[sph][shifting]") {
   s.time_integrator = TimeIntegrator::symplectic;
   s.shifting_coefficient = 0.0;
   CHECK_THROWS_WITH(s.validate(), Catch::Contains("particle_shifting_coefficient"));
+  s.shifting_coefficient = 2.0;
+  s.shifting_surface_threshold = 1.95;  // the ramp (div r - TFS)/(2 - TFS) needs room below 2
+  CHECK_THROWS_WITH(s.validate(), Catch::Contains("particle_shifting_surface_threshold") && Catch::Contains("[0, 1.9]"));
 }
