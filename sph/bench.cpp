@@ -84,18 +84,33 @@ height_m = 3.0
 type = "instant"
 )";
 
+// Each model's name and its own [sph] keys: the one list the option's allowed values come from.
+struct NamedModel {
+  const char* name;
+  const char* sph_keys;
+};
+constexpr NamedModel kModels[] = {{"dualsphysics", kDualSphysicsModel}, {"jump", kJumpModel}};
+
 }  // namespace
 
 const std::vector<std::string>& benchmark_models() {
-  static const std::vector<std::string> models{"dualsphysics", "jump"};
-  return models;
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> v;
+    for (const NamedModel& m : kModels) v.emplace_back(m.name);
+    return v;
+  }();
+  return names;
 }
 
 BenchmarkResult run_benchmark(const BenchmarkOptions& options) {
   const char* model = nullptr;
-  if (options.model == "dualsphysics") model = kDualSphysicsModel;
-  else if (options.model == "jump") model = kJumpModel;
-  else throw std::invalid_argument("hydrojump bench: model \"" + options.model + "\" is not allowed: use \"dualsphysics\" or \"jump\"");
+  std::string allowed;
+  for (const NamedModel& m : kModels) {
+    if (options.model == m.name) model = m.sph_keys;
+    allowed += (allowed.empty() ? "\"" : ", \"") + std::string(m.name) + "\"";
+  }
+  if (model == nullptr)
+    throw std::invalid_argument("hydrojump bench: model \"" + options.model + "\" is not allowed: use one of " + allowed);
   if (options.threads > 0) omp_set_num_threads(options.threads);
   const std::string text = std::string(kStudyTable) + kCommonSph + model + kBenchmarkCase;
   const cases::Study study = cases::parse_study(text, "<hydrojump bench, model " + options.model + ">", ".");
