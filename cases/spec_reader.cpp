@@ -348,6 +348,7 @@ void read_sph(TableReader& t, SphSettings& s) {
                                                 Range{0.0, 10.0, true, false, "A in delta r = -A h |v| dt grad C"});
   s.particle_shifting_surface_threshold = t.number_or("particle_shifting_surface_threshold", s.particle_shifting_surface_threshold,
                                                       Range{0.0, 1.9, false, false, "div r (2 in the bulk of a 2D fluid; at 1.98 or more every particle would count as at the surface)"});
+  s.particle_shifting_correction = t.choice("particle_shifting_correction", s.particle_shifting_correction, {"none", "taylor"});
   s.max_density_variation = t.number_or("max_density_variation", s.max_density_variation, Range{0.0, 0.5, true, false, "|rho/rho0 - 1|"});
   s.checkpoint_interval_wall_s = t.number_or("checkpoint_interval_wall_s", s.checkpoint_interval_wall_s, positive("s", 1e6));
   // A parameter of a model this table's settings do not use is an error (it would be silently ignored).
@@ -376,7 +377,7 @@ void read_sph(TableReader& t, SphSettings& s) {
               "and sps_smagorinsky_constant are both given: the mixing length replaces C_s dx, set one");
   only_with("density_diffusion_coefficient", s.density_diffusion != "none",
             "density_diffusion = \"molteni\" or \"fourtakas\" (here \"none\")");
-  for (const char* key : {"particle_shifting_coefficient", "particle_shifting_surface_threshold"})
+  for (const char* key : {"particle_shifting_coefficient", "particle_shifting_surface_threshold", "particle_shifting_correction"})
     only_with(key, s.particle_shifting == "fickian", "particle_shifting = \"fickian\" (here \"" + s.particle_shifting + "\")");
   if (s.particle_shifting != "none" && s.time_integrator != "symplectic")
     t.fail_at(t.raw().get(t.has("particle_shifting") ? "particle_shifting" : "time_integrator"), "particle_shifting",
@@ -911,6 +912,7 @@ void write_sph(TomlWriter& w, const SphSettings& s) {
   if (s.particle_shifting != "none") {
     w.num("particle_shifting_coefficient", s.particle_shifting_coefficient);
     w.num("particle_shifting_surface_threshold", s.particle_shifting_surface_threshold);
+    w.str("particle_shifting_correction", s.particle_shifting_correction);
   }
   w.num("max_density_variation", s.max_density_variation);
   w.num("checkpoint_interval_wall_s", s.checkpoint_interval_wall_s);

@@ -17,24 +17,39 @@ ParticleShifting parse_particle_shifting(const std::string& name) {
   throw std::invalid_argument("sph.particle_shifting = \"" + name + "\" is not allowed: use \"none\" or \"fickian\"");
 }
 
+ShiftingCorrection parse_shifting_correction(const std::string& name) {
+  if (name == "none") return ShiftingCorrection::none;
+  if (name == "taylor") return ShiftingCorrection::taylor;
+  throw std::invalid_argument("sph.particle_shifting_correction = \"" + name + "\" is not allowed: use \"none\" or \"taylor\"");
+}
+
 namespace {
 
 constexpr std::uint8_t kFluid = static_cast<std::uint8_t>(ParticleType::fluid);
 
 // grad C_i = sum_j V_j grad_i W_ij,  div r_i = -sum_j V_j (r_i - r_j) . grad_i W_ij,
-// with grad_i W_ij = F(r_ij) (r_i - r_j), gathered by particle i over all its neighbours.
-template <class K>
+// with grad_i W_ij = F(r_ij) (r_i - r_j), gathered by particle i over all its neighbours; with
+// `taylor`, also grad phi_i = sum_j V_j (phi_j - phi_i) grad_i W_ij for phi = u, w, rho over the
+// fluid and buffer neighbours (not the walls).
+template <class K, bool taylor>
 void gradients_with(const ParticleSet& ps, const CellList& cells, const SolverSettings& s, const K& kernel,
                     ConcentrationGradients& out) {
   const Eigen::Index n = ps.size();
-  out.grad_x.assign(static_cast<std::size_t>(n), 0.0);
-  out.grad_z.assign(static_cast<std::size_t>(n), 0.0);
-  out.div_r.assign(static_cast<std::size_t>(n), 0.0);
+  const auto size = static_cast<std::size_t>(n);
+  out.grad_x.assign(size, 0.0);
+  out.grad_z.assign(size, 0.0);
+  out.div_r.assign(size, 0.0);
+  for (auto* v : {&out.du_dx, &out.du_dz, &out.dw_dx, &out.dw_dz, &out.drho_dx, &out.drho_dz}) {
+    if (taylor) v->assign(size, 0.0);
+    else v->clear();
+  }
   const double support2 = s.support() * s.support();
   const double* x = ps.x.data();
   const double* z = ps.z.data();
   const double* m = ps.mass.data();
   const double* rho = ps.rho.data();
+  const double* u = ps.u.data();
+  const double* w = ps.w.data();
   const std::uint8_t* type = ps.type.data();
   double* gx_out = out.grad_x.data();
   double* gz_out = out.grad_z.data();
@@ -49,6 +64,7 @@ void gradients_with(const ParticleSet& ps, const CellList& cells, const SolverSe
     for (int i = first; i < last; ++i) {
       if (type[i] != kFluid) continue;
       double gx = 0.0, gz = 0.0, div = 0.0;
+      double uxx = 0.0, uzz = 0.0, wxx = 0.0, wzz = 0.0, rx = 0.0, rz = 0.0;  // taylor: grad u, w, rho
       for (int k = 0; k < n_ranges; ++k) {
         const NeighbourRange rg = ranges[k];
         for (int j = rg.begin; j < rg.end; ++j) {
@@ -60,11 +76,29 @@ void gradients_with(const ParticleSet& ps, const CellList& cells, const SolverSe
           gx += vf * dx;
           gz += vf * dz;
           div -= vf * r2;
+          if (taylor && !is_wall_type(type[j])) {
+            const double du = u[j] - u[i], dw = w[j] - w[i], drho = rho[j] - rho[i];
+            uxx += vf * du * dx;
+            uzz += vf * du * dz;
+            wxx += vf * dw * dx;
+            wzz += vf * dw * dz;
+            rx += vf * drho * dx;
+            rz += vf * drho * dz;
+          }
         }
       }
       gx_out[i] = gx;
       gz_out[i] = gz;
       div_out[i] = div;
+      if (taylor) {
+        const auto k = static_cast<std::size_t>(i);
+        out.du_dx[k] = uxx;
+        out.du_dz[k] = uzz;
+        out.dw_dx[k] = wxx;
+        out.dw_dz[k] = wzz;
+        out.drho_dx[k] = rx;
+        out.drho_dz[k] = rz;
+      }
     }
   }
 }
@@ -73,16 +107,25 @@ void gradients_with(const ParticleSet& ps, const CellList& cells, const SolverSe
 
 void concentration_gradients(const ParticleSet& ps, const CellList& cells, const SolverSettings& s,
                              ConcentrationGradients& out) {
-  if (s.kernel == KernelType::wendland_c2) gradients_with(ps, cells, s, WendlandC2(s.h), out);
-  else gradients_with(ps, cells, s, CubicSpline(s.h), out);
+  const bool taylor = s.shifting_correction == ShiftingCorrection::taylor;
+  if (s.kernel == KernelType::wendland_c2) {
+    if (taylor) gradients_with<WendlandC2, true>(ps, cells, s, WendlandC2(s.h), out);
+    else gradients_with<WendlandC2, false>(ps, cells, s, WendlandC2(s.h), out);
+  } else {
+    if (taylor) gradients_with<CubicSpline, true>(ps, cells, s, CubicSpline(s.h), out);
+    else gradients_with<CubicSpline, false>(ps, cells, s, CubicSpline(s.h), out);
+  }
 }
 
 // delta r_i = -A h |v_i| dt f_i grad C_i,  f_i = (div r_i - TFS) / (2 - TFS)  where div r_i >= TFS
-// (not at the free surface), |delta r_i| capped at 0.1 dx.
+// (not at the free surface), |delta r_i| capped at 0.1 dx;  "taylor": phi_i += delta r_i . grad phi_i.
 ShiftSummary shift_particles(ParticleSet& ps, const ConcentrationGradients& g, const SolverSettings& s, double dt) {
   const Eigen::Index n = ps.size();
   if (static_cast<Eigen::Index>(g.grad_x.size()) != n)
     throw std::logic_error("shift_particles: the concentration gradients are of another particle set");
+  const bool taylor = s.shifting_correction == ShiftingCorrection::taylor;
+  if (taylor && static_cast<Eigen::Index>(g.du_dx.size()) != n)
+    throw std::logic_error("shift_particles: correction \"taylor\" needs the velocity and density gradients");
   const double a_h_dt = s.shifting_coefficient * s.h * dt;
   const double tfs = s.shifting_surface_threshold;
   const double ramp_width = 2.0 - tfs;  // > 0: SolverSettings::validate keeps TFS <= 1.9
@@ -107,6 +150,11 @@ ShiftSummary shift_particles(ParticleSet& ps, const ConcentrationGradients& g, c
     }
     ps.x[i] += sx;
     ps.z[i] += sz;
+    if (taylor) {
+      ps.u[i] += sx * g.du_dx[k] + sz * g.du_dz[k];
+      ps.w[i] += sx * g.dw_dx[k] + sz * g.dw_dz[k];
+      ps.rho[i] += sx * g.drho_dx[k] + sz * g.drho_dz[k];
+    }
     max_d2 = std::max(max_d2, sx * sx + sz * sz);
     ++shifted;
   }

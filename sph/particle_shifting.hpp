@@ -17,16 +17,26 @@
 //   f_i = 0 where div r_i < TFS,   f_i = (div r_i - TFS) / (2 - TFS) elsewhere,
 // so the rows just under the surface are not pulled up at full strength. Each displacement is
 // capped at 0.1 dx (DualSPHysics caps each component at 0.1 dp; here the length, keeping the
-// direction). Velocity and density are not corrected for the displacement (it is O(h |v| dt),
-// second order small; as in DualSPHysics). With the CFL condition dt <= 0.2 h / c0 and |v| <= 0.1 c0
-// (Mach 0.1), |v| dt <= 0.02 h, so |delta r| <= 0.02 A f h^2 |grad C|: a few percent of h per step.
+// direction). With the CFL condition dt <= 0.2 h / c0 and |v| <= 0.1 c0 (Mach 0.1), |v| dt <= 0.02 h,
+// so |delta r| <= 0.02 A f h^2 |grad C|: a few percent of h per step.
+//
+// A shifted particle keeps its velocity and density (correction "none", as in DualSPHysics), so it
+// carries them a little across the flow: per step an error delta r . grad(phi), which does not average
+// out where grad C has a steady direction (under the free surface, across a shear layer). Correction
+// "taylor" moves them with the particle by a first-order Taylor expansion (Xu, Stansby & Laurence
+// 2009, J. Comput. Phys. 228:6703-6725; Lind et al. 2012):
+//   phi_i <- phi_i + delta r_i . grad phi_i,   grad phi_i = sum_j V_j (phi_j - phi_i) grad_i W_ij
+// for phi = u, w, rho, with j over the fluid and open-boundary buffer particles (wall particles carry
+// mDBC's ghost values, not the flow's, and are left out: near a wall the sum is one-sided and
+// underestimates the gradient, which errs towards no correction).
 //
 // Usage:
 //   | sph.particle_shifting                | "none" (default) | "fickian": the shifting above      |
 //   | sph.particle_shifting_coefficient    | A, in (0, 10], default 2 (Skillen et al.: 1-6)         |
 //   | sph.particle_shifting_surface_threshold | TFS: div r below which a particle is at the free |
 //   |                                      | surface and not shifted, in [0, 1.9], default 1.5      |
-// The two numbers are only allowed with "fickian"; shifting needs time_integrator = "symplectic"
+//   | sph.particle_shifting_correction     | "none" (default) | "taylor": u, w, rho moved with the shift |
+// These three are only allowed with "fickian"; shifting needs time_integrator = "symplectic"
 // (the shift is applied after the corrector, with grad C from the corrector's interaction).
 // Example (spec): `[case.sph]  particle_shifting = "fickian"   particle_shifting_coefficient = 2`
 #pragma once
@@ -42,13 +52,17 @@ namespace hydrojump::sph {
 struct SolverSettings;
 
 enum class ParticleShifting { none, fickian };
+enum class ShiftingCorrection { none, taylor };
 
 ParticleShifting parse_particle_shifting(const std::string& name);
+ShiftingCorrection parse_shifting_correction(const std::string& name);
 
 // grad C and div r of every fluid particle (zero for the others), at the current positions; the
-// particle arrays must be in the order of `cells`.
+// particle arrays must be in the order of `cells`. With correction "taylor" also the gradients of
+// u, w and rho (d/dx, d/dz; empty otherwise).
 struct ConcentrationGradients {
   std::vector<double> grad_x, grad_z, div_r;
+  std::vector<double> du_dx, du_dz, dw_dx, dw_dz, drho_dx, drho_dz;
 };
 void concentration_gradients(const ParticleSet& ps, const CellList& cells, const SolverSettings& s,
                              ConcentrationGradients& out);
@@ -62,7 +76,7 @@ struct ShiftSummary {
 };
 
 // r_i += -A h |v_i| dt f_i grad C_i (length at most 0.1 dx) for every fluid particle with div r_i at or
-// above the surface threshold.
+// above the surface threshold; with correction "taylor" also phi_i += delta r_i . grad phi_i.
 ShiftSummary shift_particles(ParticleSet& ps, const ConcentrationGradients& g, const SolverSettings& s, double dt);
 
 }  // namespace hydrojump::sph

@@ -112,6 +112,8 @@ void SolverSettings::validate() const {
   if (particle_shifting != ParticleShifting::none && time_integrator != TimeIntegrator::symplectic)
     throw std::invalid_argument("sph.particle_shifting = \"fickian\" needs time_integrator = \"symplectic\" (the shift is applied "
                                 "after the corrector with the corrector's concentration gradient; here \"verlet\")");
+  if (shifting_correction != ShiftingCorrection::none && particle_shifting == ParticleShifting::none)
+    throw std::invalid_argument("sph.particle_shifting_correction = \"taylor\" is only used with particle_shifting = \"fickian\" (here \"none\")");
   require(x_max > x_min && z_max > z_min, "domain box", x_max - x_min, "must have positive size");
 }
 
@@ -157,6 +159,7 @@ SolverSettings make_settings(const cases::Case& c, const cases::FluidProperties&
   out.particle_shifting = parse_particle_shifting(s.particle_shifting);
   out.shifting_coefficient = s.particle_shifting_coefficient;
   out.shifting_surface_threshold = s.particle_shifting_surface_threshold;
+  out.shifting_correction = parse_shifting_correction(s.particle_shifting_correction);
   out.blin = s.sps_blin_constant;
   out.diffusion_delta = s.density_diffusion_coefficient;
   out.cfl = s.cfl_number;

@@ -503,7 +503,7 @@ TEST_CASE("Particle shifting is none or fickian, its numbers only with fickian a
   const auto with = [](const std::string& lines) { return replaced(valid_spec, "[[case]]", "[sph]\n" + lines + "\n\n[[case]]"); };
   CHECK(parse_study(with(""), "spec.toml", ".").cases[0].sph.particle_shifting == "none");
   const Study s = parse_study(with("particle_shifting = \"fickian\"\nparticle_shifting_coefficient = 3\n"
-                                   "particle_shifting_surface_threshold = 1.4"),
+                                   "particle_shifting_surface_threshold = 1.4\nparticle_shifting_correction = \"taylor\""),
                               "spec.toml", ".");
   CHECK(s.cases[0].sph.particle_shifting == "fickian");
   CHECK(s.cases[0].sph.particle_shifting_coefficient == 3.0);
@@ -511,6 +511,12 @@ TEST_CASE("Particle shifting is none or fickian, its numbers only with fickian a
   CHECK(again.cases[0].sph.particle_shifting == "fickian");
   CHECK(again.cases[0].sph.particle_shifting_coefficient == 3.0);
   CHECK(again.cases[0].sph.particle_shifting_surface_threshold == 1.4);
+  CHECK(again.cases[0].sph.particle_shifting_correction == "taylor");
+  CHECK(parse_study(with("particle_shifting = \"fickian\""), "spec.toml", ".").cases[0].sph.particle_shifting_correction == "none");
+  CHECK_THAT(rejection(with("particle_shifting = \"fickian\"\nparticle_shifting_correction = \"ale\"")),
+             Catch::Contains("particle_shifting_correction") && Catch::Contains("\"none\"") && Catch::Contains("\"taylor\""));
+  CHECK_THAT(rejection(with("particle_shifting_correction = \"taylor\"")),
+             Catch::Contains("sph.particle_shifting_correction is only used with particle_shifting = \"fickian\" (here \"none\")"));
   CHECK_THAT(rejection(with("particle_shifting = \"lind\"")),
              Catch::Contains("particle_shifting") && Catch::Contains("\"none\"") && Catch::Contains("\"fickian\""));
   CHECK_THAT(rejection(with("particle_shifting_coefficient = 2")),
