@@ -62,7 +62,7 @@ struct SphSettings {
   std::string particle_shifting = "none";          // "none" | "fickian" (sph/particle_shifting.hpp)
   double particle_shifting_coefficient = 2.0;      // "fickian": A in delta r = -A h |v| dt grad C, (0, 10]
   double particle_shifting_surface_threshold = 1.5; // "fickian": div r below this is the free surface, [0, 1.9]
-  std::string particle_shifting_correction = "none"; // "fickian": "none" | "taylor" (velocity and density moved with the shift)
+  std::string particle_shifting_correction = "none"; // "fickian": "none" | "taylor" | "taylor_volume" (particle_shifting.hpp)
   double max_density_variation = 0.05;             // |rho/rho0 - 1| above this stops the run
   double checkpoint_interval_wall_s = 300.0;       // wall-clock seconds between checkpoints
 };

@@ -348,7 +348,7 @@ void read_sph(TableReader& t, SphSettings& s) {
                                                 Range{0.0, 10.0, true, false, "A in delta r = -A h |v| dt grad C"});
   s.particle_shifting_surface_threshold = t.number_or("particle_shifting_surface_threshold", s.particle_shifting_surface_threshold,
                                                       Range{0.0, 1.9, false, false, "div r (2 in the bulk of a 2D fluid; at 1.98 or more every particle would count as at the surface)"});
-  s.particle_shifting_correction = t.choice("particle_shifting_correction", s.particle_shifting_correction, {"none", "taylor"});
+  s.particle_shifting_correction = t.choice("particle_shifting_correction", s.particle_shifting_correction, {"none", "taylor", "taylor_volume"});
   s.max_density_variation = t.number_or("max_density_variation", s.max_density_variation, Range{0.0, 0.5, true, false, "|rho/rho0 - 1|"});
   s.checkpoint_interval_wall_s = t.number_or("checkpoint_interval_wall_s", s.checkpoint_interval_wall_s, positive("s", 1e6));
   // A parameter of a model this table's settings do not use is an error (it would be silently ignored).

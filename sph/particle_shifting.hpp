@@ -20,6 +20,14 @@
 // direction). With the CFL condition dt <= 0.2 h / c0 and |v| <= 0.1 c0 (Mach 0.1), |v| dt <= 0.02 h,
 // so |delta r| <= 0.02 A f h^2 |grad C|: a few percent of h per step.
 //
+// Under a flowing free surface the ramp is not enough: the rows just below it (TFS <= div r < 2) still
+// have truncated kernels, so their grad C points down, every step pushes them up by A h |v| dt f |grad C|,
+// and the water column swells without gaining mass. Measured (session 19, TFS 1.5): in run A at quick
+// the tailwater's particles stood 21 % higher than their volume sum V_i / w and, the SPH pressure
+// gradient being short by about that factor, the bed pressure was 1.42 rho0 g h; in run E at `default`
+// the "+22 % sequent depth" of session 17 was this swelling (surface 0.380 m over 0.311 m of water).
+// Correction "taylor_volume" (below) removes it (README, note on particle shifting).
+//
 // A shifted particle keeps its velocity and density (correction "none", as in DualSPHysics), so it
 // carries them a little across the flow: per step an error delta r . grad(phi), which does not average
 // out where grad C has a steady direction (under the free surface, across a shear layer). Correction
@@ -30,12 +38,22 @@
 // mDBC's ghost values, not the flow's, and are left out: near a wall the sum is one-sided and
 // underestimates the gradient, which errs towards no correction).
 //
+// The swelling above is a decoupling of density and particle spacing: the shift spreads the particles
+// but their density (from the continuity equation) does not see it, and with a stiff equation of state
+// the swollen state costs almost no pressure. Correction "taylor_volume" keeps them coupled: particle
+// i's volume m_i / rho_i follows the divergence of the shift field, as it would for a displacement by
+// a velocity (the continuity equation for constant-mass particles moved by delta r),
+//   rho_i <- rho_i (1 - div(delta r)_i),   div(delta r)_i = sum_j V_j (delta r_j - delta r_i) . grad_i W_ij
+// (walls and buffers do not shift), besides the Taylor correction; a swollen layer then loses density
+// and pressure, and gravity closes it again.
+//
 // Usage:
 //   | sph.particle_shifting                | "none" (default) | "fickian": the shifting above      |
 //   | sph.particle_shifting_coefficient    | A, in (0, 10], default 2 (Skillen et al.: 1-6)         |
 //   | sph.particle_shifting_surface_threshold | TFS: div r below which a particle is at the free |
 //   |                                      | surface and not shifted, in [0, 1.9], default 1.5      |
 //   | sph.particle_shifting_correction     | "none" (default) | "taylor": u, w, rho moved with the shift |
+//   |                                      | | "taylor_volume": and rho follows the particle volume |
 // These three are only allowed with "fickian"; shifting needs time_integrator = "symplectic"
 // (the shift is applied after the corrector, with grad C from the corrector's interaction).
 // Example (spec): `[case.sph]  particle_shifting = "fickian"   particle_shifting_coefficient = 2`
@@ -52,7 +70,7 @@ namespace hydrojump::sph {
 struct SolverSettings;
 
 enum class ParticleShifting { none, fickian };
-enum class ShiftingCorrection { none, taylor };
+enum class ShiftingCorrection { none, taylor, taylor_volume };
 
 ParticleShifting parse_particle_shifting(const std::string& name);
 ShiftingCorrection parse_shifting_correction(const std::string& name);
@@ -76,7 +94,10 @@ struct ShiftSummary {
 };
 
 // r_i += -A h |v_i| dt f_i grad C_i (length at most 0.1 dx) for every fluid particle with div r_i at or
-// above the surface threshold; with correction "taylor" also phi_i += delta r_i . grad phi_i.
-ShiftSummary shift_particles(ParticleSet& ps, const ConcentrationGradients& g, const SolverSettings& s, double dt);
+// above the surface threshold; with correction "taylor" also phi_i += delta r_i . grad phi_i, with
+// "taylor_volume" besides rho_i -= rho_i div(delta r)_i, which needs `cells` (the list the gradients
+// were gathered with).
+ShiftSummary shift_particles(ParticleSet& ps, const ConcentrationGradients& g, const SolverSettings& s, double dt,
+                             const CellList* cells = nullptr);
 
 }  // namespace hydrojump::sph

@@ -113,7 +113,7 @@ void SolverSettings::validate() const {
     throw std::invalid_argument("sph.particle_shifting = \"fickian\" needs time_integrator = \"symplectic\" (the shift is applied "
                                 "after the corrector with the corrector's concentration gradient; here \"verlet\")");
   if (shifting_correction != ShiftingCorrection::none && particle_shifting == ParticleShifting::none)
-    throw std::invalid_argument("sph.particle_shifting_correction = \"taylor\" is only used with particle_shifting = \"fickian\" (here \"none\")");
+    throw std::invalid_argument("sph.particle_shifting_correction is only used with particle_shifting = \"fickian\" (here \"none\")");
   require(x_max > x_min && z_max > z_min, "domain box", x_max - x_min, "must have positive size");
 }
 

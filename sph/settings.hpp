@@ -51,7 +51,7 @@ struct SolverSettings {
   ParticleShifting particle_shifting = ParticleShifting::none;  // particle_shifting.hpp
   double shifting_coefficient = 2.0;        // A in delta r = -A h |v| dt grad C
   double shifting_surface_threshold = 1.5;  // div r below this: free surface, not shifted
-  ShiftingCorrection shifting_correction = ShiftingCorrection::none;  // taylor: u, w, rho moved with the shift
+  ShiftingCorrection shifting_correction = ShiftingCorrection::none;  // taylor(_volume): u, w, rho moved with the shift
   double blin = 0.0066;
   double diffusion_delta = 0.1;
   double cfl = 0.2;

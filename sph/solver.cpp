@@ -57,7 +57,7 @@ void Solver::step() {
     const bool shifting = settings_.particle_shifting != ParticleShifting::none;
     if (shifting) concentration_gradients(particles_, cells_, settings_, shifting_gradients_);
     symplectic_corrector(particles_, settings_, dt);
-    if (shifting) shift_particles(particles_, shifting_gradients_, settings_, dt);
+    if (shifting) shift_particles(particles_, shifting_gradients_, settings_, dt, &cells_);
     move_walls(particles_, walls, t + 0.5 * dt, t + dt);
   } else {
     const bool euler = clock_.steps % settings_.verlet_euler_interval == 0;
