@@ -68,6 +68,27 @@ ParticleSet lattice_block(int nx, int nz, int wall_rows, double jitter, unsigned
   return ps;
 }
 
+// Moves the lattice particle of column `column`, row `row` by (ox, oz) dx; returns its id.
+std::int64_t displace_lattice_particle(ParticleSet& ps, int column, int row, double ox, double oz) {
+  for (Eigen::Index i = 0; i < ps.size(); ++i) {
+    if (ps.is_fluid(i) && std::abs(ps.x[i] - (column + 0.5) * kDx) < 1e-9 && std::abs(ps.z[i] - (row + 0.5) * kDx) < 1e-9) {
+      ps.x[i] += ox * kDx;
+      ps.z[i] += oz * kDx;
+      return ps.id[i];
+    }
+  }
+  FAIL("no lattice particle in column " << column << ", row " << row);
+  return -1;
+}
+
+// The index of the particle with this id (the order changes when the particles are sorted by cell).
+Eigen::Index index_of(const ParticleSet& ps, std::int64_t id) {
+  for (Eigen::Index i = 0; i < ps.size(); ++i)
+    if (ps.id[i] == id) return i;
+  FAIL("no particle with id " << id);
+  return -1;
+}
+
 // Sorts the particles by cell as the solver does and returns the cell list.
 CellList sorted_cells(ParticleSet& ps, const SolverSettings& s) {
   CellList cells;
@@ -270,19 +291,13 @@ TEST_CASE("particle shifting, correction taylor_volume: the density follows the 
   SolverSettings s = shifting_settings(true, 0.3);
   s.shifting_correction = ShiftingCorrection::taylor_volume;
   ParticleSet ps = lattice_block(30, 12, 3, 0.0);
-  Eigen::Index moved = -1;
-  for (Eigen::Index i = 0; i < ps.size(); ++i)
-    if (ps.is_fluid(i) && std::abs(ps.x[i] - 15.5 * kDx) < 1e-9 && std::abs(ps.z[i] - 5.5 * kDx) < 1e-9) moved = i;
-  REQUIRE(moved >= 0);
-  const std::int64_t moved_id = ps.id[moved];
-  ps.x[moved] += 0.2 * kDx;
-  ps.z[moved] += 0.1 * kDx;
+  const std::int64_t moved_id = displace_lattice_particle(ps, 15, 5, 0.2, 0.1);
+  const Eigen::Index moved = index_of(ps, moved_id);
   ps.u[moved] = 2.0;  // the others at rest: they do not shift
   const CellList cells = sorted_cells(ps, s);
   ConcentrationGradients g;
   concentration_gradients(ps, cells, s, g);
-  Eigen::Index i = 0;
-  while (ps.id[i] != moved_id) ++i;
+  const Eigen::Index i = index_of(ps, moved_id);
   const auto k = static_cast<std::size_t>(i);
   const ParticleSet before = ps;
   CHECK_THROWS_AS(shift_particles(ps, g, s, 1e-4), std::logic_error);  // needs the cell list
@@ -347,20 +362,14 @@ TEST_CASE("particle shifting: a displaced particle is moved back by -A h |v| dt 
   s.shifting_coefficient = 3.0;
   ParticleSet ps = lattice_block(30, 12, 3, 0.0);
   // Particle in column 15, row 5 (well inside), pushed 0.2 dx to the right and 0.1 dx up.
-  Eigen::Index moved = -1;
-  for (Eigen::Index i = 0; i < ps.size(); ++i)
-    if (ps.is_fluid(i) && std::abs(ps.x[i] - 15.5 * kDx) < 1e-9 && std::abs(ps.z[i] - 5.5 * kDx) < 1e-9) moved = i;
-  REQUIRE(moved >= 0);
-  const std::int64_t moved_id = ps.id[moved];
-  ps.x[moved] += 0.2 * kDx;
-  ps.z[moved] += 0.1 * kDx;
+  const std::int64_t moved_id = displace_lattice_particle(ps, 15, 5, 0.2, 0.1);
+  const Eigen::Index moved = index_of(ps, moved_id);
   ps.u[moved] = 2.0;
   ps.w[moved] = -1.0;
   const CellList cells = sorted_cells(ps, s);
   ConcentrationGradients g;
   concentration_gradients(ps, cells, s, g);
-  Eigen::Index i = 0;
-  while (ps.id[i] != moved_id) ++i;
+  const Eigen::Index i = index_of(ps, moved_id);
   const double x0 = ps.x[i], z0 = ps.z[i], dt = 1e-4;
   const auto k = static_cast<std::size_t>(i);
   const double ramp = (g.div_r[k] - s.shifting_surface_threshold) / (2.0 - s.shifting_surface_threshold);
@@ -477,20 +486,13 @@ TEST_CASE("particle shifting, correction taylor: a shifted particle carries the 
     ParticleSet ps = lattice_block(30, 16, 3, 0.0);
     // Particle in column 15, row 8 (well inside), pushed 0.3 dx to the right and 0.2 dx down: the
     // shift moves it part of the way back towards its site.
-    Eigen::Index moved = -1;
-    for (Eigen::Index i = 0; i < ps.size(); ++i)
-      if (ps.is_fluid(i) && std::abs(ps.x[i] - 15.5 * kDx) < 1e-9 && std::abs(ps.z[i] - 8.5 * kDx) < 1e-9) moved = i;
-    REQUIRE(moved >= 0);
-    const std::int64_t moved_id = ps.id[moved];
-    ps.x[moved] += 0.3 * kDx;
-    ps.z[moved] -= 0.2 * kDx;
+    const std::int64_t moved_id = displace_lattice_particle(ps, 15, 8, 0.3, -0.2);
     const LinearField field;
     field.apply(ps);
     const CellList cells = sorted_cells(ps, s);
     ConcentrationGradients g;
     concentration_gradients(ps, cells, s, g);
-    Eigen::Index i = 0;
-    while (ps.id[i] != moved_id) ++i;
+    const Eigen::Index i = index_of(ps, moved_id);
     const double u0 = ps.u[i], w0 = ps.w[i], rho0 = ps.rho[i];
     const ShiftSummary summary = shift_particles(ps, g, s, 5e-4);
     std::cout << "taylor " << taylor << ": shift " << summary.max_displacement / kDx << " dx, capped " << summary.capped << "\n";
