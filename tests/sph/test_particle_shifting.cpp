@@ -233,7 +233,7 @@ TEST_CASE("particle shifting: a uniform lattice has no gradient in the bulk, div
 // particles no longer fill their volumes m / rho (the kernel sum sum_j V_j W_ij of the lower rows,
 // which the lifted particles left, falls). With "taylor_volume" the densities follow the spacing and
 // the kernel sum of those rows stays near its start value.
-TEST_CASE("particle shifting: under a flowing free surface the layer swells; taylor_volume keeps the volumes filled",
+TEST_CASE("particle shifting: under a flowing free surface the layer swells, taylor_volume keeps the volumes filled",
           "[sph][shifting]") {
   double rise_none = 0.0, rise_volume = 0.0, change_none = 0.0, change_volume = 0.0;
   for (const ShiftingCorrection correction : {ShiftingCorrection::none, ShiftingCorrection::taylor_volume}) {
