@@ -513,6 +513,8 @@ TEST_CASE("Particle shifting is none or fickian, its numbers only with fickian a
   CHECK(again.cases[0].sph.particle_shifting_surface_threshold == 1.4);
   CHECK(again.cases[0].sph.particle_shifting_correction == "taylor");
   CHECK(parse_study(with("particle_shifting = \"fickian\""), "spec.toml", ".").cases[0].sph.particle_shifting_correction == "none");
+  CHECK(parse_study(with("particle_shifting = \"fickian\"\nparticle_shifting_correction = \"taylor_volume\""), "spec.toml", ".")
+            .cases[0].sph.particle_shifting_correction == "taylor_volume");
   CHECK_THAT(rejection(with("particle_shifting = \"fickian\"\nparticle_shifting_correction = \"ale\"")),
              Catch::Contains("particle_shifting_correction") && Catch::Contains("\"none\"") && Catch::Contains("\"taylor\""));
   CHECK_THAT(rejection(with("particle_shifting_correction = \"taylor\"")),
