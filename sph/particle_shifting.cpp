@@ -29,35 +29,21 @@ namespace {
 
 constexpr std::uint8_t kFluid = static_cast<std::uint8_t>(ParticleType::fluid);
 
-// grad C_i = sum_j V_j grad_i W_ij,  div r_i = -sum_j V_j (r_i - r_j) . grad_i W_ij,
-// with grad_i W_ij = F(r_ij) (r_i - r_j), gathered by particle i over all its neighbours; with
-// `taylor`, also grad phi_i = sum_j V_j (phi_j - phi_i) grad_i W_ij for phi = u, w, rho over the
-// fluid and buffer neighbours (not the walls).
-template <class K, bool taylor>
-void gradients_with(const ParticleSet& ps, const CellList& cells, const SolverSettings& s, const K& kernel,
-                    ConcentrationGradients& out) {
-  const Eigen::Index n = ps.size();
-  const auto size = static_cast<std::size_t>(n);
-  out.grad_x.assign(size, 0.0);
-  out.grad_z.assign(size, 0.0);
-  out.div_r.assign(size, 0.0);
-  for (auto* v : {&out.du_dx, &out.du_dz, &out.dw_dx, &out.dw_dz, &out.drho_dx, &out.drho_dz}) {
-    if (taylor) v->assign(size, 0.0);
-    else v->clear();
-  }
+// The neighbour sum both passes share: for every fluid particle i (in the order of `cells`),
+//   Sum acc{};  add_pair(acc, i, j, dx, dz, r2, V_j F(r_ij))  for each neighbour j within the support,
+//   store(i, acc),
+// with (dx, dz) = r_i - r_j (periodic image included) and grad_i W_ij = F(r_ij) (dx, dz).
+template <class Sum, class K, class AddPair, class Store>
+void sum_over_neighbours(const ParticleSet& ps, const CellList& cells, const SolverSettings& s, const K& kernel,
+                         AddPair add_pair, Store store) {
   const double support2 = s.support() * s.support();
   const double* x = ps.x.data();
   const double* z = ps.z.data();
   const double* m = ps.mass.data();
   const double* rho = ps.rho.data();
-  const double* u = ps.u.data();
-  const double* w = ps.w.data();
   const std::uint8_t* type = ps.type.data();
-  double* gx_out = out.grad_x.data();
-  double* gz_out = out.grad_z.data();
-  double* div_out = out.div_r.data();
   const int n_cells = cells.cell_count();
-#pragma omp parallel for schedule(dynamic, 16) if (use_threads(n))
+#pragma omp parallel for schedule(dynamic, 16) if (use_threads(ps.size()))
   for (int c = 0; c < n_cells; ++c) {
     const int first = cells.cell_start(c), last = cells.cell_start(c + 1);
     if (first == last) continue;
@@ -65,8 +51,7 @@ void gradients_with(const ParticleSet& ps, const CellList& cells, const SolverSe
     const int n_ranges = cells.neighbour_ranges(c, ranges);
     for (int i = first; i < last; ++i) {
       if (type[i] != kFluid) continue;
-      double gx = 0.0, gz = 0.0, div = 0.0;
-      double uxx = 0.0, uzz = 0.0, wxx = 0.0, wzz = 0.0, rx = 0.0, rz = 0.0;  // taylor: grad u, w, rho
+      Sum acc{};
       for (int k = 0; k < n_ranges; ++k) {
         const NeighbourRange rg = ranges[k];
         for (int j = rg.begin; j < rg.end; ++j) {
@@ -74,35 +59,83 @@ void gradients_with(const ParticleSet& ps, const CellList& cells, const SolverSe
           const double dx = x[i] - (x[j] + rg.shift_x), dz = z[i] - z[j];
           const double r2 = dx * dx + dz * dz;
           if (r2 >= support2) continue;
-          const double vf = m[j] / rho[j] * kernel.gradient_factor(std::sqrt(r2));
-          gx += vf * dx;
-          gz += vf * dz;
-          div -= vf * r2;
-          if (taylor && !is_wall_type(type[j])) {
-            const double du = u[j] - u[i], dw = w[j] - w[i], drho = rho[j] - rho[i];
-            uxx += vf * du * dx;
-            uzz += vf * du * dz;
-            wxx += vf * dw * dx;
-            wzz += vf * dw * dz;
-            rx += vf * drho * dx;
-            rz += vf * drho * dz;
-          }
+          add_pair(acc, i, j, dx, dz, r2, m[j] / rho[j] * kernel.gradient_factor(std::sqrt(r2)));
         }
       }
-      gx_out[i] = gx;
-      gz_out[i] = gz;
-      div_out[i] = div;
-      if (taylor) {
-        const auto k = static_cast<std::size_t>(i);
-        out.du_dx[k] = uxx;
-        out.du_dz[k] = uzz;
-        out.dw_dx[k] = wxx;
-        out.dw_dz[k] = wzz;
-        out.drho_dx[k] = rx;
-        out.drho_dz[k] = rz;
-      }
+      store(i, acc);
     }
   }
+}
+
+// Per-particle sums of the first pass.
+struct GradientSums {
+  double gx = 0.0, gz = 0.0, div = 0.0;                                    // grad C, div r
+  double uxx = 0.0, uzz = 0.0, wxx = 0.0, wzz = 0.0, rx = 0.0, rz = 0.0;  // taylor: grad u, w, rho
+};
+
+// grad C_i = sum_j V_j grad_i W_ij,  div r_i = -sum_j V_j (r_i - r_j) . grad_i W_ij,
+// gathered by particle i over all its neighbours; with `taylor`, also
+// grad phi_i = sum_j V_j (phi_j - phi_i) grad_i W_ij for phi = u, w, rho over the fluid and buffer
+// neighbours (not the walls).
+template <class K, bool taylor>
+void gradients_with(const ParticleSet& ps, const CellList& cells, const SolverSettings& s, const K& kernel,
+                    ConcentrationGradients& out) {
+  const auto size = static_cast<std::size_t>(ps.size());
+  out.grad_x.assign(size, 0.0);
+  out.grad_z.assign(size, 0.0);
+  out.div_r.assign(size, 0.0);
+  for (auto* v : {&out.du_dx, &out.du_dz, &out.dw_dx, &out.dw_dz, &out.drho_dx, &out.drho_dz}) {
+    if (taylor) v->assign(size, 0.0);
+    else v->clear();
+  }
+  const double* rho = ps.rho.data();
+  const double* u = ps.u.data();
+  const double* w = ps.w.data();
+  const std::uint8_t* type = ps.type.data();
+  const auto add_pair = [=](GradientSums& a, int i, int j, double dx, double dz, double r2, double vf) {
+    a.gx += vf * dx;
+    a.gz += vf * dz;
+    a.div -= vf * r2;
+    if (taylor && !is_wall_type(type[j])) {
+      const double du = u[j] - u[i], dw = w[j] - w[i], drho = rho[j] - rho[i];
+      a.uxx += vf * du * dx;
+      a.uzz += vf * du * dz;
+      a.wxx += vf * dw * dx;
+      a.wzz += vf * dw * dz;
+      a.rx += vf * drho * dx;
+      a.rz += vf * drho * dz;
+    }
+  };
+  const auto store = [&out](int i, const GradientSums& a) {
+    const auto k = static_cast<std::size_t>(i);
+    out.grad_x[k] = a.gx;
+    out.grad_z[k] = a.gz;
+    out.div_r[k] = a.div;
+    if (taylor) {
+      out.du_dx[k] = a.uxx;
+      out.du_dz[k] = a.uzz;
+      out.dw_dx[k] = a.wxx;
+      out.dw_dz[k] = a.wzz;
+      out.drho_dx[k] = a.rx;
+      out.drho_dz[k] = a.rz;
+    }
+  };
+  sum_over_neighbours<GradientSums>(ps, cells, s, kernel, add_pair, store);
+}
+
+// div(delta r)_i = sum_j V_j (delta r_j - delta r_i) . grad_i W_ij over all neighbours (walls and buffer
+// particles do not shift: delta r_j = 0), for the fluid particles.
+template <class K>
+void shift_divergence_with(const ParticleSet& ps, const CellList& cells, const SolverSettings& s, const K& kernel,
+                           ConcentrationGradients& g) {
+  g.shift_div.assign(static_cast<std::size_t>(ps.size()), 0.0);
+  const double* sx = g.shift_x.data();
+  const double* sz = g.shift_z.data();
+  double* div = g.shift_div.data();
+  const auto add_pair = [=](double& sum, int i, int j, double dx, double dz, double, double vf) {
+    sum += vf * ((sx[j] - sx[i]) * dx + (sz[j] - sz[i]) * dz);
+  };
+  sum_over_neighbours<double>(ps, cells, s, kernel, add_pair, [=](int i, double sum) { div[i] = sum; });
 }
 
 }  // namespace
@@ -119,50 +152,10 @@ void concentration_gradients(const ParticleSet& ps, const CellList& cells, const
   }
 }
 
-namespace {
-
-// div(delta r)_i = sum_j V_j (delta r_j - delta r_i) . grad_i W_ij over all neighbours (walls and buffer
-// particles do not shift: delta r_j = 0), for the fluid particles.
-template <class K>
-void shift_divergence_with(const ParticleSet& ps, const CellList& cells, const SolverSettings& s, const K& kernel,
-                           const std::vector<double>& sx, const std::vector<double>& sz, std::vector<double>& div) {
-  const Eigen::Index n = ps.size();
-  div.assign(static_cast<std::size_t>(n), 0.0);
-  const double support2 = s.support() * s.support();
-  const int n_cells = cells.cell_count();
-#pragma omp parallel for schedule(dynamic, 16) if (use_threads(n))
-  for (int c = 0; c < n_cells; ++c) {
-    const int first = cells.cell_start(c), last = cells.cell_start(c + 1);
-    if (first == last) continue;
-    NeighbourRange ranges[9];
-    const int n_ranges = cells.neighbour_ranges(c, ranges);
-    for (int i = first; i < last; ++i) {
-      if (ps.type[i] != kFluid) continue;
-      const auto ki = static_cast<std::size_t>(i);
-      double sum = 0.0;
-      for (int r = 0; r < n_ranges; ++r) {
-        const NeighbourRange rg = ranges[r];
-        for (int j = rg.begin; j < rg.end; ++j) {
-          if (j == i) continue;
-          const double dx = ps.x[i] - (ps.x[j] + rg.shift_x), dz = ps.z[i] - ps.z[j];
-          const double r2 = dx * dx + dz * dz;
-          if (r2 >= support2) continue;
-          const auto kj = static_cast<std::size_t>(j);
-          const double vf = ps.mass[j] / ps.rho[j] * kernel.gradient_factor(std::sqrt(r2));
-          sum += vf * ((sx[kj] - sx[ki]) * dx + (sz[kj] - sz[ki]) * dz);
-        }
-      }
-      div[ki] = sum;
-    }
-  }
-}
-
-}  // namespace
-
 // delta r_i = -A h |v_i| dt f_i grad C_i,  f_i = (div r_i - TFS) / (2 - TFS)  where div r_i >= TFS
 // (not at the free surface), |delta r_i| capped at 0.1 dx;  "taylor" and
 // "taylor_volume": phi_i += delta r_i . grad phi_i;  "taylor_volume": also rho_i -= rho_i div(delta r)_i.
-ShiftSummary shift_particles(ParticleSet& ps, const ConcentrationGradients& g, const SolverSettings& s, double dt,
+ShiftSummary shift_particles(ParticleSet& ps, ConcentrationGradients& g, const SolverSettings& s, double dt,
                              const CellList* cells) {
   const Eigen::Index n = ps.size();
   if (static_cast<Eigen::Index>(g.grad_x.size()) != n)
@@ -177,40 +170,28 @@ ShiftSummary shift_particles(ParticleSet& ps, const ConcentrationGradients& g, c
   const double tfs = s.shifting_surface_threshold;
   const double ramp_width = 2.0 - tfs;  // > 0: SolverSettings::validate keeps TFS <= 1.9
   const double max_shift = 0.1 * s.dx;
-  std::vector<double> shift_x(static_cast<std::size_t>(n), 0.0), shift_z(static_cast<std::size_t>(n), 0.0);
   Eigen::Index shifted = 0, at_surface = 0, capped = 0;
   double max_d2 = 0.0;
-#pragma omp parallel for schedule(static) reduction(+ : shifted, at_surface, capped) reduction(max : max_d2) if (use_threads(n))
-  for (Eigen::Index i = 0; i < n; ++i) {
-    if (!ps.is_fluid(i)) continue;
+  // Particle i's shift (0 for the others). The caller counts it in the summary (the counters are
+  // OpenMP reduction variables, private to each thread inside the loops, so not captured here).
+  enum class Shift { not_fluid, surface, moved, moved_capped };
+  const auto shift_of = [&](Eigen::Index i, double& sx, double& sz) {
+    sx = sz = 0.0;
+    if (!ps.is_fluid(i)) return Shift::not_fluid;
     const auto k = static_cast<std::size_t>(i);
-    if (g.div_r[k] < tfs) {
-      ++at_surface;
-      continue;
-    }
+    if (g.div_r[k] < tfs) return Shift::surface;
     const double d = a_h_dt * std::hypot(ps.u[i], ps.w[i]) * (g.div_r[k] - tfs) / ramp_width;
-    double sx = -d * g.grad_x[k], sz = -d * g.grad_z[k];
+    sx = -d * g.grad_x[k];
+    sz = -d * g.grad_z[k];
     const double length = std::hypot(sx, sz);
-    if (length > max_shift) {
-      sx *= max_shift / length;
-      sz *= max_shift / length;
-      ++capped;
-    }
-    shift_x[k] = sx;
-    shift_z[k] = sz;
-    max_d2 = std::max(max_d2, sx * sx + sz * sz);
-    ++shifted;
-  }
-  std::vector<double> divergence;
-  if (volume) {
-    if (s.kernel == KernelType::wendland_c2) shift_divergence_with(ps, *cells, s, WendlandC2(s.h), shift_x, shift_z, divergence);
-    else shift_divergence_with(ps, *cells, s, CubicSpline(s.h), shift_x, shift_z, divergence);
-  }
-#pragma omp parallel for schedule(static) if (use_threads(n))
-  for (Eigen::Index i = 0; i < n; ++i) {
-    if (!ps.is_fluid(i)) continue;
+    if (length <= max_shift) return Shift::moved;
+    sx *= max_shift / length;
+    sz *= max_shift / length;
+    return Shift::moved_capped;
+  };
+  // Moves particle i by (sx, sz) and corrects what it carries.
+  const auto apply = [&](Eigen::Index i, double sx, double sz) {
     const auto k = static_cast<std::size_t>(i);
-    const double sx = shift_x[k], sz = shift_z[k];
     ps.x[i] += sx;
     ps.z[i] += sz;
     if (taylor) {
@@ -218,7 +199,40 @@ ShiftSummary shift_particles(ParticleSet& ps, const ConcentrationGradients& g, c
       ps.w[i] += sx * g.dw_dx[k] + sz * g.dw_dz[k];
       ps.rho[i] += sx * g.drho_dx[k] + sz * g.drho_dz[k];
     }
-    if (volume) ps.rho[i] -= ps.rho[i] * divergence[k];
+    if (volume) ps.rho[i] -= ps.rho[i] * g.shift_div[k];
+  };
+  if (!volume) {
+    // Each particle's shift needs only its own gradients: one pass.
+#pragma omp parallel for schedule(static) reduction(+ : shifted, at_surface, capped) reduction(max : max_d2) if (use_threads(n))
+    for (Eigen::Index i = 0; i < n; ++i) {
+      double sx, sz;
+      const Shift what = shift_of(i, sx, sz);
+      at_surface += what == Shift::surface;
+      shifted += what == Shift::moved || what == Shift::moved_capped;
+      capped += what == Shift::moved_capped;
+      max_d2 = std::max(max_d2, sx * sx + sz * sz);
+      if (ps.is_fluid(i)) apply(i, sx, sz);
+    }
+  } else {
+    // div(delta r) needs every neighbour's shift before any particle moves: three passes.
+    g.shift_x.resize(static_cast<std::size_t>(n));
+    g.shift_z.resize(static_cast<std::size_t>(n));
+#pragma omp parallel for schedule(static) reduction(+ : shifted, at_surface, capped) reduction(max : max_d2) if (use_threads(n))
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      const Shift what = shift_of(i, g.shift_x[k], g.shift_z[k]);
+      at_surface += what == Shift::surface;
+      shifted += what == Shift::moved || what == Shift::moved_capped;
+      capped += what == Shift::moved_capped;
+      max_d2 = std::max(max_d2, g.shift_x[k] * g.shift_x[k] + g.shift_z[k] * g.shift_z[k]);
+    }
+    if (s.kernel == KernelType::wendland_c2) shift_divergence_with(ps, *cells, s, WendlandC2(s.h), g);
+    else shift_divergence_with(ps, *cells, s, CubicSpline(s.h), g);
+#pragma omp parallel for schedule(static) if (use_threads(n))
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      if (ps.is_fluid(i)) apply(i, g.shift_x[k], g.shift_z[k]);
+    }
   }
   wrap_periodic(ps, s);
   return ShiftSummary{shifted, at_surface, capped, std::sqrt(max_d2)};

@@ -81,10 +81,12 @@ ShiftingCorrection parse_shifting_correction(const std::string& name);
 
 // grad C and div r of every fluid particle (zero for the others), at the current positions; the
 // particle arrays must be in the order of `cells`. With correction "taylor" also the gradients of
-// u, w and rho (d/dx, d/dz; empty otherwise).
+// u, w and rho (d/dx, d/dz; empty otherwise). The solver keeps one from step to step, so its arrays,
+// and the shift scratch that shift_particles fills for correction "taylor_volume", are reused.
 struct ConcentrationGradients {
   std::vector<double> grad_x, grad_z, div_r;
   std::vector<double> du_dx, du_dz, dw_dx, dw_dz, drho_dx, drho_dz;
+  std::vector<double> shift_x, shift_z, shift_div;  // "taylor_volume": delta r and div(delta r)
 };
 void concentration_gradients(const ParticleSet& ps, const CellList& cells, const SolverSettings& s,
                              ConcentrationGradients& out);
@@ -100,8 +102,8 @@ struct ShiftSummary {
 // r_i += -A h |v_i| dt f_i grad C_i (length at most 0.1 dx) for every fluid particle with div r_i at or
 // above the surface threshold; with correction "taylor" also phi_i += delta r_i . grad phi_i, with
 // "taylor_volume" besides rho_i -= rho_i div(delta r)_i, which needs `cells` (the list the gradients
-// were gathered with).
-ShiftSummary shift_particles(ParticleSet& ps, const ConcentrationGradients& g, const SolverSettings& s, double dt,
+// were gathered with) and uses g's shift scratch.
+ShiftSummary shift_particles(ParticleSet& ps, ConcentrationGradients& g, const SolverSettings& s, double dt,
                              const CellList* cells = nullptr);
 
 }  // namespace hydrojump::sph
