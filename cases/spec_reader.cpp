@@ -27,6 +27,13 @@ std::string number_text(double v) {
   return buffer;
 }
 
+// v to `digits` significant digits (for derived values in messages).
+std::string rounded_text(double v, int digits) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, "%.*g", digits, v);
+  return buffer;
+}
+
 // The same as a TOML float (which needs a '.' or an exponent).
 std::string toml_number(double v) {
   std::string s = number_text(v);
@@ -611,6 +618,9 @@ std::vector<Section> read_sections(TableReader& c, const toml::array& array, dou
   return sections;
 }
 
+// How far the inflow buffer's whole rows may miss the inflow depth (relative).
+constexpr double kInflowRowsTolerance = 0.02;
+
 // The most fluid particles a 2D case may start with (memory, and weeks of run time on a workstation).
 constexpr double max_fluid_particles = 5.0e6;
 
@@ -654,6 +664,21 @@ void check_resolution(const Case& c, const Resolution& r, double gravity_m_s2, c
     }
     if (b->inflow_depth_m < 5.0 * dx - 1e-12) {
       fail("resolution." + r.name + ".particle_spacing_m = " + number_text(dx) + " puts " + number_text(b->inflow_depth_m / dx) + " particles across inflow.depth_m = " + number_text(b->inflow_depth_m) + ": must be at least 5, i.e. particle_spacing_m <= " + number_text(b->inflow_depth_m / 5.0) + " m");
+    }
+    // The inflow buffer (sph/open_boundaries.hpp) is N = round(y1/dx) whole rows deep and carries the
+    // spec's q, so its jet enters N dx deep at q/(N dx): Fr1 = (q^2/(g (N dx)^3))^(1/2) is off by
+    // (y1/(N dx))^(3/2) - 1. The rows must match y1 within 2 % (Fr1 within 3 %; E1 within ~3 %).
+    const double rows = std::max(1.0, std::round(b->inflow_depth_m / dx));
+    const double jet_depth = rows * dx;
+    if (c.sph.inflow_condition == "buffer" && std::abs(jet_depth / b->inflow_depth_m - 1.0) > kInflowRowsTolerance + 1e-12) {
+      const double fr_spec = b->inflow_velocity_m_s / std::sqrt(gravity_m_s2 * b->inflow_depth_m);
+      const double fr_jet = fr_spec * std::pow(b->inflow_depth_m / jet_depth, 1.5);
+      fail("resolution." + r.name + ".particle_spacing_m = " + number_text(dx) + " makes the inflow buffer " +
+           number_text(rows) + " particle rows (" + number_text(jet_depth) + " m) deep for inflow.depth_m = " +
+           number_text(b->inflow_depth_m) + ": the jet would enter with Fr1 = " + rounded_text(fr_jet, 4) + " instead of " +
+           rounded_text(fr_spec, 4) + "; the rows must match the inflow depth within 2 %, i.e. particle_spacing_m = inflow.depth_m / N, e.g. " +
+           rounded_text(b->inflow_depth_m / rows, 6) + " (N = " + number_text(rows) + ") or " +
+           rounded_text(b->inflow_depth_m / (rows + 1.0), 6) + " (N = " + number_text(rows + 1.0) + ") m");
     }
   } else if (const auto* d = c.dam_break()) {
     if (d->column_width_m < 4.0 * dx) fail("particle_spacing_m = " + number_text(dx) + " puts fewer than 4 particles across column.width_m");

@@ -297,6 +297,22 @@ TEST_CASE("Non-physical values are rejected with the allowed range", "[cases][sp
     const auto msg = rejection(replaced(valid_spec, "particle_spacing_m = 0.005", "particle_spacing_m = 0.0125"));
     CHECK_THAT(msg, Catch::Contains("inflow.depth_m = 0.0254"));
   }
+  SECTION("a particle spacing whose whole inflow rows miss y1 by more than 2 %") {
+    // dx = 4 mm: y1 / dx = 6.35, the buffer makes 6 rows = 24 mm carrying q = 0.0508 m^2/s, so
+    // Fr1 = 4.00662 (25.4 / 24)^1.5 = 4.3624 (by hand); y1/6 = 4.23333 mm, y1/7 = 3.62857 mm.
+    const auto msg = rejection(replaced(valid_spec, "particle_spacing_m = 0.005", "particle_spacing_m = 0.004"));
+    CHECK_THAT(msg, Catch::Contains("case \"A\" at resolution \"quick\": resolution.quick.particle_spacing_m = 0.004 makes "
+                                    "the inflow buffer 6 particle rows (0.024 m) deep for inflow.depth_m = 0.0254"));
+    CHECK_THAT(msg, Catch::Contains("Fr1 = 4.362 instead of 4.007") && Catch::Contains("within 2 %") &&
+                        Catch::Contains("0.00423333 (N = 6) or 0.00362857 (N = 7) m"));
+    // Whole rows (y1/6) and 5.08 rows (1.6 % off, the study's quick level) are accepted; so is any
+    // spacing with the piston inflow, whose jet forms under the gate.
+    CHECK_NOTHROW(parse_study(replaced(valid_spec, "particle_spacing_m = 0.005", "particle_spacing_m = 0.00423333"), "spec.toml", "."));
+    CHECK_NOTHROW(parse_study(valid_spec, "spec.toml", "."));
+    CHECK_NOTHROW(parse_study(replaced(replaced(valid_spec, "particle_spacing_m = 0.005", "particle_spacing_m = 0.004"), "[[case]]",
+                                       "[sph]\ninflow_condition = \"piston\"\nsluice_opening_m = 0.04\n\n[[case]]"),
+                              "spec.toml", "."));
+  }
 }
 
 TEST_CASE("A periodic channel shorter than three kernel supports is rejected", "[cases][spec][reject]") {
