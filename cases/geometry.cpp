@@ -194,6 +194,10 @@ double inflow_discharge(const CaseGeometry& geometry) {
   return q;
 }
 
+int inflow_buffer_rows(double depth_m, double dx) {
+  return std::max(1, static_cast<int>(std::lround(depth_m / dx)));
+}
+
 PistonReservoir add_piston_reservoir(CaseGeometry& geo, const StillingBasinCase& b, double opening_m,
                                      double length_m, double end_time_s, double t, double g) {
   const double y1 = b.inflow_depth_m, u1 = b.inflow_velocity_m_s, q = y1 * u1;

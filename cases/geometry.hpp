@@ -87,6 +87,11 @@ struct CaseGeometry {
 // What the inflows bring: q = sum y1 U1 over geometry.inflows (m^2/s; 0 for closed cases).
 double inflow_discharge(const CaseGeometry& geometry);
 
+// The particle rows of an SPH inflow buffer of depth y1 at spacing dx: N = round(y1/dx), at least 1.
+// The buffer is N dx deep and carries q, so its jet enters at Fr1 (y1/(N dx))^(3/2) (the spec check
+// keeps N dx within 2 % of y1).
+int inflow_buffer_rows(double depth_m, double dx);
+
 // Computes the geometry of `c` with gravity from `fluid`. Pure function of its inputs.
 CaseGeometry make_geometry(const Case& c, const FluidProperties& fluid);
 

@@ -67,7 +67,7 @@ InflowBuffer::InflowBuffer(const cases::InflowBoundary& inflow, double bed_z, co
   if (!(dx_ > 0.0) || !(inflow.depth_m > 0.0) || !(inflow.velocity_m_s > 0.0)) {
     throw std::invalid_argument("inflow buffer: depth, velocity and particle spacing must be positive");
   }
-  rows_ = static_cast<int>(std::lround(inflow.depth_m / dx_));
+  rows_ = cases::inflow_buffer_rows(inflow.depth_m, dx_);
   if (rows_ < 2) {
     throw std::invalid_argument("inflow buffer: the inflow depth " + std::to_string(inflow.depth_m) +
                                 " m is resolved by fewer than 2 particle rows at dx = " + std::to_string(dx_) +
