@@ -625,7 +625,8 @@ constexpr double kInflowRowsTolerance = 0.02;
 constexpr double max_fluid_particles = 5.0e6;
 
 // Resolution-dependent checks of one case at one resolution level.
-void check_resolution(const Case& c, const Resolution& r, double gravity_m_s2, const std::string& file) {
+void check_resolution(const Case& c, const Resolution& r, double gravity_m_s2, const std::string& file,
+                      SpecPurpose purpose = SpecPurpose::run) {
   const auto fail = [&](const std::string& what) {
     throw SpecError(file + ": case \"" + c.id + "\" at resolution \"" + r.name + "\": " + what);
   };
@@ -670,7 +671,8 @@ void check_resolution(const Case& c, const Resolution& r, double gravity_m_s2, c
     // (y1/(N dx))^(3/2) - 1. The rows must match y1 within 2 % (Fr1 within 3 %; E1 within ~3 %).
     const double rows = inflow_buffer_rows(b->inflow_depth_m, dx);
     const double jet_depth = rows * dx;
-    if (c.sph.inflow_condition == "buffer" && std::abs(jet_depth / b->inflow_depth_m - 1.0) > kInflowRowsTolerance + 1e-12) {
+    if (purpose == SpecPurpose::run && c.sph.inflow_condition == "buffer" &&
+        std::abs(jet_depth / b->inflow_depth_m - 1.0) > kInflowRowsTolerance + 1e-12) {
       const double fr_spec = b->inflow_velocity_m_s / std::sqrt(gravity_m_s2 * b->inflow_depth_m);
       const double fr_jet = fr_spec * std::pow(b->inflow_depth_m / jet_depth, 1.5);
       fail("resolution." + r.name + ".particle_spacing_m = " + number_text(dx) + " makes the inflow buffer " +
@@ -767,7 +769,7 @@ const Case* Study::find_case(const std::string& id) const {
 }
 
 Study parse_study(std::string_view toml_text, const std::string& source_name,
-                  const std::filesystem::path& base_dir) {
+                  const std::filesystem::path& base_dir, SpecPurpose purpose) {
   toml::table root;
   try {
     root = toml::parse(toml_text, source_name);
@@ -814,7 +816,7 @@ Study parse_study(std::string_view toml_text, const std::string& source_name,
     if (!ids.insert(parsed.id).second) {
       named.fail_at(node.as_table()->get("id"), "id", "= \"" + parsed.id + "\" is used by two cases: ids must be unique");
     }
-    for (const auto& [name, r] : parsed.resolutions) check_resolution(parsed, r, study.fluid.gravity_m_s2, source_name);
+    for (const auto& [name, r] : parsed.resolutions) check_resolution(parsed, r, study.fluid.gravity_m_s2, source_name, purpose);
     study.cases.push_back(std::move(parsed));
     ++index;
   }
@@ -822,13 +824,13 @@ Study parse_study(std::string_view toml_text, const std::string& source_name,
   return study;
 }
 
-Study load_study(const std::filesystem::path& file) {
+Study load_study(const std::filesystem::path& file, SpecPurpose purpose) {
   std::ifstream in(file, std::ios::binary);
   if (!in) throw SpecError(file.string() + ": cannot open the study file");
   std::ostringstream text;
   text << in.rdbuf();
   const auto base = file.has_parent_path() ? file.parent_path() : std::filesystem::path(".");
-  Study study = parse_study(text.str(), file.string(), base);
+  Study study = parse_study(text.str(), file.string(), base, purpose);
   study.source_file = file;
   return study;
 }

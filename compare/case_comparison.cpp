@@ -26,7 +26,7 @@ cases::Study load_run_case(const fs::path& run_dir) {
     if (!fs::exists(p)) continue;
     // Both methods' results are reported under this case: each must have been made with it.
     for (const char* method : {"sph", "vof"}) cases::require_results_of(run_dir / method, p);
-    return cases::load_study(p);
+    return cases::load_study(p, cases::SpecPurpose::read_results);
   }
   throw std::runtime_error(run_dir.string() + ": no case.toml in " + (run_dir / "sph").string() + " or " +
                            (run_dir / "vof").string() + " (is this a directory written by `hydrojump generate`?)");

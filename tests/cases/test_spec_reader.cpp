@@ -309,6 +309,9 @@ TEST_CASE("Non-physical values are rejected with the allowed range", "[cases][sp
     // spacing with the piston inflow, whose jet forms under the gate.
     CHECK_NOTHROW(parse_study(replaced(valid_spec, "particle_spacing_m = 0.005", "particle_spacing_m = 0.00423333"), "spec.toml", "."));
     CHECK_NOTHROW(parse_study(valid_spec, "spec.toml", "."));
+    // A finished run's resolved case.toml, read back to compare its results, is not refused for it.
+    CHECK_NOTHROW(parse_study(replaced(valid_spec, "particle_spacing_m = 0.005", "particle_spacing_m = 0.004"), "spec.toml", ".",
+                              SpecPurpose::read_results));
     CHECK_NOTHROW(parse_study(replaced(replaced(valid_spec, "particle_spacing_m = 0.005", "particle_spacing_m = 0.004"), "[[case]]",
                                        "[sph]\ninflow_condition = \"piston\"\nsluice_opening_m = 0.04\n\n[[case]]"),
                               "spec.toml", "."));
