@@ -673,8 +673,9 @@ void check_resolution(const Case& c, const Resolution& r, double gravity_m_s2, c
     const double jet_depth = rows * dx;
     if (purpose == SpecPurpose::run && c.sph.inflow_condition == "buffer" &&
         std::abs(jet_depth / b->inflow_depth_m - 1.0) > kInflowRowsTolerance + 1e-12) {
-      const double fr_spec = b->inflow_velocity_m_s / std::sqrt(gravity_m_s2 * b->inflow_depth_m);
-      const double fr_jet = fr_spec * std::pow(b->inflow_depth_m / jet_depth, 1.5);
+      const double q = unit_discharge(b->inflow_depth_m, b->inflow_velocity_m_s);
+      const double fr_spec = froude_number(b->inflow_depth_m, b->inflow_velocity_m_s, gravity_m_s2);
+      const double fr_jet = froude_number(jet_depth, q / jet_depth, gravity_m_s2);
       fail("resolution." + r.name + ".particle_spacing_m = " + number_text(dx) + " makes the inflow buffer " +
            number_text(rows) + " particle rows (" + number_text(jet_depth) + " m) deep for inflow.depth_m = " +
            number_text(b->inflow_depth_m) + ": the jet would enter with Fr1 = " + rounded_text(fr_jet, 4) + " instead of " +
