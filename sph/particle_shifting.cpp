@@ -173,7 +173,7 @@ ShiftSummary shift_particles(ParticleSet& ps, ConcentrationGradients& g, const S
   Eigen::Index shifted = 0, at_surface = 0, capped = 0;
   double max_d2 = 0.0;
   // Particle i's shift (0 for the others). The caller counts it in the summary (the counters are
-  // OpenMP reduction variables, private to each thread inside the loops, so not captured here).
+  // OpenMP reduction variables, private to each thread inside the loop, so not captured here).
   enum class Shift { not_fluid, surface, moved, moved_capped };
   const auto shift_of = [&](Eigen::Index i, double& sx, double& sz) {
     sx = sz = 0.0;
@@ -201,31 +201,29 @@ ShiftSummary shift_particles(ParticleSet& ps, ConcentrationGradients& g, const S
     }
     if (volume) ps.rho[i] -= ps.rho[i] * g.shift_div[k];
   };
-  if (!volume) {
-    // Each particle's shift needs only its own gradients: one pass.
-#pragma omp parallel for schedule(static) reduction(+ : shifted, at_surface, capped) reduction(max : max_d2) if (use_threads(n))
-    for (Eigen::Index i = 0; i < n; ++i) {
-      double sx, sz;
-      const Shift what = shift_of(i, sx, sz);
-      at_surface += what == Shift::surface;
-      shifted += what == Shift::moved || what == Shift::moved_capped;
-      capped += what == Shift::moved_capped;
-      max_d2 = std::max(max_d2, sx * sx + sz * sz);
-      if (ps.is_fluid(i)) apply(i, sx, sz);
-    }
-  } else {
-    // div(delta r) needs every neighbour's shift before any particle moves: three passes.
+  // Without "taylor_volume" each particle moves as soon as its shift is known (one pass); with it,
+  // div(delta r) needs every neighbour's shift first, so the shifts are kept and applied after it.
+  if (volume) {
     g.shift_x.resize(static_cast<std::size_t>(n));
     g.shift_z.resize(static_cast<std::size_t>(n));
+  }
 #pragma omp parallel for schedule(static) reduction(+ : shifted, at_surface, capped) reduction(max : max_d2) if (use_threads(n))
-    for (Eigen::Index i = 0; i < n; ++i) {
+  for (Eigen::Index i = 0; i < n; ++i) {
+    double sx, sz;
+    const Shift what = shift_of(i, sx, sz);
+    at_surface += what == Shift::surface;
+    shifted += what == Shift::moved || what == Shift::moved_capped;
+    capped += what == Shift::moved_capped;
+    max_d2 = std::max(max_d2, sx * sx + sz * sz);
+    if (volume) {
       const auto k = static_cast<std::size_t>(i);
-      const Shift what = shift_of(i, g.shift_x[k], g.shift_z[k]);
-      at_surface += what == Shift::surface;
-      shifted += what == Shift::moved || what == Shift::moved_capped;
-      capped += what == Shift::moved_capped;
-      max_d2 = std::max(max_d2, g.shift_x[k] * g.shift_x[k] + g.shift_z[k] * g.shift_z[k]);
+      g.shift_x[k] = sx;
+      g.shift_z[k] = sz;
+    } else if (ps.is_fluid(i)) {
+      apply(i, sx, sz);
     }
+  }
+  if (volume) {
     if (s.kernel == KernelType::wendland_c2) shift_divergence_with(ps, *cells, s, WendlandC2(s.h), g);
     else shift_divergence_with(ps, *cells, s, CubicSpline(s.h), g);
 #pragma omp parallel for schedule(static) if (use_threads(n))
