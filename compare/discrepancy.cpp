@@ -78,6 +78,8 @@ std::vector<MetricRow> metric_table(const JumpMetrics* sph, const JumpMetrics* v
                   inflow_depth_m, not_a_number, not_a_number});
   rows.push_back({"toe_position", "m", v(sph, &JumpMetrics::toe_x_m), v(vof, &JumpMetrics::toe_x_m), not_a_number,
                   not_a_number, not_a_number});
+  rows.push_back({"toe_mean_of_frames", "m", v(sph, &JumpMetrics::toe_mean_of_frames_x_m),
+                  v(vof, &JumpMetrics::toe_mean_of_frames_x_m), not_a_number, not_a_number, not_a_number});
   rows.push_back({"toe_std", "m", v(sph, &JumpMetrics::toe_std_m), v(vof, &JumpMetrics::toe_std_m), not_a_number,
                   not_a_number, not_a_number});
   rows.push_back({"sequent_depth", "m", v(sph, &JumpMetrics::sequent_depth_m), v(vof, &JumpMetrics::sequent_depth_m),

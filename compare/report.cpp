@@ -346,6 +346,7 @@ void write_csvs(const CaseComparison& c, const fs::path& dir) {
 std::string pretty_quantity(const std::string& q) {
   if (q == "upstream_depth") return "upstream depth y1 (m)";
   if (q == "toe_position") return "toe position x_t (m)";
+  if (q == "toe_mean_of_frames") return "toe position, mean of the frames' toes (m)";
   if (q == "toe_std") return "toe standard deviation over the frames (m)";
   if (q == "sequent_depth") return "sequent depth y2 (m)";
   if (q == "jump_length") return "jump length Lj (m)";
@@ -538,8 +539,9 @@ void write_report(const CaseComparison& c, const fs::path& out, bool plots, std:
              "sections; 'η with α = 1' drops the velocity-profile correction; 'lab convention' uses "
              "E = y + q²/(2gy²) with y the depth above the corrugation crests, as the experiments' values were "
              "computed (it differs from η when a section lies over a trough).",
-             "Toe: first x where the running mean (0.8 y1) of the time-mean surface stays above 1.5 y1 over 2 y1. "
-             "y2: time-mean surface at the downstream section above the upstream floor (corrugation crests).",
+             "Toe: first x where the running mean (0.8 y1) of the time-mean surface stays above 1.5 y1 over 2 y1 "
+             "(x_t); the same criterion on each frame's surface gives the frames' toes, their mean and standard "
+             "deviation (a toe that oscillates puts x_t upstream of that mean). y2: time-mean surface at the downstream section above the upstream floor (corrugation crests).",
              "Jump end: first x after the toe from which the mean surface stays within 5 % of (y2 − y1) of y2 up to "
              "the downstream section; Lj = end − toe. Roller end: last x with a negative time-mean velocity at "
              "0.1 h below the surface; Lr = end − toe."});

@@ -120,6 +120,22 @@ TEST_CASE("The experiment's bed force from y1, U1 and the measured y2", "[compar
   CHECK(std::isnan(bed_row(MeasuredReference{}).experiment));
 }
 
+TEST_CASE("The metric table reports both toe positions: of the mean surface and the frames' mean", "[compare][metrics]") {
+  JumpMetrics sph;
+  sph.toe_x_m = 0.17;                 // an oscillating toe: the mean surface rises upstream of
+  sph.toe_mean_of_frames_x_m = 0.21;  // the frames' mean toe
+  sph.toe_std_m = 0.04;
+  const auto rows = metric_table(&sph, nullptr, MeasuredReference{}, 0.0254, 2.0, 9.81);
+  const auto value = [&rows](const std::string& quantity) {
+    const auto it = std::find_if(rows.begin(), rows.end(), [&](const MetricRow& r) { return r.quantity == quantity; });
+    REQUIRE(it != rows.end());
+    return it->sph;
+  };
+  CHECK(value("toe_position") == 0.17);
+  CHECK(value("toe_mean_of_frames") == 0.21);
+  CHECK(value("toe_std") == 0.04);
+}
+
 TEST_CASE("Toe and jump and roller lengths of a synthetic mean surface", "[compare][metrics]") {
   // Surface: y1 up to x_t, a linear rise to y2 over L, then y2. Reverse near-surface flow over
   // (x_t, x_t + Lr). Stations every 2 mm.
