@@ -541,7 +541,8 @@ void write_report(const CaseComparison& c, const fs::path& out, bool plots, std:
              "computed (it differs from η when a section lies over a trough).",
              "Toe: first x where the running mean (0.8 y1) of the time-mean surface stays above 1.5 y1 over 2 y1 "
              "(x_t); the same criterion on each frame's surface gives the frames' toes, their mean and standard "
-             "deviation (a toe that oscillates puts x_t upstream of that mean). y2: time-mean surface at the downstream section above the upstream floor (corrugation crests).",
+             "deviation (a toe that oscillates puts x_t upstream of that mean). y2: time-mean surface at the "
+             "downstream section above the upstream floor (corrugation crests).",
              "Jump end: first x after the toe from which the mean surface stays within 5 % of (y2 − y1) of y2 up to "
              "the downstream section; Lj = end − toe. Roller end: last x with a negative time-mean velocity at "
              "0.1 h below the surface; Lr = end − toe."});
