@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "cases/hydraulics.hpp"
 #include "compare/discrepancy.hpp"
@@ -12,6 +14,13 @@ using namespace hydrojump::compare;
 
 namespace {
 constexpr double g = 9.81;
+
+// The row of `quantity` in a metric table (fails the test if there is none).
+MetricRow metric_row(const std::vector<MetricRow>& rows, const std::string& quantity) {
+  const auto it = std::find_if(rows.begin(), rows.end(), [&](const MetricRow& r) { return r.quantity == quantity; });
+  REQUIRE(it != rows.end());
+  return *it;
+}
 
 // A column with a uniform velocity u over depth h on a bed at z_b.
 ColumnSample uniform_column(double x, double z_b, double h, double u) {
@@ -104,10 +113,7 @@ TEST_CASE("The experiment's bed force from y1, U1 and the measured y2", "[compar
   MeasuredReference lab;
   lab.sequent_depth_m = 0.145;
   const auto bed_row = [](const MeasuredReference& reference) {
-    const auto rows = metric_table(nullptr, nullptr, reference, 0.0254, 3.0, 9.81);
-    const auto it = std::find_if(rows.begin(), rows.end(), [](const MetricRow& r) { return r.quantity == "bed_force_fraction"; });
-    REQUIRE(it != rows.end());
-    return *it;
+    return metric_row(metric_table(nullptr, nullptr, reference, 0.0254, 3.0, 9.81), "bed_force_fraction");
   };
   const MetricRow bed = bed_row(lab);
   CHECK(bed.experiment == Approx(38.2252).margin(1e-4));
@@ -126,11 +132,7 @@ TEST_CASE("The metric table reports both toe positions: of the mean surface and 
   sph.toe_mean_of_frames_x_m = 0.21;  // the frames' mean toe
   sph.toe_std_m = 0.04;
   const auto rows = metric_table(&sph, nullptr, MeasuredReference{}, 0.0254, 2.0, 9.81);
-  const auto value = [&rows](const std::string& quantity) {
-    const auto it = std::find_if(rows.begin(), rows.end(), [&](const MetricRow& r) { return r.quantity == quantity; });
-    REQUIRE(it != rows.end());
-    return it->sph;
-  };
+  const auto value = [&rows](const std::string& quantity) { return metric_row(rows, quantity).sph; };
   CHECK(value("toe_position") == 0.17);
   CHECK(value("toe_mean_of_frames") == 0.21);
   CHECK(value("toe_std") == 0.04);
