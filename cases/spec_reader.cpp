@@ -666,9 +666,9 @@ void check_resolution(const Case& c, const Resolution& r, double gravity_m_s2, c
     if (b->inflow_depth_m < 5.0 * dx - 1e-12) {
       fail("resolution." + r.name + ".particle_spacing_m = " + number_text(dx) + " puts " + number_text(b->inflow_depth_m / dx) + " particles across inflow.depth_m = " + number_text(b->inflow_depth_m) + ": must be at least 5, i.e. particle_spacing_m <= " + number_text(b->inflow_depth_m / 5.0) + " m");
     }
-    // The inflow buffer (sph/open_boundaries.hpp) is N = inflow_buffer_rows(y1, dx) whole rows deep and carries the
-    // spec's q, so its jet enters N dx deep at q/(N dx): Fr1 = (q^2/(g (N dx)^3))^(1/2) is off by
-    // (y1/(N dx))^(3/2) - 1. The rows must match y1 within 2 % (Fr1 within 3 %; E1 within ~3 %).
+    // The inflow buffer (sph/open_boundaries.hpp) is N = inflow_buffer_rows(y1, dx) whole rows deep and
+    // carries the spec's q, so its jet enters N dx deep at q/(N dx): Fr1 = (q^2/(g (N dx)^3))^(1/2) is off
+    // by (y1/(N dx))^(3/2) - 1. The rows must match y1 within 2 % (Fr1 within 3 %; E1 within ~3 %).
     const double rows = inflow_buffer_rows(b->inflow_depth_m, dx);
     const double jet_depth = rows * dx;
     if (purpose == SpecPurpose::run && c.sph.inflow_condition == "buffer" &&
