@@ -59,6 +59,9 @@ struct SphSettings {
                                                    // | "tailgate" (sph/tailgate.hpp)
   double tailgate_height_m = 0.0;                  // "tailgate": crest above the local bed; 0: from the
                                                    // tailwater depth by Rehbock's weir formula
+  std::string outflow_level_reference = "outlet";  // where the outflow buffer holds the tailwater depth:
+                                                   // "outlet" | "downstream_section" (sph/outflow_level_control.hpp)
+  double outflow_level_time_s = 2.0;               // "downstream_section": integral time T_c of the control
   std::string particle_shifting = "none";          // "none" | "fickian" (sph/particle_shifting.hpp)
   double particle_shifting_coefficient = 2.0;      // "fickian": A in delta r = -A h |v| dt grad C, (0, 10]
   double particle_shifting_surface_threshold = 1.5; // "fickian": div r below this is the free surface, [0, 1.9]

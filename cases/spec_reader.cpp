@@ -341,6 +341,15 @@ void read_sph(TableReader& t, SphSettings& s) {
   if (s.outflow_condition != "tailgate" && t.raw().get("tailgate_height_m"))
     t.fail_at(t.raw().get("tailgate_height_m"), "tailgate_height_m",
               "is only used with outflow_condition = \"tailgate\" (here \"" + s.outflow_condition + "\")");
+  s.outflow_level_reference = t.choice("outflow_level_reference", s.outflow_level_reference, {"outlet", "downstream_section"});
+  if (s.outflow_condition == "tailgate" && s.outflow_level_reference != "outlet")
+    t.fail_at(t.raw().get("outflow_level_reference") ? t.raw().get("outflow_level_reference") : t.raw().get("outflow_condition"),
+              "outflow_level_reference", "= \"" + s.outflow_level_reference +
+              "\" needs an outflow buffer: a tailgate sets its level by its crest (use outflow_condition = \"absorbing\" or \"hydrostatic_level\")");
+  s.outflow_level_time_s = t.number_or("outflow_level_time_s", s.outflow_level_time_s, Range{0.0, 100.0, true, false, "s, integral time of the level control"});
+  if (s.outflow_level_reference != "downstream_section" && t.raw().get("outflow_level_time_s"))
+    t.fail_at(t.raw().get("outflow_level_time_s"), "outflow_level_time_s",
+              "is only used with outflow_level_reference = \"downstream_section\" (here \"" + s.outflow_level_reference + "\")");
   if (s.open_boundary_layers > 0) {
     // The buffers must cover the kernel support 2h = 2 sqrt(2) coef_h dx of the fluid next to them.
     const int needed = static_cast<int>(std::ceil(2.0 * std::sqrt(2.0) * s.coef_h - 1e-9)) + 1;
@@ -936,6 +945,8 @@ void write_sph(TomlWriter& w, const SphSettings& s) {
   }
   w.str("outflow_condition", s.outflow_condition);
   if (s.outflow_condition == "tailgate") w.num("tailgate_height_m", s.tailgate_height_m);
+  w.str("outflow_level_reference", s.outflow_level_reference);
+  if (s.outflow_level_reference == "downstream_section") w.num("outflow_level_time_s", s.outflow_level_time_s);
   w.str("particle_shifting", s.particle_shifting);
   if (s.particle_shifting != "none") {
     w.num("particle_shifting_coefficient", s.particle_shifting_coefficient);

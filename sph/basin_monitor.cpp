@@ -107,6 +107,7 @@ BasinMonitorSetup BasinMonitorSetup::from_case(const cases::Case& c, const cases
   s.discharge_m2_s = cases::unit_discharge(b->inflow_depth_m, b->inflow_velocity_m_s);
   s.froude1 = cases::froude_number(b->inflow_depth_m, b->inflow_velocity_m_s, std::abs(geometry.body_force_m_s2.y()));
   s.tailwater_depth_m = b->tailwater_depth_m;
+  s.tailwater_held_at = c.sph.outflow_condition == "tailgate" ? "tailgate" : c.sph.outflow_level_reference;
   s.belanger_y2_m = cases::belanger_sequent_depth(b->inflow_depth_m, s.froude1);
   s.floor_z_m = geometry.bed.elevation(geometry.inflows.front().x_m);
   s.x_inflow_m = geometry.inflows.front().x_m;
@@ -158,9 +159,11 @@ std::vector<BasinMonitor::Column> BasinMonitor::columns(const ParticleSet& parti
   return out;
 }
 
-void BasinMonitor::record(const ParticleSet& particles, double t, double mass_in, double mass_out) {
+void BasinMonitor::record(const ParticleSet& particles, double t, double mass_in, double mass_out,
+                          double outlet_target_depth) {
   BasinSample s;
   s.t = t;
+  s.outlet_target_depth = outlet_target_depth;
   s.mass_in = mass_in;
   s.mass_out = mass_out;
   // The water in the basin: the fluid (downstream of the inflow section only when a piston
@@ -240,7 +243,7 @@ double BasinMonitor::steady_from() const {
 std::string BasinMonitor::csv() const {
   std::ostringstream o;
   o << "t_s,toe_x_m,inflow_discharge_m2_s,outflow_discharge_m2_s,inflow_mass_kg_per_m,outflow_mass_kg_per_m,"
-       "fluid_mass_kg_per_m";
+       "fluid_mass_kg_per_m,outlet_target_depth_m";
   for (const auto& sec : setup_.sections)
     o << ",depth_" << sec.name << "_m,surface_z_" << sec.name << "_m,discharge_" << sec.name << "_m2_s";
   o << "\n";
@@ -253,7 +256,7 @@ std::vector<std::string> BasinMonitor::csv_rows() const {
   for (const auto& s : samples_) {
     std::string r = csv_number(s.t) + ',' + csv_number(s.toe_x) + ',' + csv_number(s.q_in) + ',' +
                     csv_number(s.q_out) + ',' + csv_number(s.mass_in) + ',' + csv_number(s.mass_out) + ',' +
-                    csv_number(s.fluid_mass);
+                    csv_number(s.fluid_mass) + ',' + csv_number(s.outlet_target_depth);
     for (std::size_t k = 0; k < s.depth.size(); ++k)
       r += ',' + csv_number(s.depth[k]) + ',' + csv_number(s.surface[k]) + ',' + csv_number(s.discharge[k]);
     rows.push_back(std::move(r));
@@ -269,7 +272,7 @@ void BasinMonitor::restore(const std::vector<std::string>& csv_rows) {
     std::string cell;
     while (std::getline(in, cell, ',')) v.push_back(std::strtod(cell.c_str(), nullptr));  // "nan" -> NaN
     const std::size_t n_sec = setup_.sections.size();
-    if (v.size() != 7 + 3 * n_sec) throw std::runtime_error("basin monitor: a checkpoint row does not match the case");
+    if (v.size() != 8 + 3 * n_sec) throw std::runtime_error("basin monitor: a checkpoint row does not match the case");
     BasinSample s;
     s.t = v[0];
     s.toe_x = v[1];
@@ -278,10 +281,11 @@ void BasinMonitor::restore(const std::vector<std::string>& csv_rows) {
     s.mass_in = v[4];
     s.mass_out = v[5];
     s.fluid_mass = v[6];
+    s.outlet_target_depth = v[7];
     for (std::size_t k = 0; k < n_sec; ++k) {
-      s.depth.push_back(v[7 + 3 * k]);
-      s.surface.push_back(v[8 + 3 * k]);
-      s.discharge.push_back(v[9 + 3 * k]);
+      s.depth.push_back(v[8 + 3 * k]);
+      s.surface.push_back(v[9 + 3 * k]);
+      s.discharge.push_back(v[10 + 3 * k]);
     }
     samples_.push_back(std::move(s));
   }
@@ -319,6 +323,9 @@ std::string BasinMonitor::status_line() const {
     o << std::setprecision(4) << "  q_in " << s.q_in << "  q_out " << s.q_out << " m^2/s";
   else
     o << "  q_in, q_out from the second output on";
+  // The level control's output: the depth the outlet holds so that the downstream section holds y2.
+  if (setup_.tailwater_held_at == "downstream_section" && std::isfinite(s.outlet_target_depth))
+    o << std::setprecision(4) << "  outlet y_t " << s.outlet_target_depth << " m";
   const double from = steady_from();
   if (std::isfinite(from)) o << "  steady since t = " << std::setprecision(1) << from << " s";
   return o.str();
@@ -327,7 +334,7 @@ std::string BasinMonitor::status_line() const {
 std::string BasinMonitor::summary_json() const {
   const double a = setup_.average_start_s, b = setup_.average_end_s;
   auto in_window = [&](const BasinSample& s) { return s.t >= a - 1e-9 && s.t <= b + 1e-9; };
-  std::vector<double> qin, qout, toe, toe_t, toe_found;
+  std::vector<double> qin, qout, toe, toe_t, toe_found, outlet_depth;
   const BasinSample* window_first = nullptr;
   const BasinSample* window_last = nullptr;
   const std::size_t n_sec = setup_.sections.size();
@@ -342,6 +349,7 @@ std::string BasinMonitor::summary_json() const {
       qout.push_back(s.q_out);
     }
     toe.push_back(s.toe_x);
+    if (std::isfinite(s.outlet_target_depth)) outlet_depth.push_back(s.outlet_target_depth);
     if (std::isfinite(s.toe_x)) {
       toe_t.push_back(s.t);
       toe_found.push_back(s.toe_x);
@@ -410,12 +418,16 @@ std::string BasinMonitor::summary_json() const {
   o << "  \"prescribed\": {\"inflow_depth_m\": " << json_number(y1)
     << ", \"discharge_m2_s\": " << json_number(setup_.discharge_m2_s) << ", \"froude1\": " << json_number(setup_.froude1)
     << ", \"tailwater_depth_m\": " << json_number(setup_.tailwater_depth_m)
+    << ", \"tailwater_held_at\": " << json_string(setup_.tailwater_held_at)
     << ", \"belanger_sequent_depth_m\": " << json_number(setup_.belanger_y2_m)
     << ", \"measured_sequent_depth_m\": " << json_number(setup_.measured_sequent_depth_m) << "},\n";
   o << "  \"inflow_discharge_m2_s\": " << json_stats(q_in) << ",\n";
   o << "  \"inflow_discharge_relative_error\": "
     << json_number((q_in.mean - setup_.discharge_m2_s) / setup_.discharge_m2_s) << ",\n";
   o << "  \"outflow_discharge_m2_s\": " << json_stats(q_out) << ",\n";
+  // The outlet's target depth: constant y2 when held at the outlet; moved by the level control when
+  // held at the downstream section (its window mean is the tailwater the outlet had to hold).
+  o << "  \"outlet_target_depth_m\": " << json_stats(mean_std(outlet_depth)) << ",\n";
   o << "  \"mass_balance\": {\"fluid_mass_change_kg_per_m\": " << json_number(mass_change)
     << ", \"inflow_minus_outflow_kg_per_m\": " << json_number(net_in)
     << ", \"relative_to_injected\": " << json_number(mass_error) << "},\n";

@@ -33,7 +33,9 @@
 // time means and standard deviations over the averaging window [average_start_s, average_end_s] of the
 // inflow/outflow discharge, the toe position, and depth, surface and discharge at every section; the
 // sequent depth y2 (mean depth at the "downstream" section) with y2/y1 and Belanger's ratio; the mass
-// balance; the steady-state verdict.
+// balance; the steady-state verdict; where the tailwater was held (`prescribed.tailwater_held_at`) and
+// the outflow buffers' target depth (`outlet_target_depth_m`: y2 throughout when held at the outlet,
+// the level control's output when held at the downstream section, outflow_level_control.hpp).
 //
 // Usage
 //   | input         | from                                                    |
@@ -48,6 +50,7 @@
 #pragma once
 
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -65,6 +68,9 @@ struct BasinMonitorSetup {
   double discharge_m2_s = 0.0;      // q = y1 U1, prescribed
   double froude1 = 0.0;
   double tailwater_depth_m = 0.0;   // imposed at the outflow
+  // Where the tailwater depth is held: "outlet", "downstream_section" (outflow_level_control.hpp) or
+  // "tailgate" (by the weir's crest).
+  std::string tailwater_held_at = "outlet";
   double belanger_y2_m = 0.0;
   double floor_z_m = 0.0;           // upstream floor = crest level
   double x_inflow_m = 0.0, x_outflow_m = 0.0;
@@ -90,6 +96,7 @@ struct BasinSample {
   double q_in = 0.0, q_out = 0.0;      // m^2/s over the interval before t (NaN for the first sample)
   double mass_in = 0.0, mass_out = 0.0;  // kg/m created at the inflow / removed at the outflow since t = 0
   double fluid_mass = 0.0;             // kg/m of water in the domain now (fluid + outflow-buffer particles)
+  double outlet_target_depth = 0.0;    // the outflow buffers' target depth y_t (m; NaN: none)
   std::vector<double> depth, surface, discharge;           // per section
 };
 
@@ -97,8 +104,10 @@ class BasinMonitor {
  public:
   explicit BasinMonitor(BasinMonitorSetup setup);
 
-  // Samples the particles at time t; mass_in/mass_out are the totals since t = 0 (kg/m).
-  void record(const ParticleSet& particles, double t, double mass_in, double mass_out);
+  // Samples the particles at time t; mass_in/mass_out are the totals since t = 0 (kg/m);
+  // outlet_target_depth the outflow buffers' target depth now (m; NaN: none).
+  void record(const ParticleSet& particles, double t, double mass_in, double mass_out,
+              double outlet_target_depth = std::numeric_limits<double>::quiet_NaN());
 
   // The table of all samples (basin.csv).
   std::string csv() const;

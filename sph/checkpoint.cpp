@@ -16,7 +16,7 @@ namespace hydrojump::sph {
 
 namespace {
 
-constexpr char kMagic[8] = {'H', 'J', 'S', 'P', 'H', 'C', 'K', '3'};
+constexpr char kMagic[8] = {'H', 'J', 'S', 'P', 'H', 'C', 'K', '4'};
 
 template <class T>
 void put(std::ostream& out, const T& v) {
@@ -84,6 +84,7 @@ void write_checkpoint(const Checkpoint& c, const std::filesystem::path& file) {
     put(out, c.clock.steps);
     put(out, c.clock.inflow_mass);
     put(out, c.clock.outflow_mass);
+    put(out, c.clock.outflow_target_depth);
     const std::int64_t n = c.particles.size();
     put(out, n);
     c.particles.for_each_real_array([&](const Vector& v) { put_array(out, v); });
@@ -122,6 +123,8 @@ void check_contents(const Checkpoint& c, const std::filesystem::path& file) {
   if (!std::isfinite(k.last_dt) || k.last_dt < 0.0) damaged("its last time step is " + seconds(k.last_dt));
   if (k.steps < 0) damaged("its step count is negative");
   if (!std::isfinite(k.inflow_mass) || !std::isfinite(k.outflow_mass)) damaged("its inflow/outflow mass is not finite");
+  if (!std::isfinite(k.outflow_target_depth) || k.outflow_target_depth < 0.0)
+    damaged("its outflow target depth is " + std::to_string(k.outflow_target_depth) + " m");
   if (!std::isfinite(c.next_output_time) || c.next_output_time < 0.0)
     damaged("its next output time is " + seconds(c.next_output_time));
   Eigen::Index fluid = 0;
@@ -159,6 +162,7 @@ Checkpoint read_checkpoint(const std::filesystem::path& file) {
   c.clock.steps = r.get<std::int64_t>();
   c.clock.inflow_mass = r.get<double>();
   c.clock.outflow_mass = r.get<double>();
+  c.clock.outflow_target_depth = r.get<double>();
   const auto n = r.get<std::int64_t>();
   // Every particle takes at least its real arrays, id and type in the file: a count the file cannot
   // hold is a damaged file, not a reason to allocate memory.

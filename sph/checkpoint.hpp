@@ -4,8 +4,8 @@
 // number of threads. Written atomically (temporary file, then rename), so a run killed while writing
 // keeps the previous checkpoint.
 //
-// Format (little endian, host doubles): "HJSPHCK3", the case fingerprint, the clock (time, last dt, steps,
-// inflow and outflow mass totals), the particle
+// Format (little endian, host doubles): "HJSPHCK4", the case fingerprint, the clock (time, last dt, steps,
+// inflow and outflow mass totals, the outflow target depth), the particle
 // count and arrays, then the run state. Readers reject other magic strings and truncated files.
 #pragma once
 

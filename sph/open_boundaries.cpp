@@ -147,7 +147,15 @@ OutflowBuffer::OutflowBuffer(const cases::OutflowBoundary& outflow, double bed_z
       eos_(params.eos) {
   if (!(outflow.tailwater_depth_m > 0.0)) throw std::invalid_argument("outflow buffer: tailwater depth must be positive");
   absorbing_ = params.outflow == OutflowCondition::absorbing;
+  discharge_ = discharge_m2_s;
   target_velocity_ = discharge_m2_s / outflow.tailwater_depth_m;
+}
+
+// y_t = depth, U_t = q / y_t
+void OutflowBuffer::set_target_depth(double depth_m) {
+  if (!(depth_m > 0.0)) throw std::invalid_argument("outflow buffer: the target depth must be positive");
+  level_z_ = bed_z_ + depth_m;
+  target_velocity_ = discharge_ / depth_m;
 }
 
 // Fluid past x_out joins the buffer; the buffer moves at u_b (hydrostatic_level: the depth-averaged u
@@ -225,6 +233,9 @@ BufferParameters buffer_parameters(const SolverSettings& settings) {
   p.inflow = settings.inflow;
   p.outflow = settings.outflow;
   p.tailgate_height = settings.tailgate_height;
+  p.level_at_section = settings.outflow_level_at_section;
+  p.level_section_x = settings.outflow_level_section_x;
+  p.level_time = settings.outflow_level_time;
   return p;
 }
 
@@ -246,6 +257,9 @@ OpenBoundaries OpenBoundaries::from_geometry(const cases::CaseGeometry& geometry
     else
       out.outflows_.emplace_back(o, geometry.bed.elevation(o.x_m), params, discharge);
   }
+  if (params.level_at_section && !out.outflows_.empty())
+    out.level_control_.emplace(params.level_section_x, geometry.outflows.front().tailwater_depth_m, params.level_time,
+                               2.0 * params.dx);
   return out;
 }
 
@@ -258,7 +272,7 @@ void OpenBoundaries::create(ParticleSet& particles) const {
   for (const auto& in : inflows_) in.create(particles, next_id);
 }
 
-OpenBoundaryTotals OpenBoundaries::advance(ParticleSet& particles, double dt) {
+OpenBoundaryTotals OpenBoundaries::advance(ParticleSet& particles, double t, double dt) {
   OpenBoundaryTotals step;
   if (empty()) return step;
   std::int64_t next_id = next_particle_id(particles);
@@ -266,7 +280,19 @@ OpenBoundaryTotals OpenBoundaries::advance(ParticleSet& particles, double dt) {
   for (auto& crossing : crossings_) step.mass_in += crossing.advance(particles);
   for (auto& o : outflows_) step.mass_out += o.advance(particles, dt);
   for (auto& gate : tailgates_) step.mass_out += gate.advance(particles);
+  if (level_control_) {
+    if (const auto depth = level_control_->update(particles, t, dt, outflow_target_depth()))
+      set_outflow_target_depth(*depth);
+  }
   return step;
+}
+
+double OpenBoundaries::outflow_target_depth() const {
+  return outflows_.empty() ? 0.0 : outflows_.front().target_depth();
+}
+
+void OpenBoundaries::set_outflow_target_depth(double depth_m) {
+  for (auto& o : outflows_) o.set_target_depth(depth_m);
 }
 
 double OpenBoundaries::mass_in() const {

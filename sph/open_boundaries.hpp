@@ -45,6 +45,7 @@
 //   |---------------------------|---------------------------------|----------------------|----------------------------------|
 //   | sph.inflow_condition      | "buffer", "piston"              | "buffer"             | this buffer, or piston_inflow.hpp |
 //   | sph.outflow_condition     | "hydrostatic_level", "absorbing", "tailgate" | "hydrostatic_level" | above; tailgate.hpp  |
+//   | sph.outflow_level_reference | "outlet", "downstream_section" | "outlet"          | where y_t is held; outflow_level_control.hpp |
 //   | sph.open_boundary_layers  | 0-50 (0: automatic; else at least ceil(2 sqrt(2) coef_h) + 1) | 0 | buffer depth in columns |
 //   | quantity        | from                                          |
 //   |-----------------|-----------------------------------------------|
@@ -59,10 +60,12 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "cases/geometry.hpp"
 #include "sph/equation_of_state.hpp"
+#include "sph/outflow_level_control.hpp"
 #include "sph/particles.hpp"
 #include "sph/settings.hpp"
 #include "sph/piston_inflow.hpp"
@@ -80,6 +83,10 @@ struct BufferParameters {
   InflowCondition inflow = InflowCondition::buffer;                // inflow buffers, or a piston reservoir
   OutflowCondition outflow = OutflowCondition::hydrostatic_level;  // outflow buffers, or a tailgate
   double tailgate_height = 0.0;    // "tailgate": crest height above the bed (m)
+  // Level control at the "downstream" section (outflow_level_control.hpp) instead of at the outlet.
+  bool level_at_section = false;
+  double level_section_x = 0.0;    // m
+  double level_time = 2.0;         // T_c (s)
 };
 
 // Running totals of what crossed the open boundaries (kg per metre of width).
@@ -129,10 +136,14 @@ class OutflowBuffer {
   int layers() const { return layers_; }
   double section_x() const { return x_out_; }
   double level_z() const { return level_z_; }
+  // The target depth y_t (m); set_target_depth moves it (and U_t = q / y_t) for the level control.
+  double target_depth() const { return level_z_ - bed_z_; }
+  void set_target_depth(double depth_m);
   const OpenBoundaryTotals& totals() const { return totals_; }
 
  private:
   double x_out_, bed_z_, dx_, level_z_, gravity_;
+  double discharge_ = 0.0;         // q (m^2/s)
   double target_velocity_ = 0.0;   // U_t = q / y_t (absorbing condition)
   bool absorbing_ = false;
   int layers_;
@@ -161,9 +172,14 @@ class OpenBoundaries {
   void start(const ParticleSet& particles);
   // Appends the inflow buffers' particles, ids from max id + 1.
   void create(ParticleSet& particles) const;
-  // Advances every inflow, then every outflow buffer by dt; new ids from max id + 1. Returns what
-  // crossed the open boundaries in this step.
-  OpenBoundaryTotals advance(ParticleSet& particles, double dt);
+  // Advances every inflow, then every outflow buffer over the step from t to t + dt; new ids from
+  // max id + 1; then, with a level control, moves the outflow buffers' target depth at its control
+  // instants. Returns what crossed the open boundaries in this step.
+  OpenBoundaryTotals advance(ParticleSet& particles, double t, double dt);
+  // The outflow buffers' target depth y_t (m; 0 without outflow buffers), and setting it (a resumed
+  // run restores the level control's state).
+  double outflow_target_depth() const;
+  void set_outflow_target_depth(double depth_m);
   // Totals since this object was made (kg per metre of width).
   double mass_in() const;
   double mass_out() const;
@@ -178,6 +194,7 @@ class OpenBoundaries {
   std::vector<OutflowBuffer> outflows_;
   std::vector<Tailgate> tailgates_;
   std::vector<GateCrossing> crossings_;   // piston inflows: the water crossing the inflow section
+  std::optional<OutflowLevelControl> level_control_;  // sph.outflow_level_reference = "downstream_section"
   double buffer_length_ = 0.0;
 };
 

@@ -100,7 +100,9 @@ class RunState {
     cases::write_file_atomically(o_.dir / "gauges.csv", join(header, gauge_rows_));
     // Stilling basins: toe, discharges, sections, summary.
     if (basin_) {
-      basin_->record(ps, t, solver_.clock().inflow_mass, solver_.clock().outflow_mass);
+      const double y_t = solver_.open_boundaries().outflows().empty() ? std::numeric_limits<double>::quiet_NaN()
+                                                                      : solver_.open_boundaries().outflow_target_depth();
+      basin_->record(ps, t, solver_.clock().inflow_mass, solver_.clock().outflow_mass, y_t);
       cases::write_file_atomically(o_.dir / "basin.csv", basin_->csv());
       cases::write_file_atomically(o_.dir / "summary.json", basin_->summary_json());
     }

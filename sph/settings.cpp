@@ -2,6 +2,7 @@
 
 #include "sph/open_boundaries.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -198,6 +199,21 @@ SolverSettings make_settings(const cases::Case& c, const cases::FluidProperties&
       throw std::invalid_argument("sph tailgate: the crest height " + std::to_string(out.tailgate_height) +
                                   " m is less than 2 particle spacings (dx = " + std::to_string(dx) +
                                   " m): the gate cannot be resolved; use a finer resolution or sph.tailgate_height_m");
+  }
+  if (s.outflow_level_reference == "downstream_section") {
+    const auto down = std::find_if(g.sections.begin(), g.sections.end(),
+                                   [](const cases::Section& sec) { return sec.role == "downstream"; });
+    if (g.outflows.empty() || out.outflow == OutflowCondition::tailgate || down == g.sections.end())
+      throw std::invalid_argument("sph.outflow_level_reference = \"downstream_section\" needs an outflow buffer "
+                                  "(outflow_condition \"absorbing\" or \"hydrostatic_level\") and a section with "
+                                  "role \"downstream\" (a stilling basin); case kind \"" + g.kind + "\" has " +
+                                  (g.outflows.empty() ? "no outflow" : down == g.sections.end() ? "no downstream section" : "a tailgate"));
+    out.outflow_level_at_section = true;
+    out.outflow_level_section_x = down->x_m;
+    out.outflow_level_time = s.outflow_level_time_s;
+  } else if (s.outflow_level_reference != "outlet") {
+    throw std::invalid_argument("sph.outflow_level_reference = \"" + s.outflow_level_reference +
+                                "\" is not allowed: use \"outlet\" or \"downstream_section\"");
   }
   out.inflow = parse_inflow_condition(s.inflow_condition);
   const double buffer_length = buffer_layers(out.support(), out.dx, out.open_boundary_layers) * out.dx;

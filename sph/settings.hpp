@@ -70,6 +70,12 @@ struct SolverSettings {
   InflowCondition inflow = InflowCondition::buffer;                // sph.inflow_condition
   OutflowCondition outflow = OutflowCondition::hydrostatic_level;  // sph.outflow_condition
   double tailgate_height = 0.0;      // "tailgate": crest above the bed at the outflow section (m), resolved
+  // sph.outflow_level_reference = "downstream_section": the outlet's target depth is controlled so that
+  // the "downstream" section at x = outflow_level_section_x holds the tailwater depth
+  // (outflow_level_control.hpp), with the integral time outflow_level_time (s).
+  bool outflow_level_at_section = false;
+  double outflow_level_section_x = 0.0;
+  double outflow_level_time = 2.0;
   WallMotion wall_motion;            // the moving_wall particles' motion (a lifted dam-break gate)
 
   double support() const { return 2.0 * h; }

@@ -16,6 +16,7 @@ Solver::Solver(SolverSettings settings, ParticleSet particles, SolverClock clock
                                                   0.5 * settings_.dx, settings_.periodic_x, settings_.x_min, settings_.x_max);
   }
   open_.start(particles_);
+  if (clock_.outflow_target_depth > 0.0) open_.set_outflow_target_depth(clock_.outflow_target_depth);
   update_pressure();
 }
 
@@ -64,7 +65,8 @@ void Solver::step() {
     verlet_update(particles_, settings_, dt, euler);
     move_walls(particles_, walls, t, t + dt);
   }
-  const OpenBoundaryTotals crossed = open_.advance(particles_, dt);
+  const OpenBoundaryTotals crossed = open_.advance(particles_, t, dt);
+  clock_.outflow_target_depth = open_.outflow_target_depth();
   clock_.inflow_mass += crossed.mass_in;
   clock_.outflow_mass += crossed.mass_out;
   clock_.time += dt;

@@ -2,14 +2,15 @@
 //
 //   symplectic:  interactions(); dt = time_step(); predictor(dt); move_walls(t, t + dt/2);
 //                interactions(); [concentration_gradients();] corrector(dt); [shift_particles(dt);]
-//                move_walls(t + dt/2, t + dt); open_boundaries(dt);
-//   verlet:      interactions(); dt = time_step(); verlet(dt); move_walls(t, t + dt); open_boundaries(dt);
+//                move_walls(t + dt/2, t + dt); open_boundaries(t, dt);
+//   verlet:      interactions(); dt = time_step(); verlet(dt); move_walls(t, t + dt); open_boundaries(t, dt);
 //
 // move_walls() moves the moving_wall particles by their prescribed motion (sph/wall_motion.hpp).
 //
 // open_boundaries() advances the inflow/outflow buffers (sph/open_boundaries.hpp) of a stilling
 // basin: it moves the buffer particles, turns inflow particles into fluid and fluid into outflow
-// particles; nothing for closed cases.
+// particles, and moves the outlet's target depth at the level control's instants
+// (sph/outflow_level_control.hpp); nothing for closed cases.
 //
 // concentration_gradients() and shift_particles() (sph.particle_shifting = "fickian", particle_shifting.hpp):
 // the concentration gradient from the corrector's interaction (at the predictor's half-step
@@ -40,6 +41,9 @@ struct SolverClock {
   // Open boundaries: mass injected at the inflows and removed at the outflows since t = 0 (kg/m).
   double inflow_mass = 0.0;
   double outflow_mass = 0.0;
+  // The outflow buffers' target depth y_t (m), moved by a level control (outflow_level_control.hpp);
+  // 0: the case's tailwater depth (a run not yet started, or no outflow buffers).
+  double outflow_target_depth = 0.0;
 };
 
 class Solver {

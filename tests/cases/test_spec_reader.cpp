@@ -272,6 +272,23 @@ TEST_CASE("Non-physical values are rejected with the allowed range", "[cases][sp
                                              "[sph]\noutflow_condition = \"tailgate\"\ntailgate_height_m = -0.03\n\n[[case]]"));
     CHECK_THAT(negative, Catch::Contains("sph.tailgate_height_m = -0.03 is out of range"));
   }
+  SECTION("level-control settings where they cannot act") {
+    const auto text = replaced(valid_spec, "[[case]]", "[sph]\noutflow_level_time_s = 2.0\n\n[[case]]");
+    const auto msg = rejection(text);
+    CHECK_THAT(msg, Catch::Contains("spec.toml:" + std::to_string(line_of(text, "outflow_level_time_s"))));
+    CHECK_THAT(msg, Catch::Contains("only used with outflow_level_reference = \"downstream_section\""));
+    CHECK_NOTHROW(parse_study(replaced(valid_spec, "[[case]]",
+                                       "[sph]\noutflow_level_reference = \"downstream_section\"\noutflow_level_time_s = 2.0\n\n[[case]]"),
+                              "spec.toml", "."));
+    CHECK_THAT(rejection(replaced(valid_spec, "[[case]]",
+                                  "[sph]\noutflow_level_reference = \"downstream_section\"\noutflow_level_time_s = 0\n\n[[case]]")),
+               Catch::Contains("sph.outflow_level_time_s = 0 is out of range"));
+    CHECK_THAT(rejection(replaced(valid_spec, "[[case]]", "[sph]\noutflow_level_reference = \"tailgate\"\n\n[[case]]")),
+               Catch::Contains("\"outlet\", \"downstream_section\""));
+    const auto gate = rejection(replaced(valid_spec, "[[case]]",
+                                         "[sph]\noutflow_condition = \"tailgate\"\noutflow_level_reference = \"downstream_section\"\n\n[[case]]"));
+    CHECK_THAT(gate, Catch::Contains("sph.outflow_level_reference") && Catch::Contains("a tailgate sets its level by its crest"));
+  }
   SECTION("piston settings without the piston inflow") {
     const auto text = replaced(valid_spec, "[[case]]", "[sph]\nsluice_opening_m = 0.04\n\n[[case]]");
     const auto msg = rejection(text);

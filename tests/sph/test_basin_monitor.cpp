@@ -159,3 +159,42 @@ TEST_CASE("the water in the basin: all fluid with an inflow buffer, not a piston
   CHECK(fluid_mass(false) == Approx(total).epsilon(1e-12));
   CHECK(fluid_mass(true) == Approx(total - ps.mass[0]).epsilon(1e-12));
 }
+
+TEST_CASE("the monitor records the outlet's target depth and where the tailwater was held", "[sph][basin][level_control]") {
+  sph::BasinMonitorSetup held = setup();
+  held.tailwater_held_at = "downstream_section";
+  sph::BasinMonitor monitor(held);
+  const sph::ParticleSet ps = step_particles(0.5);
+  // A level control lowering the outlet's target from 0.20 m by 0.01 m per output, t = 1.0 ... 3.0 s;
+  // the summary's window mean is that of the outputs in [1.5, 3.0] s.
+  double sum = 0.0;
+  int count = 0;
+  for (int k = 0; k <= 10; ++k) {
+    const double t = 1.0 + 0.2 * k, y_t = 0.20 - 0.01 * k;
+    monitor.record(ps, t, rho0 * q * t, rho0 * q * t, y_t);
+    if (t >= held.average_start_s - 1e-9 && t <= held.average_end_s + 1e-9) {
+      sum += y_t;
+      ++count;
+    }
+  }
+  REQUIRE(count == 8);  // t = 1.6 ... 3.0
+  CHECK(monitor.samples().back().outlet_target_depth == Approx(0.10));
+  CHECK(contains(monitor.csv(), "fluid_mass_kg_per_m,outlet_target_depth_m,"));
+  const std::string summary = monitor.summary_json();
+  INFO(summary);
+  CHECK(contains(summary, "\"tailwater_held_at\": \"downstream_section\""));
+  const std::string key = "\"outlet_target_depth_m\": {\"mean\": ";
+  const auto at = summary.find(key);
+  REQUIRE(at != std::string::npos);
+  CHECK(std::strtod(summary.c_str() + at + key.size(), nullptr) == Approx(sum / count).epsilon(1e-9));
+  CHECK_THAT(monitor.status_line(), Catch::Contains("outlet y_t 0.1000 m"));
+  // Held at the outlet (the default), the line does not repeat the constant y2.
+  sph::BasinMonitor plain(setup());
+  plain.record(ps, 1.0, 0.0, 0.0, 0.2);
+  CHECK_THAT(plain.status_line(), !Catch::Contains("outlet y_t"));
+  // A resumed run restores the column from the checkpoint's rows.
+  sph::BasinMonitor resumed(held);
+  resumed.restore(monitor.csv_rows());
+  CHECK(resumed.csv() == monitor.csv());
+  CHECK(resumed.samples().back().outlet_target_depth == monitor.samples().back().outlet_target_depth);
+}

@@ -139,6 +139,7 @@ TEST_CASE("a checkpoint whose contents are damaged is refused by name", "[sph][r
   refused([](Checkpoint& c) { c.particles.x[3] = std::numeric_limits<double>::infinity(); }, "a particle's position, velocity, density or mass is not finite");
   refused([](Checkpoint& c) { c.clock.last_dt = -1.0; }, "its last time step is -1 s");
   refused([](Checkpoint& c) { c.next_output_time = std::numeric_limits<double>::quiet_NaN(); }, "its next output time");
+  refused([](Checkpoint& c) { c.clock.outflow_target_depth = -0.1; }, "its outflow target depth is -0.1");
   // A damaged string length (the fingerprint's, right after the 8-byte magic) longer than the rest of
   // the file: refused as corrupt (since session 14 from the file's size, before 3 GB are allocated).
   write_checkpoint(good, file);

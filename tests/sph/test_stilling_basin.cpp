@@ -53,7 +53,9 @@ struct ShortBasin {
   sph::ParticleSet particles;
 };
 
-ShortBasin short_smooth_basin() {
+// level_control: the tailwater held at the downstream section (outflow_level_control.hpp) by an
+// absorbing outlet, with the sections re-derived for the shortened basin.
+ShortBasin short_smooth_basin(bool level_control = false) {
   ShortBasin out;
   out.study = cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/cases/ead2002.toml");
   const cases::Case* found = nullptr;
@@ -71,6 +73,12 @@ ShortBasin short_smooth_basin() {
   out.spec.sph.boundary = "mdbc";
   out.spec.sph.sound_speed_coefficient = 20.0;
   sph_test::use_fixture_viscosity(out.spec);
+  if (level_control) {
+    out.spec.sph.outflow_condition = "absorbing";
+    out.spec.sph.outflow_level_reference = "downstream_section";
+    out.spec.sph.outflow_level_time_s = 0.1;
+    out.spec.sections = cases::default_stilling_basin_sections(basin);
+  }
   out.geometry = cases::make_geometry(out.spec, out.study.fluid);
   out.settings = sph::make_settings(out.spec, out.study.fluid, out.geometry, 0.005);
   out.particles = sph::generate_particles(out.geometry, out.settings, out.spec.sph.boundary_layers);
@@ -130,7 +138,9 @@ TEST_CASE("smooth-bed stilling basin: stable, mass balance and inflow discharge"
 }
 
 TEST_CASE("a stilling-basin run resumed from a checkpoint continues bit for bit", "[sph][stilling_basin][restart]") {
-  ShortBasin b = short_smooth_basin();
+  const bool level_control = GENERATE(false, true);
+  INFO("level control at the downstream section: " << level_control);
+  ShortBasin b = short_smooth_basin(level_control);
   sph::Solver whole(b.settings, b.particles, {}, open_boundaries_of(b));
   for (int k = 0; k < 150; ++k) whole.step();
   // Checkpoint after 150 steps (several buffer columns converted), read back, resumed by a new solver
@@ -151,6 +161,12 @@ TEST_CASE("a stilling-basin run resumed from a checkpoint continues bit for bit"
   CHECK(whole.clock().inflow_mass > 0.0);
   CHECK(resumed.clock().inflow_mass == whole.clock().inflow_mass);
   CHECK(resumed.clock().outflow_mass == whole.clock().outflow_mass);
+  // The outlet's target depth is the checkpointed state of the level control: it has moved (the short
+  // basin's downstream section is not at y2 during the start-up) and the resumed run follows it.
+  const double y2 = b.geometry.outflows.front().tailwater_depth_m;
+  if (level_control) CHECK(whole.clock().outflow_target_depth != y2);
+  else CHECK(whole.clock().outflow_target_depth == y2);
+  CHECK(resumed.clock().outflow_target_depth == whole.clock().outflow_target_depth);
   const auto& pa = whole.particles();
   const auto& pb = resumed.particles();
   REQUIRE(pa.size() == pb.size());
