@@ -118,7 +118,7 @@ TEST_CASE("the level-controlled outlet drains at the Riemann invariant of its mo
 TEST_CASE("the level control is set from the spec, at the downstream section, and refused where it cannot work", "[sph][level_control][options]") {
   cases::Study study = cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/cases/ead2002.toml");
   cases::Case a = case_named(study, "A");
-  a.sph.outflow_level_reference = "downstream_section";
+  a.sph.outflow_level_reference = "downstream_section";  // as the study file sets it since session 22
   a.sph.outflow_level_time_s = 3.0;
   const auto geometry = solver_geometry(a, study.fluid, 0.005);
   const SolverSettings s = make_settings(a, study.fluid, geometry, 0.005);
@@ -129,8 +129,8 @@ TEST_CASE("the level control is set from the spec, at the downstream section, an
     if (sec.role == "downstream") x_down = sec.x_m;
   CHECK(s.outflow_level_section_x == x_down);
   CHECK(buffer_parameters(s).level_at_section);
-  // The default holds the tailwater at the outlet.
-  const cases::Case plain = case_named(study, "A");
+  // The default holds the tailwater at the outlet (run B of the study file sets no level control).
+  const cases::Case plain = case_named(study, "B");
   CHECK_FALSE(make_settings(plain, study.fluid, solver_geometry(plain, study.fluid, 0.005), 0.005).outflow_level_at_section);
   // A dam break has no outflow and no downstream section.
   cases::Study dam = cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/cases/dam_break.toml");
