@@ -9,8 +9,8 @@
 namespace hydrojump::sph {
 
 // 4000 since session 22: run A at quick (about 7,950 particles with its tailwater held at the downstream
-// section) ran on one thread below the former 8000 at 150 steps/s, against 220 steps/s on two
-// threads when it had just over 8000 (README.md, Performance).
+// section) ran on one thread below the former 8000, at 150 steps/s; from 4000 it runs on two threads
+// at 219 steps/s with the same result to the bit (README.md, Performance).
 constexpr Eigen::Index kMinParticlesForThreads = 4000;
 
 inline bool use_threads(Eigen::Index particles) { return particles >= kMinParticlesForThreads; }
