@@ -75,13 +75,15 @@ CaseGeometry stilling_basin_geometry(const StillingBasinCase& b, double g) {
   geo.inflows.push_back({0.0, y1, b.inflow_velocity_m_s});
   geo.outflows.push_back({x_end, y2});
 
-  // Initial water: the supercritical layer y1 up to the expected toe, a ramp to y2 over the expected
-  // jump length, then the tailwater level (so the initial volume is close to the final one).
+  // Initial water: the supercritical layer y1 up to the expected toe (the spec's initial_toe_x_m, else
+  // the basin start), a ramp to y2 over the expected jump length, then the tailwater level (so the
+  // initial volume is close to the final one).
   const double jump_length = b.measured.jump_length_m.value_or(6.0 * y2);
+  const double x_initial_toe = b.initial_toe_x_m.value_or(x_toe);
   auto& w = geo.initial_water;
   w.x_begin_m = 0.0;
   w.x_end_m = x_end;
-  w.surface_x_m = {0.0, x_toe, std::min(x_toe + jump_length, x_end), x_end};
+  w.surface_x_m = {0.0, x_initial_toe, std::min(x_initial_toe + jump_length, x_end), x_end};
   w.surface_z_m = {y1, y1, y2, y2};
   if (w.surface_x_m[2] >= w.surface_x_m[3]) {
     w.surface_x_m.pop_back();

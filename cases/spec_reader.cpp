@@ -524,6 +524,7 @@ StillingBasinCase read_stilling_basin(TableReader& c, double g) {
   b.basin_length_m = domain.number("basin_length_m", positive("m", 1000.0));
   b.downstream_length_m = domain.number("downstream_length_m", non_negative("m", 1000.0));
   b.air_height_m = domain.number("air_height_m", positive("m", 100.0));
+  b.initial_toe_x_m = domain.optional_number("initial_toe_x_m", Range{0.0, b.upstream_length_m + b.basin_length_m, true, true, "m, inside the domain upstream of the basin end"});
   domain.reject_unknown_keys();
 
   auto bed = c.required_table("bed");
@@ -1034,6 +1035,7 @@ std::string resolved_case_text(const Study& study, const Case& c, const std::str
     w.num("basin_length_m", b->basin_length_m);
     w.num("downstream_length_m", b->downstream_length_m);
     w.num("air_height_m", b->air_height_m);
+    w.opt("initial_toe_x_m", b->initial_toe_x_m);
     const auto& m = b->measured;
     w.header("[case.measured]");
     w.opt("sequent_depth_m", m.sequent_depth_m);

@@ -195,6 +195,12 @@ TEST_CASE("Non-physical values are rejected with the allowed range", "[cases][sp
     CHECK_THAT(msg, Catch::Contains("spec.toml:" + std::to_string(line_of(text, "-0.0254"))));
     CHECK_THAT(msg, Catch::Contains("inflow.depth_m = -0.0254 is out of range: must be > 0"));
   }
+  SECTION("initial toe outside the domain upstream of the basin end") {
+    const auto text = replaced(valid_spec, "air_height_m = 0.1", "air_height_m = 0.1\ninitial_toe_x_m = 1.6");
+    const auto msg = rejection(text);
+    CHECK_THAT(msg, Catch::Contains("spec.toml:" + std::to_string(line_of(text, "initial_toe_x_m"))));
+    CHECK_THAT(msg, Catch::Contains("domain.initial_toe_x_m = 1.6 is out of range: must be > 0 and < 1.56"));
+  }
   SECTION("zero tailwater") {
     const auto msg = rejection(replaced(valid_spec, "depth_m = 0.104", "depth_m = 0"));
     CHECK_THAT(msg, Catch::Contains("tailwater.depth_m = 0 is out of range"));
@@ -419,6 +425,30 @@ TEST_CASE("A resolved case reloads to the same case", "[cases][spec]") {
     for (std::size_t i = 0; i < c.sections.size(); ++i) CHECK(rc.sections[i].x_m == c.sections[i].x_m);
   }
   std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("The initial toe moves the start of the initial ramp and survives a resolved reload", "[cases][spec]") {
+  const Study s = parse_study(replaced(valid_spec, "air_height_m = 0.1", "air_height_m = 0.1\ninitial_toe_x_m = 0.6"),
+                              "spec.toml", ".");
+  const auto* b = s.cases[0].stilling_basin();
+  REQUIRE(b->initial_toe_x_m);
+  CHECK(*b->initial_toe_x_m == 0.6);
+  // Without jump_length_m in [case.measured] the ramp is 6 y2 = 0.624 m long: y1 up to 0.6 m, y2 from 1.224 m.
+  const auto geo = make_geometry(s.cases[0], s.fluid);
+  CHECK(geo.initial_water.surface_at(0.59) == Approx(0.0254));
+  CHECK(geo.initial_water.surface_at(0.6 + 0.312) == Approx(0.5 * (0.0254 + 0.104)));
+  CHECK(geo.initial_water.surface_at(1.3) == Approx(0.104));
+  // Only the initial water moves: the sections, the reach and the outflow stay where they were.
+  const Study plain = parse_study(valid_spec, "spec.toml", ".");
+  const auto plain_geo = make_geometry(plain.cases[0], plain.fluid);
+  CHECK(plain_geo.initial_water.surface_at(0.3) == Approx(0.0254 + (0.1 / 0.624) * (0.104 - 0.0254)));
+  REQUIRE(geo.sections.size() == plain_geo.sections.size());
+  for (std::size_t i = 0; i < geo.sections.size(); ++i) CHECK(geo.sections[i].x_m == plain_geo.sections[i].x_m);
+  CHECK(geo.bed.polyline(0.0, 1.76, 1e-3).size() == plain_geo.bed.polyline(0.0, 1.76, 1e-3).size());
+  const Study r = resolved_reload(s, "initial_toe");
+  REQUIRE(r.cases[0].stilling_basin()->initial_toe_x_m);
+  CHECK(*r.cases[0].stilling_basin()->initial_toe_x_m == 0.6);
+  CHECK_FALSE(resolved_reload(plain, "no_initial_toe").cases[0].stilling_basin()->initial_toe_x_m);
 }
 
 TEST_CASE("The artificial viscosity is given as alpha or as nu, not both", "[cases][spec][reject]") {
