@@ -152,6 +152,23 @@ JumpMetrics compute_jump_metrics(const MethodStatistics& m, const JumpInputs& in
       r.notes.push_back("the surface has not settled within the tolerance at the downstream section");
     }
   }
+  // Surface peak: a classic roller jump's mean surface rises to about y2 and stays there; a crest well
+  // above y2 between the toe and the downstream section is a standing wave over the jump (the inflow jet
+  // deflected up to the surface, the recirculation below it), whatever the four numbers say.
+  for (std::size_t i = toe; i <= last && i < st.size(); ++i) {
+    if (std::isfinite(zm[i]) && !(zm[i] <= r.surface_peak_m)) {
+      r.surface_peak_m = zm[i];
+      r.surface_peak_x_m = st[i].spec.x_m;
+    }
+  }
+  if (std::isfinite(r.sequent_depth_m) && r.surface_peak_m > (1.0 + in.options.surface_peak_tolerance) * r.sequent_depth_m) {
+    std::ostringstream s;
+    s << "the mean surface peaks at " << r.surface_peak_m / r.sequent_depth_m << " y2 (" << r.surface_peak_m
+      << " m above the floor at x = " << r.surface_peak_x_m
+      << " m) between the toe and the downstream section: a standing wave over the jump, not the monotonic rise"
+         " of a roller jump";
+    r.notes.push_back(s.str());
+  }
   // Roller: last station with reverse near-surface flow.
   for (std::size_t i = last + 1; i-- > toe + 1;) {
     if (st[i].near_surface_velocity.mean < 0.0) {

@@ -48,6 +48,7 @@ struct JumpMetricOptions {
   double toe_persistence_y1 = 2.0;
   double settle_tolerance = 0.05;
   double velocity_settle_tolerance = 0.10;
+  double surface_peak_tolerance = 0.2;  // a mean surface above (1 + this) y2 is reported as a standing wave
 };
 
 struct JumpInputs {
@@ -78,6 +79,8 @@ struct JumpMetrics {
   double specific_force_downstream_m2 = not_a_number;  // M2
   double bed_force_fraction = not_a_number;    // (M1 - M2)/M1
   double velocity_settling_distance_m = not_a_number;
+  double surface_peak_m = not_a_number;         // highest time-mean depth above the floor from the toe to
+  double surface_peak_x_m = not_a_number;       // the downstream section (running mean), and where
   std::vector<std::string> notes;              // why a metric is missing
 };
 

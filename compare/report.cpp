@@ -116,7 +116,9 @@ void metrics_json(Json& j, const JumpMetrics& m) {
       .field("specific_force_upstream_m2", m.specific_force_upstream_m2)
       .field("specific_force_downstream_m2", m.specific_force_downstream_m2)
       .field("bed_force_fraction", m.bed_force_fraction)
-      .field("velocity_settling_distance_m", m.velocity_settling_distance_m);
+      .field("velocity_settling_distance_m", m.velocity_settling_distance_m)
+      .field("surface_peak_m", m.surface_peak_m)
+      .field("surface_peak_x_m", m.surface_peak_x_m);
   j.key("notes").begin_array();
   for (const auto& n : m.notes) j.value(n);
   j.end_array().end_object();
@@ -356,6 +358,7 @@ std::string pretty_quantity(const std::string& q) {
   if (q == "eta_crest_depth") return "eta, lab convention y + q²/(2gy²), y above crests (%)";
   if (q == "bed_force_fraction") return "bed force (M1-M2)/M1, M = h²/2 + βq²/(gh) (%)";
   if (q == "velocity_settling_distance") return "velocity settling distance (m)";
+  if (q == "surface_peak") return "highest mean surface, toe to downstream section (m above the floor)";
   return q;
 }
 

@@ -179,7 +179,53 @@ TEST_CASE("Toe and jump and roller lengths of a synthetic mean surface", "[compa
   CHECK(r.roller_length_m == Approx(x_t + Lr - x_toe).margin(2 * ds));
   // u_max reaches 0.6 m/s at x_t + 0.28; within 10 % (0.66) from x_t + 0.268.
   CHECK(r.velocity_settling_distance_m == Approx(x_t + (u1 - 0.66) / 5.0 - x_toe).margin(2 * ds));
+  // A monotonic rise: the highest mean surface is y2, first reached at x_t + L (within the running mean).
+  CHECK(r.surface_peak_m == Approx(y2).margin(1e-12));
+  CHECK(r.surface_peak_x_m == Approx(x_t + L).margin(0.5 * 0.8 * y1 + ds));
   CHECK(r.notes.empty());
+}
+
+TEST_CASE("A mean surface cresting above y2 over the jump is reported as a standing wave", "[compare][metrics]") {
+  // Surface: y1 up to x_t, a rise to a plateau at c y2 over (x_t + 0.2, x_t + 0.3), a trough at 0.7 y2
+  // at x_t + 0.5, then y2 from x_t + 0.7 on (run D at `default` in session 23 peaked at 1.54 y2).
+  const double y1 = 0.0508, u1 = 4.07, y2 = 0.31, x_t = 1.0, ds = 0.004;
+  const auto surface = [&](double x, double c) {
+    const std::vector<double> xs{0.0, x_t, x_t + 0.2, x_t + 0.3, x_t + 0.5, x_t + 0.7, 3.0};
+    const std::vector<double> zs{y1, y1, c * y2, c * y2, 0.7 * y2, y2, y2};
+    std::size_t k = 1;
+    while (k + 1 < xs.size() && x > xs[k]) ++k;
+    return zs[k - 1] + (zs[k] - zs[k - 1]) * (x - xs[k - 1]) / (xs[k] - xs[k - 1]);
+  };
+  const auto metrics = [&](double c) {
+    MethodStatistics m;
+    m.sections.push_back(as_statistics("upstream", "upstream", uniform_column(0.3, 0.0, y1, u1)));
+    m.sections.push_back(as_statistics("downstream", "downstream", uniform_column(2.5, 0.0, y2, y1 * u1 / y2)));
+    for (int i = 0; i <= 750; ++i) {
+      ColumnStatistics s;
+      s.spec = {"", "station", i * ds, 0.0, 21};
+      s.surface.mean = surface(i * ds, c);
+      s.near_surface_velocity.mean = 0.5;
+      s.max_velocity.mean = u1;
+      m.stations.push_back(s);
+    }
+    return compute_jump_metrics(m, JumpInputs{y1, u1, 0.0, g, {}});
+  };
+  const auto wave_notes = [](const JumpMetrics& r) {
+    return std::count_if(r.notes.begin(), r.notes.end(),
+                         [](const std::string& n) { return n.find("standing wave") != std::string::npos; });
+  };
+  const JumpMetrics wave = metrics(1.5);
+  CHECK(wave.surface_peak_m == Approx(1.5 * y2).margin(1e-9));
+  CHECK(wave.surface_peak_x_m >= x_t + 0.2 - ds);
+  CHECK(wave.surface_peak_x_m <= x_t + 0.3 + ds);
+  CHECK(wave_notes(wave) == 1);
+  // 15 % above y2 is within the 20 % a roller's surface may overshoot: no note, the peak still reported.
+  const JumpMetrics low = metrics(1.15);
+  CHECK(low.surface_peak_m == Approx(1.15 * y2).margin(1e-9));
+  CHECK(wave_notes(low) == 0);
+  // The metric table carries the peak.
+  const auto rows = metric_table(&wave, nullptr, MeasuredReference{}, y1, u1, g);
+  CHECK(metric_row(rows, "surface_peak").sph == Approx(1.5 * y2).margin(1e-9));
 }
 
 TEST_CASE("Missing sections and no jump are reported as notes and are not crashes", "[compare][metrics]") {
