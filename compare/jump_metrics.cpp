@@ -156,6 +156,7 @@ JumpMetrics compute_jump_metrics(const MethodStatistics& m, const JumpInputs& in
   // above y2 between the toe and the downstream section is a standing wave over the jump (the inflow jet
   // deflected up to the surface, the recirculation below it), whatever the four numbers say.
   for (std::size_t i = toe; i <= last && i < st.size(); ++i) {
+    // !(a <= b) rather than a > b: true for the first finite value while the peak is still NaN.
     if (std::isfinite(zm[i]) && !(zm[i] <= r.surface_peak_m)) {
       r.surface_peak_m = zm[i];
       r.surface_peak_x_m = st[i].spec.x_m;
