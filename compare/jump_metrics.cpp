@@ -139,19 +139,6 @@ JumpMetrics compute_jump_metrics(const MethodStatistics& m, const JumpInputs& in
   std::size_t last = toe;  // last station up to the downstream section
   while (last + 1 < st.size() && st[last + 1].spec.x_m <= x_down + 1e-12) ++last;
 
-  if (std::isfinite(r.sequent_depth_m)) {
-    const double band = in.options.settle_tolerance * std::abs(r.sequent_depth_m - y1);
-    std::size_t end = last + 1;
-    for (std::size_t i = last + 1; i-- > toe;) {
-      if (std::isfinite(zm[i]) && std::abs(zm[i] - r.sequent_depth_m) <= band) end = i; else break;
-    }
-    if (end <= last) {
-      r.jump_end_x_m = st[end].spec.x_m;
-      r.jump_length_m = r.jump_end_x_m - r.toe_x_m;
-    } else {
-      r.notes.push_back("the surface has not settled within the tolerance at the downstream section");
-    }
-  }
   // Surface peak: a classic roller jump's mean surface rises to about y2 and stays there; a crest well
   // above y2 between the toe and the downstream section is a standing wave over the jump (the inflow jet
   // deflected up to the surface, the recirculation below it), whatever the four numbers say.
@@ -180,6 +167,30 @@ JumpMetrics compute_jump_metrics(const MethodStatistics& m, const JumpInputs& in
   }
   if (!std::isfinite(r.roller_length_m))
     r.notes.push_back("no reverse near-surface flow downstream of the toe: roller length unavailable");
+  // Jump end (section 3-3). The laboratory sections lie in the order toe (1-1), roller end (2-2),
+  // settled surface (3-3), so the search starts at the roller end: a flat roller whose mean surface
+  // is already inside the band would otherwise end the jump inside its own roller (Lj < Lr).
+  if (std::isfinite(r.sequent_depth_m)) {
+    const double band = in.options.settle_tolerance * std::abs(r.sequent_depth_m - y1);
+    std::size_t first = toe;
+    while (std::isfinite(r.roller_end_x_m) && first < last && st[first].spec.x_m < r.roller_end_x_m - 1e-12) ++first;
+    std::size_t end = last + 1;
+    for (std::size_t i = last + 1; i-- > first;) {
+      if (std::isfinite(zm[i]) && std::abs(zm[i] - r.sequent_depth_m) <= band) end = i; else break;
+    }
+    if (end <= last) {
+      r.jump_end_x_m = st[end].spec.x_m;
+      r.jump_length_m = r.jump_end_x_m - r.toe_x_m;
+      if (end == first && first > toe && std::isfinite(zm[first - 1]) && std::abs(zm[first - 1] - r.sequent_depth_m) <= band) {
+        std::ostringstream s;
+        s << "the mean surface is within the settling band already inside the roller; the jump ends at the roller end"
+             " (x = " << r.jump_end_x_m << " m)";
+        r.notes.push_back(s.str());
+      }
+    } else {
+      r.notes.push_back("the surface has not settled within the tolerance at the downstream section");
+    }
+  }
   // Velocity decay.
   const double u_ref = st[last].max_velocity.mean;
   if (std::isfinite(u_ref)) {

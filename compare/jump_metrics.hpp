@@ -13,11 +13,14 @@
 //   y2           sequent depth: time-mean surface at the "downstream" section minus z_floor (depth above
 //                the corrugation crests, as measured in the flume). When the toe lies downstream of that
 //                section (a jump swept downstream), y2, E2, eta and Lj are NaN with a note.
-//   jump end     the first x >= x_t from which zeta stays within settle_tolerance * (y2 - y1) of y2 up
-//                to the downstream section ("the surface has settled"); Lj = x_end - x_t.
 //   roller end   the last x in (x_t, x_down] where the time-mean near-surface velocity u(eta - 0.1 h) is
 //                negative ("end of the reverse surface flow"); Lr = x_roller - x_t. NaN (with a note)
 //                when no reverse surface flow is found.
+//   jump end     the first x >= x_roller (x >= x_t without a roller) from which zeta stays within
+//                settle_tolerance * (y2 - y1) of y2 up to the downstream section ("the surface has
+//                settled"); Lj = x_end - x_t. The experiments' sections lie in the order toe (1-1),
+//                roller end (2-2), settled surface (3-3) (Bo et al. 2019, Fig. 7), so Lj >= Lr: a flat
+//                roller whose mean surface is already inside the band ends the jump at the roller end.
 //   eta          (E1 - E2)/E1 with E = z_b + h + alpha U^2/(2g) time-averaged at the "upstream" (E1)
 //                and "downstream" (E2) sections; eta_alpha1 the same with alpha = 1 (the laboratory
 //                convention E = y + U^2/(2g)); eta_crest_depth with E = y + q^2/(2 g y^2), y the mean

@@ -546,9 +546,10 @@ void write_report(const CaseComparison& c, const fs::path& out, bool plots, std:
              "(x_t); the same criterion on each frame's surface gives the frames' toes, their mean and standard "
              "deviation (a toe that oscillates puts x_t upstream of that mean). y2: time-mean surface at the "
              "downstream section above the upstream floor (corrugation crests).",
-             "Jump end: first x after the toe from which the mean surface stays within 5 % of (y2 − y1) of y2 up to "
-             "the downstream section; Lj = end − toe. Roller end: last x with a negative time-mean velocity at "
-             "0.1 h below the surface; Lr = end − toe."});
+             "Roller end: last x with a negative time-mean velocity at 0.1 h below the surface; Lr = end − toe. "
+             "Jump end: first x from the roller end on (from the toe without a roller) from which the mean surface "
+             "stays within 5 % of (y2 − y1) of y2 up to the downstream section; Lj = end − toe (so Lj ≥ Lr, as "
+             "the laboratory sections 1–1, 2–2, 3–3 lie in that order)."});
   if (!c.measured_source.empty()) d.para("Laboratory values: " + c.measured_source);
 
   cases::write_file_atomically(out / "report.md", d.markdown());

@@ -43,7 +43,7 @@ ColumnStatistics as_statistics(const std::string& name, const std::string& role,
   ColumnSpec spec{name, role, c.x_m, c.z_bed_m, 21};
   return column_statistics(spec, {c, c}, 21, true);
 }
-}  // namespace
+
 
 TEST_CASE("eta of a hand-built pair of sections matches (E1 - E2)/E1", "[compare][metrics]") {
   // Run A of Ead & Rajaratnam: y1 = 25.4 mm, U1 = 2.0 m/s, y2 = 0.104 m, q = y1 U1.
@@ -138,23 +138,31 @@ TEST_CASE("The metric table reports both toe positions: of the mean surface and 
   CHECK(value("toe_std") == 0.04);
 }
 
-TEST_CASE("Toe and jump and roller lengths of a synthetic mean surface", "[compare][metrics]") {
-  // Surface: y1 up to x_t, a linear rise to y2 over L, then y2. Reverse near-surface flow over
-  // (x_t, x_t + Lr). Stations every 2 mm.
-  const double y1 = 0.0254, u1 = 2.0, y2 = 0.104, x_t = 0.8, L = 0.4, Lr = 0.3, ds = 0.002;
+// Sections and stations (every ds up to 2 m) of a synthetic jump: the surface y1 up to x_t, a linear
+// rise to y2 over L, then y2; reverse near-surface flow over (x_t, x_t + Lr); u_max falling from u1 at
+// x_t by 5 /s to 0.6 m/s.
+MethodStatistics synthetic_jump(double y1, double u1, double y2, double x_t, double L, double Lr, double ds) {
   MethodStatistics m;
   m.sections.push_back(as_statistics("upstream", "upstream", uniform_column(0.3, 0.0, y1, u1)));
   m.sections.push_back(as_statistics("downstream", "downstream", uniform_column(1.6, 0.0, y2, y1 * u1 / y2)));
-  for (int i = 0; i <= 1000; ++i) {
+  const int n = static_cast<int>(std::lround(2.0 / ds));
+  for (int i = 0; i <= n; ++i) {
     const double x = i * ds;
     ColumnStatistics s;
     s.spec = {"", "station", x, 0.0, 21};
-    const double zeta = x < x_t ? y1 : (x < x_t + L ? y1 + (y2 - y1) * (x - x_t) / L : y2);
-    s.surface.mean = zeta;
+    s.surface.mean = x < x_t ? y1 : (x < x_t + L ? y1 + (y2 - y1) * (x - x_t) / L : y2);
     s.near_surface_velocity.mean = (x > x_t && x < x_t + Lr) ? -0.2 : 0.5;
     s.max_velocity.mean = x < x_t ? u1 : std::max(0.6, u1 - (x - x_t) * 5.0);
     m.stations.push_back(s);
   }
+  return m;
+}
+}  // namespace
+
+TEST_CASE("Toe and jump and roller lengths of a synthetic mean surface", "[compare][metrics]") {
+  // Stations every 2 mm; the roller (0.3 m) ends before the surface settles (0.95 L = 0.38 m).
+  const double y1 = 0.0254, u1 = 2.0, y2 = 0.104, x_t = 0.8, L = 0.4, Lr = 0.3, ds = 0.002;
+  MethodStatistics m = synthetic_jump(y1, u1, y2, x_t, L, Lr, ds);
   // Three frames whose jump sits 2 cm upstream, at, and 2 cm downstream of the mean position.
   for (double shift : {-0.02, 0.0, 0.02}) {
     std::vector<double> frame;
@@ -183,6 +191,27 @@ TEST_CASE("Toe and jump and roller lengths of a synthetic mean surface", "[compa
   CHECK(r.surface_peak_m == Approx(y2).margin(1e-12));
   CHECK(r.surface_peak_x_m == Approx(x_t + L).margin(0.5 * 0.8 * y1 + ds));
   CHECK(r.notes.empty());
+}
+
+TEST_CASE("A roller longer than the rise: the jump ends at the roller end, not inside it", "[compare][metrics]") {
+  // The surface is within 5 % of (y2 - y1) of y2 from x_t + 0.95 L = x_t + 0.19 m, but the reverse
+  // surface flow goes on to x_t + 0.5 m: section 3-3 cannot lie upstream of 2-2, so Lj = Lr.
+  const double y1 = 0.0508, u1 = 4.07, y2 = 0.31, x_t = 0.6, L = 0.2, Lr = 0.5, ds = 0.002;
+  const JumpMetrics r = compute_jump_metrics(synthetic_jump(y1, u1, y2, x_t, L, Lr, ds), JumpInputs{y1, u1, 0.0, g, {}});
+  const double x_toe = x_t + 0.5 * y1 * L / (y2 - y1);
+  REQUIRE(r.toe_x_m == Approx(x_toe).margin(ds));
+  CHECK(r.roller_end_x_m == Approx(x_t + Lr).margin(ds));
+  CHECK(r.jump_end_x_m == Approx(r.roller_end_x_m).margin(1e-12));
+  CHECK(r.jump_length_m == Approx(r.roller_length_m).margin(1e-12));
+  CHECK(std::count_if(r.notes.begin(), r.notes.end(), [](const std::string& n) {
+          return n.find("already inside the roller") != std::string::npos;
+        }) == 1);
+  // A surface still rising at the roller end keeps the band's answer (and no note).
+  const JumpMetrics later = compute_jump_metrics(synthetic_jump(y1, u1, y2, x_t, 0.8, Lr, ds), JumpInputs{y1, u1, 0.0, g, {}});
+  const double x_toe_later = x_t + 0.5 * y1 * 0.8 / (y2 - y1);
+  CHECK(later.jump_end_x_m == Approx(x_t + 0.95 * 0.8).margin(2 * ds));  // the band edge falls on a station
+  CHECK(later.jump_length_m == Approx(x_t + 0.95 * 0.8 - x_toe_later).margin(3 * ds));
+  CHECK(later.notes.empty());
 }
 
 TEST_CASE("A mean surface cresting above y2 over the jump is reported as a standing wave", "[compare][metrics]") {
