@@ -172,16 +172,17 @@ JumpMetrics compute_jump_metrics(const MethodStatistics& m, const JumpInputs& in
   // is already inside the band would otherwise end the jump inside its own roller (Lj < Lr).
   if (std::isfinite(r.sequent_depth_m)) {
     const double band = in.options.settle_tolerance * std::abs(r.sequent_depth_m - y1);
+    const auto settled = [&](std::size_t i) { return std::isfinite(zm[i]) && std::abs(zm[i] - r.sequent_depth_m) <= band; };
     std::size_t first = toe;
     while (std::isfinite(r.roller_end_x_m) && first < last && st[first].spec.x_m < r.roller_end_x_m - 1e-12) ++first;
     std::size_t end = last + 1;
     for (std::size_t i = last + 1; i-- > first;) {
-      if (std::isfinite(zm[i]) && std::abs(zm[i] - r.sequent_depth_m) <= band) end = i; else break;
+      if (settled(i)) end = i; else break;
     }
     if (end <= last) {
       r.jump_end_x_m = st[end].spec.x_m;
       r.jump_length_m = r.jump_end_x_m - r.toe_x_m;
-      if (end == first && first > toe && std::isfinite(zm[first - 1]) && std::abs(zm[first - 1] - r.sequent_depth_m) <= band) {
+      if (end == first && first > toe && settled(first - 1)) {
         std::ostringstream s;
         s << "the mean surface is within the settling band already inside the roller; the jump ends at the roller end"
              " (x = " << r.jump_end_x_m << " m)";

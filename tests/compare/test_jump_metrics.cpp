@@ -197,7 +197,8 @@ TEST_CASE("A roller longer than the rise: the jump ends at the roller end, not i
   // The surface is within 5 % of (y2 - y1) of y2 from x_t + 0.95 L = x_t + 0.19 m, but the reverse
   // surface flow goes on to x_t + 0.5 m: section 3-3 cannot lie upstream of 2-2, so Lj = Lr.
   const double y1 = 0.0508, u1 = 4.07, y2 = 0.31, x_t = 0.6, L = 0.2, Lr = 0.5, ds = 0.002;
-  const JumpMetrics r = compute_jump_metrics(synthetic_jump(y1, u1, y2, x_t, L, Lr, ds), JumpInputs{y1, u1, 0.0, g, {}});
+  const JumpInputs in{y1, u1, 0.0, g, {}};
+  const JumpMetrics r = compute_jump_metrics(synthetic_jump(y1, u1, y2, x_t, L, Lr, ds), in);
   const double x_toe = x_t + 0.5 * y1 * L / (y2 - y1);
   REQUIRE(r.toe_x_m == Approx(x_toe).margin(ds));
   CHECK(r.roller_end_x_m == Approx(x_t + Lr).margin(ds));
@@ -207,7 +208,7 @@ TEST_CASE("A roller longer than the rise: the jump ends at the roller end, not i
           return n.find("already inside the roller") != std::string::npos;
         }) == 1);
   // A surface still rising at the roller end keeps the band's answer (and no note).
-  const JumpMetrics later = compute_jump_metrics(synthetic_jump(y1, u1, y2, x_t, 0.8, Lr, ds), JumpInputs{y1, u1, 0.0, g, {}});
+  const JumpMetrics later = compute_jump_metrics(synthetic_jump(y1, u1, y2, x_t, 0.8, Lr, ds), in);
   const double x_toe_later = x_t + 0.5 * y1 * 0.8 / (y2 - y1);
   CHECK(later.jump_end_x_m == Approx(x_t + 0.95 * 0.8).margin(2 * ds));  // the band edge falls on a station
   CHECK(later.jump_length_m == Approx(x_t + 0.95 * 0.8 - x_toe_later).margin(3 * ds));
