@@ -44,7 +44,6 @@ ColumnStatistics as_statistics(const std::string& name, const std::string& role,
   return column_statistics(spec, {c, c}, 21, true);
 }
 
-
 TEST_CASE("eta of a hand-built pair of sections matches (E1 - E2)/E1", "[compare][metrics]") {
   // Run A of Ead & Rajaratnam: y1 = 25.4 mm, U1 = 2.0 m/s, y2 = 0.104 m, q = y1 U1.
   const double y1 = 0.0254, u1 = 2.0, y2 = 0.104, q = y1 * u1;
