@@ -31,6 +31,17 @@ std::size_t find_toe(const std::vector<double>& x, const std::vector<double>& ze
   return cases::find_jump_toe(x, zeta, x_from, in.inflow_depth_m, criterion);
 }
 
+// The first index k in [from, last] from which settled(i) holds for every i in [k, last]; last + 1 when
+// settled(last) fails. (The jump end and the velocity settling point are both "from here on it stays".)
+template <class Predicate>
+static std::size_t start_of_settled_tail(std::size_t from, std::size_t last, Predicate settled) {
+  std::size_t k = last + 1;
+  for (std::size_t i = last + 1; i-- > from;) {
+    if (settled(i)) k = i; else break;
+  }
+  return k;
+}
+
 static const ColumnStatistics* find_role(const MethodStatistics& m, const std::string& role) {
   for (const auto& s : m.sections)
     if (s.spec.role == role) return &s;
@@ -157,9 +168,11 @@ JumpMetrics compute_jump_metrics(const MethodStatistics& m, const JumpInputs& in
          " of a roller jump";
     r.notes.push_back(s.str());
   }
-  // Roller: last station with reverse near-surface flow.
+  // Roller: last station with reverse near-surface flow (its index: where the jump-end search starts).
+  std::size_t roller_end = toe;
   for (std::size_t i = last + 1; i-- > toe + 1;) {
     if (st[i].near_surface_velocity.mean < 0.0) {
+      roller_end = i;
       r.roller_end_x_m = st[i].spec.x_m;
       r.roller_length_m = r.roller_end_x_m - r.toe_x_m;
       break;
@@ -173,16 +186,11 @@ JumpMetrics compute_jump_metrics(const MethodStatistics& m, const JumpInputs& in
   if (std::isfinite(r.sequent_depth_m)) {
     const double band = in.options.settle_tolerance * std::abs(r.sequent_depth_m - y1);
     const auto settled = [&](std::size_t i) { return std::isfinite(zm[i]) && std::abs(zm[i] - r.sequent_depth_m) <= band; };
-    std::size_t first = toe;
-    while (std::isfinite(r.roller_end_x_m) && first < last && st[first].spec.x_m < r.roller_end_x_m - 1e-12) ++first;
-    std::size_t end = last + 1;
-    for (std::size_t i = last + 1; i-- > first;) {
-      if (settled(i)) end = i; else break;
-    }
+    const std::size_t end = start_of_settled_tail(roller_end, last, settled);
     if (end <= last) {
       r.jump_end_x_m = st[end].spec.x_m;
       r.jump_length_m = r.jump_end_x_m - r.toe_x_m;
-      if (end == first && first > toe && settled(first - 1)) {
+      if (end == roller_end && roller_end > toe && settled(roller_end - 1)) {
         std::ostringstream s;
         s << "the mean surface is within the settling band already inside the roller; the jump ends at the roller end"
              " (x = " << r.jump_end_x_m << " m)";
@@ -196,10 +204,8 @@ JumpMetrics compute_jump_metrics(const MethodStatistics& m, const JumpInputs& in
   const double u_ref = st[last].max_velocity.mean;
   if (std::isfinite(u_ref)) {
     const double tol = in.options.velocity_settle_tolerance * std::abs(u_ref);
-    std::size_t k = last + 1;
-    for (std::size_t i = last + 1; i-- > toe;) {
-      if (std::abs(st[i].max_velocity.mean - u_ref) <= tol) k = i; else break;
-    }
+    const std::size_t k =
+        start_of_settled_tail(toe, last, [&](std::size_t i) { return std::abs(st[i].max_velocity.mean - u_ref) <= tol; });
     if (k <= last) r.velocity_settling_distance_m = st[k].spec.x_m - r.toe_x_m;
   }
   return r;

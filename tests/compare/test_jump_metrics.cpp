@@ -44,6 +44,27 @@ ColumnStatistics as_statistics(const std::string& name, const std::string& role,
   return column_statistics(spec, {c, c}, 21, true);
 }
 
+// Sections and stations (every ds up to 2 m) of a synthetic jump: the surface y1 up to x_t, a linear
+// rise to y2 over L, then y2; reverse near-surface flow over (x_t, x_t + Lr); u_max falling from u1 at
+// x_t by 5 /s to 0.6 m/s.
+MethodStatistics synthetic_jump(double y1, double u1, double y2, double x_t, double L, double Lr, double ds) {
+  MethodStatistics m;
+  m.sections.push_back(as_statistics("upstream", "upstream", uniform_column(0.3, 0.0, y1, u1)));
+  m.sections.push_back(as_statistics("downstream", "downstream", uniform_column(1.6, 0.0, y2, y1 * u1 / y2)));
+  const int n = static_cast<int>(std::lround(2.0 / ds));
+  for (int i = 0; i <= n; ++i) {
+    const double x = i * ds;
+    ColumnStatistics s;
+    s.spec = {"", "station", x, 0.0, 21};
+    s.surface.mean = x < x_t ? y1 : (x < x_t + L ? y1 + (y2 - y1) * (x - x_t) / L : y2);
+    s.near_surface_velocity.mean = (x > x_t && x < x_t + Lr) ? -0.2 : 0.5;
+    s.max_velocity.mean = x < x_t ? u1 : std::max(0.6, u1 - (x - x_t) * 5.0);
+    m.stations.push_back(s);
+  }
+  return m;
+}
+}  // namespace
+
 TEST_CASE("eta of a hand-built pair of sections matches (E1 - E2)/E1", "[compare][metrics]") {
   // Run A of Ead & Rajaratnam: y1 = 25.4 mm, U1 = 2.0 m/s, y2 = 0.104 m, q = y1 U1.
   const double y1 = 0.0254, u1 = 2.0, y2 = 0.104, q = y1 * u1;
@@ -136,27 +157,6 @@ TEST_CASE("The metric table reports both toe positions: of the mean surface and 
   CHECK(value("toe_mean_of_frames") == 0.21);
   CHECK(value("toe_std") == 0.04);
 }
-
-// Sections and stations (every ds up to 2 m) of a synthetic jump: the surface y1 up to x_t, a linear
-// rise to y2 over L, then y2; reverse near-surface flow over (x_t, x_t + Lr); u_max falling from u1 at
-// x_t by 5 /s to 0.6 m/s.
-MethodStatistics synthetic_jump(double y1, double u1, double y2, double x_t, double L, double Lr, double ds) {
-  MethodStatistics m;
-  m.sections.push_back(as_statistics("upstream", "upstream", uniform_column(0.3, 0.0, y1, u1)));
-  m.sections.push_back(as_statistics("downstream", "downstream", uniform_column(1.6, 0.0, y2, y1 * u1 / y2)));
-  const int n = static_cast<int>(std::lround(2.0 / ds));
-  for (int i = 0; i <= n; ++i) {
-    const double x = i * ds;
-    ColumnStatistics s;
-    s.spec = {"", "station", x, 0.0, 21};
-    s.surface.mean = x < x_t ? y1 : (x < x_t + L ? y1 + (y2 - y1) * (x - x_t) / L : y2);
-    s.near_surface_velocity.mean = (x > x_t && x < x_t + Lr) ? -0.2 : 0.5;
-    s.max_velocity.mean = x < x_t ? u1 : std::max(0.6, u1 - (x - x_t) * 5.0);
-    m.stations.push_back(s);
-  }
-  return m;
-}
-}  // namespace
 
 TEST_CASE("Toe and jump and roller lengths of a synthetic mean surface", "[compare][metrics]") {
   // Stations every 2 mm; the roller (0.3 m) ends before the surface settles (0.95 L = 0.38 m).
