@@ -408,6 +408,18 @@ void read_sph(TableReader& t, SphSettings& s) {
 
 void read_vof(TableReader& t, VofSettings& v) {
   v.turbulence_model = t.choice("turbulence_model", v.turbulence_model, {"laminar", "kOmegaSST", "kEpsilon", "RNGkEpsilon"});
+  v.turbulence_stabilization = t.choice("turbulence_stabilization", v.turbulence_stabilization, {"none", "multiphaseStabilizedTurbulence"});
+  // The v1912 fvOption corrects k and nut = Cmu k^2/epsilon: it needs an epsilon-based model. The check
+  // runs on the merged settings, so a case's [case.vof] that changes either key is checked too.
+  if (v.turbulence_stabilization != "none" && v.turbulence_model != "kEpsilon" && v.turbulence_model != "RNGkEpsilon") {
+    // One of the two keys is in this table: the study's [vof] passed this check before a case overrode it.
+    const std::string key = t.has("turbulence_stabilization") ? "turbulence_stabilization" : "turbulence_model";
+    const std::string value = key == "turbulence_stabilization" ? v.turbulence_stabilization : v.turbulence_model;
+    t.fail_at(t.raw().get(key), key,
+              "= \"" + value + "\" cannot be used: turbulence_stabilization = \"" + v.turbulence_stabilization +
+                  "\" needs an epsilon-based turbulence_model (allowed: \"kEpsilon\", \"RNGkEpsilon\"), but turbulence_model is \"" +
+                  v.turbulence_model + "\"");
+  }
   v.max_courant = t.number_or("max_courant", v.max_courant, Range{0.0, 5.0, true, false, ""});
   v.max_alpha_courant = t.number_or("max_alpha_courant", v.max_alpha_courant, Range{0.0, 5.0, true, false, ""});
   v.max_time_step_s = t.number_or("max_time_step_s", v.max_time_step_s, positive("s", 1.0));
@@ -960,6 +972,7 @@ void write_sph(TomlWriter& w, const SphSettings& s) {
 
 void write_vof(TomlWriter& w, const VofSettings& v) {
   w.str("turbulence_model", v.turbulence_model);
+  w.str("turbulence_stabilization", v.turbulence_stabilization);
   w.num("max_courant", v.max_courant);
   w.num("max_alpha_courant", v.max_alpha_courant);
   w.num("max_time_step_s", v.max_time_step_s);

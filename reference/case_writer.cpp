@@ -498,6 +498,27 @@ VofCase build_vof_case(const cases::Study& study, const cases::Case& c, const st
       tu.set("simulationType", foam::word("laminar"));
     }
     add("constant/turbulenceProperties", "dictionary", tu);
+
+    if (c.vof.turbulence_stabilization == "multiphaseStabilizedTurbulence") {
+      // The coefficients are the fvOption's own defaults, written out so that the case shows them:
+      // Cmu of k-epsilon, C = 1.51 (the k-omega value, the more conservative), lambda2 = 0.1 (strength of
+      // the nut limiter), alpha = 1/Prt = 1.36 (buoyancy sink of k where the density falls upwards).
+      Dictionary coeffs;
+      coeffs.set("rho", foam::word("rho"));
+      coeffs.set("Cmu", c_mu);
+      coeffs.set("C", 1.51);
+      coeffs.set("lambda2", 0.1);
+      coeffs.set("alpha", 1.36);
+      Dictionary option;
+      option.set("type", foam::word("multiphaseStabilizedTurbulence"));
+      option.set("active", foam::yes_no(true));
+      option.set("multiphaseStabilizedTurbulenceCoeffs", coeffs);
+      Dictionary fo;
+      fo.directive("// vof.turbulence_stabilization = \"multiphaseStabilizedTurbulence\": Devolder et al. (2017) buoyancy "
+                   "term in k, Larsen & Fuhrman (2018) nut limiter");
+      fo.set("stabilizedTurbulence", option);
+      add("constant/fvOptions", "dictionary", fo);
+    }
   }
 
   // ---- 0.orig/

@@ -26,6 +26,13 @@
 // Inlet and initial values: k = 3/2 (I U)^2, I = 5 %; omega = sqrt(k) / (Cmu^0.25 l) and
 // epsilon = Cmu k omega = Cmu^0.75 k^1.5 / l, with l = 0.07 D_h, D_h = 4 y1 (wide open channel) or the
 // water height for tanks. Example (spec): [vof] turbulence_model = "kEpsilon".
+// vof.turbulence_stabilization = "multiphaseStabilizedTurbulence" (k-epsilon models only; default
+// "none") writes constant/fvOptions with OpenFOAM's fvOption of that name: a buoyancy sink of k where
+// the density falls upwards (Devolder, Rauwoens & Troch 2017, Coastal Eng. 125:81) and a limiter of nut
+// in nearly potential flow (Larsen & Fuhrman 2018, J. Fluid Mech. 853:419), both against the
+// over-production of turbulence at a VOF free surface. Example:
+//   [vof] turbulence_model = "kEpsilon"
+//         turbulence_stabilization = "multiphaseStabilizedTurbulence"
 //
 // Function objects in controlDict (written every output_interval_s of the spec):
 //   sections          `sets`: alpha.water and U along a vertical line at each section (raw text)

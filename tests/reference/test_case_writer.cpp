@@ -256,6 +256,38 @@ TEST_CASE("k-epsilon models write k and epsilon with epsilon wall functions", "[
                     Catch::Contains("turbulence_model") && Catch::Contains("RNGkEpsilon"));
 }
 
+TEST_CASE("turbulence stabilization writes OpenFOAM's fvOption and needs a k-epsilon model", "[reference][case]") {
+  const std::string stabilized = "turbulence_stabilization = \"multiphaseStabilizedTurbulence\"\n";
+  for (const std::string model : {"kEpsilon", "RNGkEpsilon"}) {
+    INFO(model);
+    const cases::Study study = parse(basin_spec("turbulence_model = \"" + model + "\"\n" + stabilized));
+    const reference::VofCase vof = reference::build_vof_case(study, study.cases.front(), "quick");
+    REQUIRE(vof.files.count("constant/fvOptions") == 1);
+    CHECK(vof.headers.at("constant/fvOptions").class_name == "dictionary");
+    const auto& option = vof.files.at("constant/fvOptions").subdict_at("stabilizedTurbulence");
+    CHECK(option.at("type").text() == "multiphaseStabilizedTurbulence");
+    const auto& coeffs = option.subdict_at("multiphaseStabilizedTurbulenceCoeffs");
+    CHECK(coeffs.at("rho").text() == "rho");
+    CHECK(coeffs.at("lambda2").number() == 0.1);
+    CHECK(coeffs.at("alpha").number() == 1.36);
+  }
+  // Without the key (the default "none") there is no fvOptions file.
+  const cases::Study plain = parse(basin_spec("turbulence_model = \"kEpsilon\""));
+  CHECK(reference::build_vof_case(plain, plain.cases.front(), "quick").files.count("constant/fvOptions") == 0);
+  // k-omega SST (the default model) and laminar are refused, naming the file, the key and the allowed models.
+  CHECK_THROWS_WITH(parse(basin_spec(stabilized)),
+                    Catch::Contains("vof.turbulence_stabilization") && Catch::Contains("\"kEpsilon\", \"RNGkEpsilon\"") &&
+                        Catch::Contains("turbulence_model is \"kOmegaSST\""));
+  CHECK_THROWS_WITH(parse(basin_spec("turbulence_model = \"laminar\"\n" + stabilized)),
+                    Catch::Contains("turbulence_model is \"laminar\""));
+  // A case that overrides the study's model is checked on the merged settings, at its own key.
+  std::string spec = basin_spec("turbulence_model = \"kEpsilon\"\n" + stabilized);
+  spec.replace(spec.find("[case.run]"), 0, "[case.vof]\nturbulence_model = \"kOmegaSST\"\n");
+  CHECK_THROWS_WITH(parse(spec), Catch::Contains("case \"basin\": vof.turbulence_model = \"kOmegaSST\" cannot be used"));
+  CHECK_THROWS_WITH(parse(basin_spec("turbulence_model = \"kEpsilon\"\nturbulence_stabilization = \"on\"")),
+                    Catch::Contains("turbulence_stabilization") && Catch::Contains("multiphaseStabilizedTurbulence"));
+}
+
 TEST_CASE("controlDict: run settings and sampling of every section", "[reference][case]") {
   const cases::Study study = parse(basin_spec("", 3.5, 0.05));
   const cases::Case& c = study.cases.front();

@@ -177,6 +177,25 @@ TEST_CASE("a tiny basin runs with the k-epsilon turbulence model", "[reference][
   fs::remove_all(dir);
 }
 
+TEST_CASE("a tiny basin runs with the multiphase turbulence stabilization", "[reference][openfoam]") {
+  require_openfoam();
+  const std::string spec =
+      basin_spec("turbulence_model = \"RNGkEpsilon\"\nturbulence_stabilization = \"multiphaseStabilizedTurbulence\"", 0.01, 0.01);
+  const fs::path dir = generate(spec, "stabilized");
+  std::ostringstream out;
+  reference::run_vof_case(dir, reference::RunOptions{}, out);
+  INFO(out.str());
+  CHECK_THAT(out.str(), Catch::Contains("reached t = 0.01"));
+  // interFoam read constant/fvOptions (a wrong file class or unknown type would be a warning or an error)
+  // and applied both corrections in every step.
+  const std::string log = read(dir / "log.interFoam");
+  CHECK_THAT(log, Catch::Contains("Selecting finite volume options type multiphaseStabilizedTurbulence"));
+  CHECK_THAT(log, Catch::Contains("applying bouyancy production term to k"));  // (sic: OpenFOAM's spelling)
+  CHECK_THAT(log, Catch::Contains("correcting nut"));
+  CHECK_THAT(log, !Catch::Contains("unexpected class name"));
+  fs::remove_all(dir);
+}
+
 TEST_CASE("an MPI run (--np 2) gives the same result as the serial run", "[reference][openfoam]") {
   require_openfoam();
   const std::string spec = basin_spec("", 0.03, 0.01);
