@@ -77,6 +77,28 @@ std::string sph_run_note(const fs::path& summary_file) {
   return o.str();
 }
 
+std::string vof_top_outflow_note(const fs::path& vof_dir, double t0, double t1, double inflow_q_m2_s,
+                                 double thickness_m) {
+  const fs::path function_dir = vof_dir / "postProcessing" / "discharge_atmosphere";
+  const auto rows = read_surface_field_value(function_dir);
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (const auto& [t, flux] : rows) {
+    if (t < t0 - 1e-9 || t > t1 + 1e-9) continue;
+    sum += flux;
+    ++count;
+  }
+  if (count == 0 || inflow_q_m2_s <= 0.0 || thickness_m <= 0.0) return {};
+  const double q_top = sum / static_cast<double>(count) / thickness_m;  // > 0: water leaving
+  if (q_top <= top_outflow_note_fraction * inflow_q_m2_s) return {};
+  std::ostringstream o;
+  o << std::setprecision(3) << "water leaves through the top of the domain (patch atmosphere, "
+    << function_dir.string() << "): " << q_top << " m^2/s over the window, " << 100.0 * q_top / inflow_q_m2_s
+    << " % of the inflow q (splashes or the jump's surface jet reach the lid): the basin loses that water, "
+       "so its sections' discharge and depths are not those of the flume; raise [case.domain] air_height_m";
+  return o.str();
+}
+
 namespace {
 
 // Progress lines "sph: frame 3/40 at t = 5.15 s (elapsed 12 s, ETA 2 min)".
@@ -271,6 +293,11 @@ CaseComparison compare_case(const cases::Study& study, const fs::path& run_dir, 
     log << m->method << ": " << m->status << std::endl;
     if (!m->available) continue;
     m->metrics = compute_jump_metrics(m->stats, {r.inflow_depth_m, r.inflow_velocity_m_s, r.floor_z_m, g, options.metrics});
+  }
+  if (r.vof.available) {
+    const std::string note = vof_top_outflow_note(run_dir / "vof", r.window_start_s, r.window_end_s,
+                                                  r.inflow_depth_m * r.inflow_velocity_m_s, r.vof_cell_size_m);
+    if (!note.empty()) r.vof.metrics.notes.push_back(note);
   }
   // The SPH run's own verdict (summary.json of sph/basin_monitor.hpp), when it wrote one.
   if (r.sph.available) {

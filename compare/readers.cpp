@@ -263,4 +263,37 @@ bool has_openfoam_results(const fs::path& vof_dir) {
   return false;
 }
 
+std::vector<std::pair<double, double>> read_surface_field_value(const fs::path& function_dir) {
+  std::vector<std::pair<double, fs::path>> starts;
+  if (!fs::is_directory(function_dir)) return {};
+  for (const auto& e : fs::directory_iterator(function_dir)) {
+    const std::string name = e.path().filename().string();
+    char* end = nullptr;
+    const double t = std::strtod(name.c_str(), &end);
+    if (e.is_directory() && !name.empty() && end && *end == '\0' && fs::exists(e.path() / "surfaceFieldValue.dat"))
+      starts.emplace_back(t, e.path() / "surfaceFieldValue.dat");
+  }
+  std::sort(starts.begin(), starts.end());
+  std::vector<std::pair<double, double>> rows;
+  for (const auto& [start, file] : starts) {
+    while (!rows.empty() && rows.back().first >= start - 1e-12) rows.pop_back();
+    std::ifstream in(file);
+    if (!in) throw std::runtime_error(file.string() + ": cannot be read");
+    std::string line;
+    int line_number = 0;
+    while (std::getline(in, line)) {
+      ++line_number;
+      if (line.find_first_not_of(" \t\r") == std::string::npos || line[line.find_first_not_of(" \t")] == '#') continue;
+      std::istringstream ss(line);
+      double t = 0.0, value = 0.0;
+      if (!(ss >> t >> value)) {
+        throw std::runtime_error(file.string() + ":" + std::to_string(line_number) +
+                                 ": expected a time and a value, got \"" + line + "\"");
+      }
+      rows.emplace_back(t, value);
+    }
+  }
+  return rows;
+}
+
 }  // namespace hydrojump::compare

@@ -749,6 +749,8 @@ VofCase build_vof_case(const cases::Study& study, const cases::Case& c, const st
       }
       functions.set("discharge_inlet", discharge_fo("patch", "inlet"));
       functions.set("discharge_outlet", discharge_fo("patch", "outlet"));
+      // Water thrown out through the top is lost to the basin: `hydrojump compare` reports it.
+      functions.set("discharge_atmosphere", discharge_fo("patch", "atmosphere"));
     }
     {
       Dictionary iso;

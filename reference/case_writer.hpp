@@ -41,6 +41,8 @@
 //                     system/topoSetDict.sections); divided by the spanwise thickness (one cell,
 //                     MeshPlan::thickness_m) it is the water discharge q in m^2/s
 //   discharge_inlet/_outlet  the same on the inlet and outlet patches
+//   discharge_atmosphere     the same on the top (water leaving the domain there is lost to the basin;
+//                     `hydrojump compare` notes it above 1 % of q)
 //   freeSurface       `surfaces`: the alpha.water = 0.5 isoSurface (VTK)
 //   average           `fieldAverage` of U and alpha.water over the averaging window (stilling basins)
 //   floor (dam break) `sets`: alpha.water along a line half a cell above the floor (surge front)

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fstream>
 
+#include "compare/case_comparison.hpp"
 #include "compare/readers.hpp"
 #include "foam_case_writer.hpp"
 #include "synthetic_fields.hpp"
@@ -119,4 +120,40 @@ TEST_CASE("OpenFOAM reader errors name the directory", "[compare][readers][vof]"
   TempDir tmp("foam-bad");
   CHECK_FALSE(has_openfoam_results(tmp.path()));
   CHECK_THROWS_WITH(OpenFoamResults(tmp.path()), Catch::Contains("controlDict") && Catch::Contains(tmp.path().string()));
+}
+
+TEST_CASE("water leaving the VOF domain through its top is read over restarts and noted above 1 % of q",
+          "[compare][readers][vof]") {
+  TempDir tmp("top-outflow");
+  const auto dir = tmp.path() / "postProcessing" / "discharge_atmosphere";
+  auto write_rows = [&](const std::string& start, const std::vector<std::pair<double, double>>& rows) {
+    std::filesystem::create_directories(dir / start);
+    std::ofstream out(dir / start / "surfaceFieldValue.dat");
+    out << "# Region type : patch atmosphere\n# Time          \tsum(alphaPhi0.water)\tsum(phi)\n";
+    for (const auto& [t, v] : rows) out << t << "\t" << v << "\t" << -v << "\n";
+  };
+  // No samples (a case written before the function object existed): no note, no error.
+  CHECK(read_surface_field_value(dir).empty());
+  CHECK(vof_top_outflow_note(tmp.path(), 0.0, 10.0, 0.0508, 0.005).empty());
+  // A first run wrote rows up to 6 s; it was resumed from 5 s, which rewrote 5 s on (rows from 5 s on are
+  // the resumed run's, the earlier run's rows at 5.5 and 6 s are dropped).
+  write_rows("0", {{4.5, 0.0}, {5.0, 1.0}, {5.5, 1.0}, {6.0, 1.0}});
+  write_rows("5", {{5.0, 5.08e-5}, {5.5, 5.08e-5}, {6.0, 5.08e-5}, {6.5, 0.0}});
+  const auto rows = read_surface_field_value(dir);
+  REQUIRE(rows.size() == 5);
+  CHECK(rows[1].first == 5.0);
+  CHECK(rows[1].second == 5.08e-5);
+  // 5.08e-5 m^3/s over a 5 mm thick mesh is 0.01016 m^2/s, 20 % of q = 0.0508 m^2/s.
+  const std::string note = vof_top_outflow_note(tmp.path(), 5.0, 6.0, 0.0508, 0.005);
+  CHECK_THAT(note, Catch::Contains("0.0102 m^2/s") && Catch::Contains("20 % of the inflow q") &&
+                       Catch::Contains("air_height_m"));
+  // Over 5-6.5 s the mean is 3/4 of that (15 %); over 6.5 s alone nothing leaves: no note.
+  CHECK_THAT(vof_top_outflow_note(tmp.path(), 5.0, 6.5, 0.0508, 0.005), Catch::Contains("15 % of the inflow q"));
+  CHECK(vof_top_outflow_note(tmp.path(), 6.5, 7.0, 0.0508, 0.005).empty());
+  // Just below the 1 % threshold: no note; a damaged row names the file and line.
+  write_rows("7", {{7.0, 0.0099 * 0.0508 * 0.005}});
+  CHECK(vof_top_outflow_note(tmp.path(), 7.0, 7.0, 0.0508, 0.005).empty());
+  { std::ofstream(dir / "7" / "surfaceFieldValue.dat", std::ios::app) << "7.5 n/a\n"; }
+  CHECK_THROWS_WITH(read_surface_field_value(dir), Catch::Contains("7/surfaceFieldValue.dat:4") &&
+                                                       Catch::Contains("expected a time and a value"));
 }

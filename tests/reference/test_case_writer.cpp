@@ -318,6 +318,8 @@ TEST_CASE("controlDict: run settings and sampling of every section", "[reference
   }
   CHECK(fo.contains("discharge_inlet"));
   CHECK(fo.contains("discharge_outlet"));
+  CHECK(fo.subdict_at("discharge_atmosphere").at("regionType").text() == "patch");
+  CHECK(fo.subdict_at("discharge_atmosphere").at("name").text() == "atmosphere");
   CHECK(fo.subdict_at("freeSurface").at("surfaces").items()[0].dict().at("isoValue").number() == 0.5);
   CHECK(fo.subdict_at("average").at("timeEnd").number() == 3.5);
   // The discharge face zones sit on the grid faces nearest to each section.

@@ -118,6 +118,10 @@ TEST_CASE("a tiny corrugated basin meshes, passes checkMesh, runs and resumes", 
   const auto inlet = rows_of(dir / "postProcessing/discharge_inlet/0/surfaceFieldValue.dat");
   REQUIRE(!inlet.empty());
   CHECK(std::abs(inlet.back()[1]) / vof.mesh.thickness_m == Approx(0.0254 * 2.0).epsilon(1e-5));
+  // The water flux through the top is sampled too (nothing leaves there in 0.02 s).
+  const auto top = rows_of(dir / "postProcessing/discharge_atmosphere/0/surfaceFieldValue.dat");
+  REQUIRE(top.size() == 2);
+  CHECK(std::abs(top.back()[1]) < 1e-9);
   // Upstream of the basin the supercritical layer keeps its depth y1 (within half a cell).
   const double depth_up = water_depth(dir / "postProcessing/sections/0.02/up_alpha.water.xy");
   CHECK(depth_up == Approx(0.0254).margin(0.0025));
