@@ -73,8 +73,9 @@ struct SphSettings {
 // [vof] — method settings of the OpenFOAM interFoam reference.
 struct VofSettings {
   std::string turbulence_model = "kOmegaSST";      // "laminar" | "kOmegaSST" | "kEpsilon" | "RNGkEpsilon"
-  // "none" | "multiphaseStabilizedTurbulence" (OpenFOAM's fvOption: buoyancy sink of k at the interface,
-  // Devolder et al. 2017, and the nut limiter of Larsen & Fuhrman 2018; k-epsilon models only)
+  // "none" | "nut_limiter" | "nut_limiter_and_buoyancy": OpenFOAM's multiphaseStabilizedTurbulence
+  // fvOption (k-epsilon models only) with the nut limiter of Larsen & Fuhrman (2018) alone, or also with
+  // the buoyancy sink of k at the interface of Devolder et al. (2017)
   std::string turbulence_stabilization = "none";
   double max_courant = 0.8;
   double max_alpha_courant = 0.8;

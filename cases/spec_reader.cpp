@@ -408,7 +408,7 @@ void read_sph(TableReader& t, SphSettings& s) {
 
 void read_vof(TableReader& t, VofSettings& v) {
   v.turbulence_model = t.choice("turbulence_model", v.turbulence_model, {"laminar", "kOmegaSST", "kEpsilon", "RNGkEpsilon"});
-  v.turbulence_stabilization = t.choice("turbulence_stabilization", v.turbulence_stabilization, {"none", "multiphaseStabilizedTurbulence"});
+  v.turbulence_stabilization = t.choice("turbulence_stabilization", v.turbulence_stabilization, {"none", "nut_limiter", "nut_limiter_and_buoyancy"});
   // The v1912 fvOption corrects k and nut = Cmu k^2/epsilon: it needs an epsilon-based model. The check
   // runs on the merged settings, so a case's [case.vof] that changes either key is checked too.
   if (v.turbulence_stabilization != "none" && v.turbulence_model != "kEpsilon" && v.turbulence_model != "RNGkEpsilon") {

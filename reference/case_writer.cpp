@@ -499,23 +499,27 @@ VofCase build_vof_case(const cases::Study& study, const cases::Case& c, const st
     }
     add("constant/turbulenceProperties", "dictionary", tu);
 
-    if (c.vof.turbulence_stabilization == "multiphaseStabilizedTurbulence") {
-      // The coefficients are the fvOption's own defaults, written out so that the case shows them:
-      // Cmu of k-epsilon, C = 1.51 (the k-omega value, the more conservative), lambda2 = 0.1 (strength of
-      // the nut limiter), alpha = 1/Prt = 1.36 (buoyancy sink of k where the density falls upwards).
+    if (c.vof.turbulence_stabilization != "none") {
+      // OpenFOAM's multiphaseStabilizedTurbulence with its own default coefficients, written out: Cmu of
+      // k-epsilon, C = 1.51 (the k-omega value, the more conservative), lambda2 = 0.1 (strength of the
+      // nut limiter) and alpha = 1/Prt = 1.36, the buoyancy sink of k where the density falls upwards;
+      // "nut_limiter" sets alpha = 0, which removes that term and keeps the limiter alone.
+      const bool buoyancy = c.vof.turbulence_stabilization == "nut_limiter_and_buoyancy";
       Dictionary coeffs;
       coeffs.set("rho", foam::word("rho"));
       coeffs.set("Cmu", c_mu);
       coeffs.set("C", 1.51);
       coeffs.set("lambda2", 0.1);
-      coeffs.set("alpha", 1.36);
+      coeffs.set("alpha", buoyancy ? 1.36 : 0.0);
       Dictionary option;
       option.set("type", foam::word("multiphaseStabilizedTurbulence"));
       option.set("active", foam::yes_no(true));
       option.set("multiphaseStabilizedTurbulenceCoeffs", coeffs);
       Dictionary fo;
-      fo.directive("// vof.turbulence_stabilization = \"multiphaseStabilizedTurbulence\": Devolder et al. (2017) buoyancy "
-                   "term in k, Larsen & Fuhrman (2018) nut limiter");
+      fo.directive("// vof.turbulence_stabilization = \"" + c.vof.turbulence_stabilization +
+                   "\": the nut limiter of Larsen & Fuhrman (2018)" +
+                   (buoyancy ? std::string(" and the buoyancy term in k of Devolder et al. (2017)")
+                             : std::string(" alone (alpha = 0: no buoyancy term)")));
       fo.set("stabilizedTurbulence", option);
       add("constant/fvOptions", "dictionary", fo);
     }

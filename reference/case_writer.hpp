@@ -26,13 +26,18 @@
 // Inlet and initial values: k = 3/2 (I U)^2, I = 5 %; omega = sqrt(k) / (Cmu^0.25 l) and
 // epsilon = Cmu k omega = Cmu^0.75 k^1.5 / l, with l = 0.07 D_h, D_h = 4 y1 (wide open channel) or the
 // water height for tanks. Example (spec): [vof] turbulence_model = "kEpsilon".
-// vof.turbulence_stabilization = "multiphaseStabilizedTurbulence" (k-epsilon models only; default
-// "none") writes constant/fvOptions with OpenFOAM's fvOption of that name: a buoyancy sink of k where
-// the density falls upwards (Devolder, Rauwoens & Troch 2017, Coastal Eng. 125:81) and a limiter of nut
-// in nearly potential flow (Larsen & Fuhrman 2018, J. Fluid Mech. 853:419), both against the
-// over-production of turbulence at a VOF free surface. Example:
+// vof.turbulence_stabilization (k-epsilon models only; default "none") writes constant/fvOptions with
+// OpenFOAM's multiphaseStabilizedTurbulence fvOption, against the over-production of turbulence at a VOF
+// free surface:
+//   | value                        | nut limiter (Larsen & Fuhrman 2018) | buoyancy sink of k (Devolder et al. 2017) |
+//   |------------------------------|-------------------------------------|-------------------------------------------|
+//   | "none"                       | -                                   | -                                         |
+//   | "nut_limiter"                | lambda2 = 0.1                       | - (alpha = 0)                             |
+//   | "nut_limiter_and_buoyancy"   | lambda2 = 0.1                       | alpha = 1/Prt = 1.36                      |
+// (Larsen & Fuhrman 2018, J. Fluid Mech. 853:419; Devolder, Rauwoens & Troch 2017, Coastal Eng. 125:81.)
+// Example:
 //   [vof] turbulence_model = "kEpsilon"
-//         turbulence_stabilization = "multiphaseStabilizedTurbulence"
+//         turbulence_stabilization = "nut_limiter"
 //
 // Function objects in controlDict (written every output_interval_s of the spec):
 //   sections          `sets`: alpha.water and U along a vertical line at each section (raw text)

@@ -257,24 +257,30 @@ TEST_CASE("k-epsilon models write k and epsilon with epsilon wall functions", "[
 }
 
 TEST_CASE("turbulence stabilization writes OpenFOAM's fvOption and needs a k-epsilon model", "[reference][case]") {
-  const std::string stabilized = "turbulence_stabilization = \"multiphaseStabilizedTurbulence\"\n";
-  for (const std::string model : {"kEpsilon", "RNGkEpsilon"}) {
-    INFO(model);
-    const cases::Study study = parse(basin_spec("turbulence_model = \"" + model + "\"\n" + stabilized));
-    const reference::VofCase vof = reference::build_vof_case(study, study.cases.front(), "quick");
-    REQUIRE(vof.files.count("constant/fvOptions") == 1);
-    CHECK(vof.headers.at("constant/fvOptions").class_name == "dictionary");
-    const auto& option = vof.files.at("constant/fvOptions").subdict_at("stabilizedTurbulence");
-    CHECK(option.at("type").text() == "multiphaseStabilizedTurbulence");
-    const auto& coeffs = option.subdict_at("multiphaseStabilizedTurbulenceCoeffs");
-    CHECK(coeffs.at("rho").text() == "rho");
-    CHECK(coeffs.at("lambda2").number() == 0.1);
-    CHECK(coeffs.at("alpha").number() == 1.36);
+  // "nut_limiter" is the fvOption with its buoyancy coefficient alpha set to 0; "nut_limiter_and_buoyancy"
+  // keeps the fvOption's own alpha = 1/Prt = 1.36. Both keep its lambda2 = 0.1 and C = 1.51.
+  for (const auto& [value, alpha] : std::vector<std::pair<std::string, double>>{{"nut_limiter", 0.0}, {"nut_limiter_and_buoyancy", 1.36}}) {
+    for (const std::string model : {"kEpsilon", "RNGkEpsilon"}) {
+      INFO(model << " " << value);
+      const cases::Study study =
+          parse(basin_spec("turbulence_model = \"" + model + "\"\nturbulence_stabilization = \"" + value + "\"\n"));
+      const reference::VofCase vof = reference::build_vof_case(study, study.cases.front(), "quick");
+      REQUIRE(vof.files.count("constant/fvOptions") == 1);
+      CHECK(vof.headers.at("constant/fvOptions").class_name == "dictionary");
+      const auto& option = vof.files.at("constant/fvOptions").subdict_at("stabilizedTurbulence");
+      CHECK(option.at("type").text() == "multiphaseStabilizedTurbulence");
+      const auto& coeffs = option.subdict_at("multiphaseStabilizedTurbulenceCoeffs");
+      CHECK(coeffs.at("rho").text() == "rho");
+      CHECK(coeffs.at("lambda2").number() == 0.1);
+      CHECK(coeffs.at("C").number() == 1.51);
+      CHECK(coeffs.at("alpha").number() == alpha);
+    }
   }
   // Without the key (the default "none") there is no fvOptions file.
   const cases::Study plain = parse(basin_spec("turbulence_model = \"kEpsilon\""));
   CHECK(reference::build_vof_case(plain, plain.cases.front(), "quick").files.count("constant/fvOptions") == 0);
   // k-omega SST (the default model) and laminar are refused, naming the file, the key and the allowed models.
+  const std::string stabilized = "turbulence_stabilization = \"nut_limiter\"\n";
   CHECK_THROWS_WITH(parse(basin_spec(stabilized)),
                     Catch::Contains("vof.turbulence_stabilization") && Catch::Contains("\"kEpsilon\", \"RNGkEpsilon\"") &&
                         Catch::Contains("turbulence_model is \"kOmegaSST\""));
@@ -285,7 +291,7 @@ TEST_CASE("turbulence stabilization writes OpenFOAM's fvOption and needs a k-eps
   spec.replace(spec.find("[case.run]"), 0, "[case.vof]\nturbulence_model = \"kOmegaSST\"\n");
   CHECK_THROWS_WITH(parse(spec), Catch::Contains("case \"basin\": vof.turbulence_model = \"kOmegaSST\" cannot be used"));
   CHECK_THROWS_WITH(parse(basin_spec("turbulence_model = \"kEpsilon\"\nturbulence_stabilization = \"on\"")),
-                    Catch::Contains("turbulence_stabilization") && Catch::Contains("multiphaseStabilizedTurbulence"));
+                    Catch::Contains("turbulence_stabilization") && Catch::Contains("\"nut_limiter_and_buoyancy\""));
 }
 
 TEST_CASE("controlDict: run settings and sampling of every section", "[reference][case]") {

@@ -184,7 +184,7 @@ TEST_CASE("a tiny basin runs with the k-epsilon turbulence model", "[reference][
 TEST_CASE("a tiny basin runs with the multiphase turbulence stabilization", "[reference][openfoam]") {
   require_openfoam();
   const std::string spec =
-      basin_spec("turbulence_model = \"RNGkEpsilon\"\nturbulence_stabilization = \"multiphaseStabilizedTurbulence\"", 0.01, 0.01);
+      basin_spec("turbulence_model = \"RNGkEpsilon\"\nturbulence_stabilization = \"nut_limiter_and_buoyancy\"", 0.01, 0.01);
   const fs::path dir = generate(spec, "stabilized");
   std::ostringstream out;
   reference::run_vof_case(dir, reference::RunOptions{}, out);
