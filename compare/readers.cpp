@@ -20,6 +20,8 @@
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLPolyDataReader.h>
 
+#include "reference/line_samples.hpp"
+
 namespace fs = std::filesystem;
 
 namespace hydrojump::compare {
@@ -264,18 +266,10 @@ bool has_openfoam_results(const fs::path& vof_dir) {
 }
 
 std::vector<std::pair<double, double>> read_surface_field_value(const fs::path& function_dir) {
-  std::vector<std::pair<double, fs::path>> starts;
-  if (!fs::is_directory(function_dir)) return {};
-  for (const auto& e : fs::directory_iterator(function_dir)) {
-    const std::string name = e.path().filename().string();
-    char* end = nullptr;
-    const double t = std::strtod(name.c_str(), &end);
-    if (e.is_directory() && !name.empty() && end && *end == '\0' && fs::exists(e.path() / "surfaceFieldValue.dat"))
-      starts.emplace_back(t, e.path() / "surfaceFieldValue.dat");
-  }
-  std::sort(starts.begin(), starts.end());
   std::vector<std::pair<double, double>> rows;
-  for (const auto& [start, file] : starts) {
+  for (const auto& [start, dir] : reference::sample_times(function_dir)) {
+    const fs::path file = dir / "surfaceFieldValue.dat";
+    if (!fs::exists(file)) continue;
     while (!rows.empty() && rows.back().first >= start - 1e-12) rows.pop_back();
     std::ifstream in(file);
     if (!in) throw std::runtime_error(file.string() + ": cannot be read");
