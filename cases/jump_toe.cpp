@@ -43,4 +43,29 @@ std::size_t find_jump_toe(const std::vector<double>& x, const std::vector<double
   return x.size();
 }
 
+double toe_drift_tolerance_m(const std::string& bed_profile, double wavelength_m, double inflow_depth_m) {
+  return bed_profile == "smooth" ? 2.0 * inflow_depth_m : wavelength_m;
+}
+
+double least_squares_slope(const std::vector<double>& t, const std::vector<double>& y) {
+  const double nan_value = std::numeric_limits<double>::quiet_NaN();
+  double st = 0.0, sy = 0.0;
+  int n = 0;
+  for (std::size_t k = 0; k < t.size() && k < y.size(); ++k)
+    if (std::isfinite(y[k])) {
+      st += t[k];
+      sy += y[k];
+      ++n;
+    }
+  if (n < 3) return nan_value;
+  const double tm = st / n, ym = sy / n;
+  double num = 0.0, den = 0.0;
+  for (std::size_t k = 0; k < t.size() && k < y.size(); ++k)
+    if (std::isfinite(y[k])) {
+      num += (t[k] - tm) * (y[k] - ym);
+      den += (t[k] - tm) * (t[k] - tm);
+    }
+  return den > 0.0 ? num / den : nan_value;
+}
+
 }  // namespace hydrojump::cases

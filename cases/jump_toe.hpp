@@ -20,9 +20,19 @@
 // Example:
 //   const std::size_t i = cases::find_jump_toe(x, zeta, x_upstream, y1, cases::ToeCriterion{});
 //   if (i < x.size()) toe_x = x[i];
+//
+// Steadiness of a jump over a window, one rule for the SPH run monitor and the comparator:
+//
+//   steady  <=>  |mean q_out - mean q_in| / q < steady_discharge_tolerance   (2 %; the basin neither
+//                                                                            fills nor drains)
+//           and  |d x_toe / dt| * steady_span_s < toe_drift_tolerance_m      (the toe's least-squares
+//                                                                            trend moves it less than
+//                                                                            a bed wavelength, or 2 y1
+//                                                                            on a smooth bed, per second)
 #pragma once
 
 #include <cstddef>
+#include <string>
 #include <vector>
 
 namespace hydrojump::cases {
@@ -40,5 +50,16 @@ std::vector<double> running_mean(const std::vector<double>& v, int half_width);
 // Index of the toe station, or x.size() if there is none (see above). `x` uniformly spaced.
 std::size_t find_jump_toe(const std::vector<double>& x, const std::vector<double>& zeta, double x_from, double y1,
                           const ToeCriterion& criterion);
+
+inline constexpr double steady_discharge_tolerance = 0.02;  // |q_out - q_in| / q
+inline constexpr double steady_span_s = 1.0;                // the drift is measured over this time
+
+// The toe drift allowed per steady_span_s: the bed wavelength on a corrugated bed, 2 y1 on a smooth one
+// (bed_profile "smooth").
+double toe_drift_tolerance_m(const std::string& bed_profile, double wavelength_m, double inflow_depth_m);
+
+// Least-squares slope dy/dt over the pairs with finite y (NaN with fewer than 3 of them):
+//   slope = sum (t_k - t_mean)(y_k - y_mean) / sum (t_k - t_mean)^2
+double least_squares_slope(const std::vector<double>& t, const std::vector<double>& y);
 
 }  // namespace hydrojump::cases

@@ -11,6 +11,7 @@
 #include "cases/fingerprint.hpp"
 #include "cases/geometry.hpp"
 #include "cases/hydraulics.hpp"
+#include "cases/jump_toe.hpp"
 #include "cases/results_case.hpp"
 #include "cases/spec_reader.hpp"
 #include "compare/readers.hpp"
@@ -96,6 +97,44 @@ std::string vof_top_outflow_note(const fs::path& vof_dir, double t0, double t1, 
     << function_dir.string() << "): " << q_top << " m^2/s over the window, " << 100.0 * q_top / inflow_q_m2_s
     << " % of the inflow q (splashes or the jump's surface jet reach the lid): the basin loses that water, "
        "so its sections' discharge and depths are not those of the flume; raise [case.domain] air_height_m";
+  return o.str();
+}
+
+std::string vof_run_note(const VofRunNoteInputs& in) {
+  const fs::path post = in.vof_dir / "postProcessing";
+  // Mean of a function object's first column over the window, and how many rows it had there.
+  auto window_mean = [&in](const fs::path& function_dir) {
+    double sum = 0.0;
+    std::size_t count = 0;
+    for (const auto& [t, flux] : read_surface_field_value(function_dir)) {
+      if (t < in.window_start_s - 1e-9 || t > in.window_end_s + 1e-9) continue;
+      sum += flux;
+      ++count;
+    }
+    return std::make_pair(count > 0 ? sum / static_cast<double>(count) : 0.0, count);
+  };
+  const auto [inlet, n_in] = window_mean(post / "discharge_inlet");
+  const auto [outlet, n_out] = window_mean(post / "discharge_outlet");
+  const auto [top, n_top] = window_mean(post / "discharge_atmosphere");
+  if (n_in == 0 || n_out == 0 || !(in.inflow_q_m2_s > 0.0) || !(in.thickness_m > 0.0)) return {};
+  const double q_in = -inlet / in.thickness_m, q_out = outlet / in.thickness_m, q_top = top / in.thickness_m;
+  const double imbalance = (q_out + q_top - q_in) / in.inflow_q_m2_s;
+  const bool trend_known = std::isfinite(in.toe_trend_m_per_s);
+  const bool steady = std::abs(imbalance) < cases::steady_discharge_tolerance && trend_known &&
+                      std::abs(in.toe_trend_m_per_s) * cases::steady_span_s < in.toe_drift_tolerance_m;
+  std::ostringstream o;
+  o << std::setprecision(4) << "water balance over the window (postProcessing/discharge_inlet, _outlet"
+    << (n_top > 0 ? ", _atmosphere" : "") << "): in " << q_in << ", out " << q_out;
+  if (n_top > 0) o << " + top " << q_top;
+  o << " m^2/s; outflow - inflow = " << std::setprecision(3) << 100.0 * imbalance << " % of q"
+    << (imbalance > 0.0 ? " (draining)" : " (filling)") << "; toe trend ";
+  if (trend_known)
+    o << in.toe_trend_m_per_s << " m/s";
+  else
+    o << "unknown (fewer than 3 frames with a toe)";
+  o << (steady ? " (steady by the window means: " : " (NOT steady by the window means: ") << "|outflow - inflow| < "
+    << 100.0 * cases::steady_discharge_tolerance << " % of q and |toe trend| x " << cases::steady_span_s << " s < "
+    << in.toe_drift_tolerance_m << " m)";
   return o.str();
 }
 
@@ -298,6 +337,11 @@ CaseComparison compare_case(const cases::Study& study, const fs::path& run_dir, 
     const std::string note = vof_top_outflow_note(run_dir / "vof", r.window_start_s, r.window_end_s,
                                                   r.inflow_depth_m * r.inflow_velocity_m_s, r.vof_cell_size_m);
     if (!note.empty()) r.vof.metrics.notes.push_back(note);
+    const std::string balance =
+        vof_run_note({run_dir / "vof", r.window_start_s, r.window_end_s, r.inflow_depth_m * r.inflow_velocity_m_s,
+                      r.vof_cell_size_m, r.vof.metrics.toe_trend_m_per_s,
+                      cases::toe_drift_tolerance_m(basin->bed.profile, basin->bed.wavelength_m, r.inflow_depth_m)});
+    if (!balance.empty()) r.vof.metrics.notes.push_back(balance);
   }
   // The SPH run's own verdict (summary.json of sph/basin_monitor.hpp), when it wrote one.
   if (r.sph.available) {

@@ -80,6 +80,26 @@ inline constexpr double top_outflow_note_fraction = 0.01;
 std::string vof_top_outflow_note(const std::filesystem::path& vof_dir, double t0, double t1,
                                  double inflow_q_m2_s, double thickness_m);
 
+// One line on the VOF run's water balance and steadiness over the window [t0, t1], the counterpart of
+// the SPH run monitor's verdict (sph_run_note) with the same rule (cases/jump_toe.hpp):
+//   q_in  = -<sum alphaPhi0.water on the inlet> / thickness     (function object discharge_inlet;
+//   q_out =  <... on the outlet> / thickness                     OpenFOAM's face fluxes point out of
+//   q_top =  <... on the atmosphere> / thickness                 the domain), means over the rows in
+//                                                               the window
+//   outflow - inflow = (q_out + q_top - q_in) / q               (> 0: the basin drains)
+//   steady by the window means <=> |outflow - inflow| < steady_discharge_tolerance and
+//                                   |toe_trend| * steady_span_s < toe_drift_tolerance_m
+// Empty when the case has no inlet and outlet samples in the window.
+struct VofRunNoteInputs {
+  std::filesystem::path vof_dir;
+  double window_start_s = 0.0, window_end_s = 0.0;
+  double inflow_q_m2_s = 0.0;
+  double thickness_m = 0.0;            // the one-cell span of the 2D mesh
+  double toe_trend_m_per_s = 0.0;      // NaN: no trend (too few frames with a toe)
+  double toe_drift_tolerance_m = 0.0;  // cases::toe_drift_tolerance_m
+};
+std::string vof_run_note(const VofRunNoteInputs& in);
+
 // One line on the SPH run's own verdict from its summary.json (jump state, steady or not, inflow
 // discharge error); empty when the file is absent or unreadable.
 std::string sph_run_note(const std::filesystem::path& summary_file);

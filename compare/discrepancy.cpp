@@ -82,6 +82,8 @@ std::vector<MetricRow> metric_table(const JumpMetrics* sph, const JumpMetrics* v
                   v(vof, &JumpMetrics::toe_mean_of_frames_x_m), not_a_number, not_a_number, not_a_number});
   rows.push_back({"toe_std", "m", v(sph, &JumpMetrics::toe_std_m), v(vof, &JumpMetrics::toe_std_m), not_a_number,
                   not_a_number, not_a_number});
+  rows.push_back({"toe_trend", "m/s", v(sph, &JumpMetrics::toe_trend_m_per_s), v(vof, &JumpMetrics::toe_trend_m_per_s),
+                  not_a_number, not_a_number, not_a_number});
   rows.push_back({"sequent_depth", "m", v(sph, &JumpMetrics::sequent_depth_m), v(vof, &JumpMetrics::sequent_depth_m),
                   o(lab.sequent_depth_m), not_a_number, not_a_number});
   rows.push_back({"jump_length", "m", v(sph, &JumpMetrics::jump_length_m), v(vof, &JumpMetrics::jump_length_m),

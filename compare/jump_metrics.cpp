@@ -116,9 +116,12 @@ JumpMetrics compute_jump_metrics(const MethodStatistics& m, const JumpInputs& in
   const std::size_t toe = find_toe(xs, zeta, x_up, in);
   // The same criterion on each frame's instantaneous surface: how much the toe moves.
   if (!m.station_surface_series.empty()) {
-    std::vector<double> toes;
+    std::vector<double> toes;  // one per frame (NaN without a toe), aligned with m.times
     for (const auto& frame : m.station_surface_series) {
-      if (frame.size() != xs.size()) continue;
+      if (frame.size() != xs.size()) {
+        toes.push_back(not_a_number);
+        continue;
+      }
       std::vector<double> z(frame.size());
       for (std::size_t i = 0; i < frame.size(); ++i) z[i] = frame[i] - in.floor_z_m;
       const std::size_t k = find_toe(xs, z, x_up, in);
@@ -128,6 +131,7 @@ JumpMetrics compute_jump_metrics(const MethodStatistics& m, const JumpInputs& in
     r.toe_mean_of_frames_x_m = ts.mean;
     r.toe_std_m = ts.std;
     r.toe_frames_found = ts.count;
+    if (m.times.size() == toes.size()) r.toe_trend_m_per_s = cases::least_squares_slope(m.times, toes);
   }
   if (toe == st.size()) {
     std::ostringstream s;

@@ -9,7 +9,8 @@
 //                pockets; a ~2 cm running mean that must stay above the threshold for ~5 cm,
 //                time-averaged, was stable. Defaults: 1.5 y1, window 0.8 y1, persistence 2 y1
 //                (2 cm and 5 cm for y1 = 25.4 mm). The same criterion applied to every frame's
-//                instantaneous surface gives the toe's standard deviation over the window.
+//                instantaneous surface gives the toe's standard deviation over the window and its
+//                trend (least-squares slope of the frames' toes against time, m/s; > 0 downstream).
 //   y2           sequent depth: time-mean surface at the "downstream" section minus z_floor (depth above
 //                the corrugation crests, as measured in the flume). When the toe lies downstream of that
 //                section (a jump swept downstream), y2, E2, eta and Lj are NaN with a note.
@@ -67,6 +68,7 @@ struct JumpMetrics {
   double toe_mean_of_frames_x_m = not_a_number;  // the toe criterion on each frame's surface: mean,
   double toe_std_m = not_a_number;              // standard deviation (steadiness of the jump)
   int toe_frames_found = 0;                     // and the number of frames with a toe
+  double toe_trend_m_per_s = not_a_number;      // least-squares slope of the frames' toes over time
   double sequent_depth_m = not_a_number;       // y2
   double sequent_depth_std_m = not_a_number;
   double upstream_depth_m = not_a_number;      // depth at the upstream section (check against y1)

@@ -101,6 +101,7 @@ void metrics_json(Json& j, const JumpMetrics& m) {
       .field("toe_mean_of_frames_x_m", m.toe_mean_of_frames_x_m)
       .field("toe_std_m", m.toe_std_m)
       .field("toe_frames_found", m.toe_frames_found)
+      .field("toe_trend_m_per_s", m.toe_trend_m_per_s)
       .field("sequent_depth_m", m.sequent_depth_m)
       .field("sequent_depth_std_m", m.sequent_depth_std_m)
       .field("upstream_depth_m", m.upstream_depth_m)
@@ -350,6 +351,7 @@ std::string pretty_quantity(const std::string& q) {
   if (q == "toe_position") return "toe position x_t (m)";
   if (q == "toe_mean_of_frames") return "toe position, mean of the frames' toes (m)";
   if (q == "toe_std") return "toe standard deviation over the frames (m)";
+  if (q == "toe_trend") return "toe trend over the window, least-squares slope of the frames' toes (m/s)";
   if (q == "sequent_depth") return "sequent depth y2 (m)";
   if (q == "jump_length") return "jump length Lj (m)";
   if (q == "roller_length") return "roller length Lr (m)";

@@ -16,8 +16,8 @@ namespace hydrojump::sph {
 namespace {
 
 constexpr double nan_value = std::numeric_limits<double>::quiet_NaN();
-constexpr double steady_discharge_tolerance = 0.02;  // |q_in - q_out| / q
-constexpr double steady_span_s = 1.0;                // the steady-state checks look back this far
+using cases::steady_discharge_tolerance;
+using cases::steady_span_s;
 
 struct MeanStd {
   double mean = nan_value, std = nan_value;
@@ -39,27 +39,6 @@ MeanStd mean_std(const std::vector<double>& v) {
     if (std::isfinite(x)) ss += (x - r.mean) * (x - r.mean);
   r.std = r.count > 1 ? std::sqrt(ss / (r.count - 1)) : 0.0;
   return r;
-}
-
-// Least-squares slope of y(t) over the finite pairs (NaN with fewer than 3).
-double slope(const std::vector<double>& t, const std::vector<double>& y) {
-  double st = 0.0, sy = 0.0;
-  int n = 0;
-  for (std::size_t k = 0; k < t.size(); ++k)
-    if (std::isfinite(y[k])) {
-      st += t[k];
-      sy += y[k];
-      ++n;
-    }
-  if (n < 3) return nan_value;
-  const double tm = st / n, ym = sy / n;
-  double num = 0.0, den = 0.0;
-  for (std::size_t k = 0; k < t.size(); ++k)
-    if (std::isfinite(y[k])) {
-      num += (t[k] - tm) * (y[k] - ym);
-      den += (t[k] - tm) * (t[k] - tm);
-    }
-  return den > 0.0 ? num / den : nan_value;
 }
 
 std::string json_number(double v) {
@@ -116,7 +95,7 @@ BasinMonitorSetup BasinMonitorSetup::from_case(const cases::Case& c, const cases
   s.toe_search_from_m = s.x_inflow_m;
   for (const auto& sec : geometry.sections)
     if (sec.role == "upstream") s.toe_search_from_m = sec.x_m;
-  s.drift_tolerance_m = b->bed.profile == "smooth" ? 2.0 * b->inflow_depth_m : b->bed.wavelength_m;
+  s.drift_tolerance_m = cases::toe_drift_tolerance_m(b->bed.profile, b->bed.wavelength_m, b->inflow_depth_m);
   s.average_start_s = c.run.average_start_s;
   s.average_end_s = c.run.average_end_s > 0.0 ? c.run.average_end_s : c.run.end_time_s;
   s.sections = geometry.sections;
@@ -224,7 +203,7 @@ bool BasinMonitor::steady_at(std::size_t k) const {
   // A jump not found in some frames counts as unsteady.
   for (const double x : toes)
     if (!std::isfinite(x)) return false;
-  const double drift = std::abs(slope(ts, toes)) * steady_span_s;
+  const double drift = std::abs(cases::least_squares_slope(ts, toes)) * steady_span_s;
   return drift < setup_.drift_tolerance_m;
 }
 
@@ -393,7 +372,7 @@ std::string BasinMonitor::summary_json() const {
     window_imbalance = ((window_last->mass_out - window_first->mass_out) -
                         (window_last->mass_in - window_first->mass_in)) /
                        (setup_.rho0 * setup_.discharge_m2_s * (window_last->t - window_first->t));
-  const double toe_trend = toe_found.size() >= 2 ? slope(toe_t, toe_found) : nan_value;
+  const double toe_trend = toe_found.size() >= 2 ? cases::least_squares_slope(toe_t, toe_found) : nan_value;
   const bool steady_means = jump_state() == "in_basin" && std::abs(window_imbalance) < steady_discharge_tolerance &&
                             std::abs(toe_trend) * steady_span_s < setup_.drift_tolerance_m && toe_missing == 0;
   const double from = steady_from();

@@ -162,7 +162,9 @@ TEST_CASE("Toe and jump and roller lengths of a synthetic mean surface", "[compa
   // Stations every 2 mm; the roller (0.3 m) ends before the surface settles (0.95 L = 0.38 m).
   const double y1 = 0.0254, u1 = 2.0, y2 = 0.104, x_t = 0.8, L = 0.4, Lr = 0.3, ds = 0.002;
   MethodStatistics m = synthetic_jump(y1, u1, y2, x_t, L, Lr, ds);
-  // Three frames whose jump sits 2 cm upstream, at, and 2 cm downstream of the mean position.
+  // Three frames, at 1, 2 and 3 s, whose jump sits 2 cm upstream, at, and 2 cm downstream of the mean
+  // position: the toe moves 0.02 m/s.
+  m.times = {1.0, 2.0, 3.0};
   for (double shift : {-0.02, 0.0, 0.02}) {
     std::vector<double> frame;
     for (const auto& st : m.stations) {
@@ -175,6 +177,7 @@ TEST_CASE("Toe and jump and roller lengths of a synthetic mean surface", "[compa
   const JumpMetrics r = compute_jump_metrics(m, in);
   CHECK(r.toe_frames_found == 3);
   CHECK(r.toe_std_m == Approx(0.02).margin(ds));
+  CHECK(r.toe_trend_m_per_s == Approx(0.02).margin(ds / 2.0));
   // Toe: the rise passes 1.5 y1 at x_t + 0.5 y1 L/(y2 - y1) (the running mean of a ramp is the ramp).
   const double x_toe = x_t + 0.5 * y1 * L / (y2 - y1);
   CHECK(r.toe_x_m == Approx(x_toe).margin(ds));

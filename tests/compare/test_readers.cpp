@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <limits>
 
 #include "compare/case_comparison.hpp"
 #include "compare/readers.hpp"
@@ -156,4 +157,45 @@ TEST_CASE("water leaving the VOF domain through its top is read over restarts an
   { std::ofstream(dir / "7" / "surfaceFieldValue.dat", std::ios::app) << "7.5 n/a\n"; }
   CHECK_THROWS_WITH(read_surface_field_value(dir), Catch::Contains("7/surfaceFieldValue.dat:4") &&
                                                        Catch::Contains("expected a time and a value"));
+}
+
+TEST_CASE("the VOF water balance over the window: filling, draining and steady, with the SPH monitor's rule",
+          "[compare][readers][vof]") {
+  TempDir tmp("water-balance");
+  // Fluxes in m^3/s through a 5 mm thick 2D mesh: q = 0.0508 m^2/s is 2.54e-4 m^3/s; OpenFOAM's patch
+  // fluxes point out of the domain, so the inlet's is negative.
+  const double thickness = 0.005, q = 0.0508, flux = q * thickness;
+  auto write_patch = [&](const std::string& name, double value) {
+    const auto dir = tmp.path() / "postProcessing" / name / "0";
+    std::filesystem::create_directories(dir);
+    std::ofstream out(dir / "surfaceFieldValue.dat");
+    out << "# Time          \tsum(alphaPhi0.water)\tsum(phi)\n";
+    for (double t : {5.0, 5.5, 6.0}) out << t << "\t" << value << "\t0\n";
+    out << 7.0 << "\t" << 100.0 << "\t0\n";  // outside the window: ignored
+  };
+  VofRunNoteInputs in{tmp.path(), 5.0, 6.0, q, thickness, 0.01, 0.068};
+  // No samples (a case written before these function objects): no note.
+  CHECK(vof_run_note(in).empty());
+  // The outlet passes 95 % of the inflow: filling by 5 % of q, not steady whatever the toe does.
+  write_patch("discharge_inlet", -flux);
+  write_patch("discharge_outlet", 0.95 * flux);
+  std::string note = vof_run_note(in);
+  CHECK_THAT(note, Catch::Contains("in 0.0508, out 0.04826 m^2/s") && Catch::Contains("= -5 % of q (filling)") &&
+                       Catch::Contains("toe trend 0.01 m/s") && Catch::Contains("NOT steady by the window means"));
+  // 99 % at the outlet and 1 % through the top: balanced.
+  write_patch("discharge_outlet", 0.99 * flux);
+  write_patch("discharge_atmosphere", 0.01 * flux);
+  note = vof_run_note(in);
+  CHECK_THAT(note, Catch::Contains("+ top 0.000508") && Catch::Contains("(steady by the window means") &&
+                       Catch::Contains("< 0.068 m"));
+  // The same balance with the toe moving 0.1 m/s (more than a 68 mm wavelength per second): not steady;
+  // an unknown trend is not steady either.
+  in.toe_trend_m_per_s = -0.1;
+  CHECK_THAT(vof_run_note(in), Catch::Contains("NOT steady"));
+  in.toe_trend_m_per_s = std::numeric_limits<double>::quiet_NaN();
+  CHECK_THAT(vof_run_note(in), Catch::Contains("toe trend unknown") && Catch::Contains("NOT steady"));
+  // Draining: 103 % leaves (102 % at the outlet, 1 % at the top).
+  in.toe_trend_m_per_s = 0.0;
+  write_patch("discharge_outlet", 1.02 * flux);
+  CHECK_THAT(vof_run_note(in), Catch::Contains("= 3 % of q (draining)") && Catch::Contains("NOT steady"));
 }
