@@ -333,15 +333,21 @@ CaseComparison compare_case(const cases::Study& study, const fs::path& run_dir, 
     if (!m->available) continue;
     m->metrics = compute_jump_metrics(m->stats, {r.inflow_depth_m, r.inflow_velocity_m_s, r.floor_z_m, g, options.metrics});
   }
+  // The VOF run's water balance from its discharge samples; a damaged sample file costs these notes
+  // (the note says which file), not the comparison.
   if (r.vof.available) {
-    const std::string note = vof_top_outflow_note(run_dir / "vof", r.window_start_s, r.window_end_s,
-                                                  r.inflow_depth_m * r.inflow_velocity_m_s, r.vof_cell_size_m);
-    if (!note.empty()) r.vof.metrics.notes.push_back(note);
-    const std::string balance =
-        vof_run_note({run_dir / "vof", r.window_start_s, r.window_end_s, r.inflow_depth_m * r.inflow_velocity_m_s,
-                      r.vof_cell_size_m, r.vof.metrics.toe_trend_m_per_s,
-                      cases::toe_drift_tolerance_m(basin->bed.profile, basin->bed.wavelength_m, r.inflow_depth_m)});
-    if (!balance.empty()) r.vof.metrics.notes.push_back(balance);
+    try {
+      const std::string note = vof_top_outflow_note(run_dir / "vof", r.window_start_s, r.window_end_s,
+                                                    r.inflow_depth_m * r.inflow_velocity_m_s, r.vof_cell_size_m);
+      if (!note.empty()) r.vof.metrics.notes.push_back(note);
+      const std::string balance = vof_run_note(
+          {run_dir / "vof", r.window_start_s, r.window_end_s, r.inflow_depth_m * r.inflow_velocity_m_s,
+           r.vof_cell_size_m, r.vof.metrics.toe_trend_m_per_s,
+           cases::toe_drift_tolerance_m(basin->bed.profile, basin->bed.wavelength_m, r.inflow_depth_m)});
+      if (!balance.empty()) r.vof.metrics.notes.push_back(balance);
+    } catch (const std::exception& e) {
+      r.vof.metrics.notes.push_back(std::string("water balance unavailable: ") + e.what());
+    }
   }
   // The SPH run's own verdict (summary.json of sph/basin_monitor.hpp), when it wrote one.
   if (r.sph.available) {

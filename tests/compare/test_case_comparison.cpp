@@ -276,3 +276,40 @@ TEST_CASE("An unreadable frame is skipped and reported and the other frames are 
   CHECK(c.sph.stats.times.size() == 2u);
   CHECK_THAT(c.sph.status, Catch::Contains("1 unreadable frame(s) skipped") && Catch::Contains("particles_1.vtp"));
 }
+
+TEST_CASE("The VOF water balance is noted from the discharge samples, and a damaged sample file costs the note only",
+          "[compare][case]") {
+  RunFixture fx;
+  fx.write_vof(176, 30, {"6", "8", "10"});
+  const double q = fx.jump.y1 * fx.jump.u1;
+  const double thickness = fx.c->resolutions.at("quick").vof_cell_size_bed_m;  // the 2D mesh's span
+  auto write_patch = [&](const std::string& name, double flux_m3_s, const std::string& extra_row) {
+    const fs::path dir = fx.run() / "vof" / "postProcessing" / name / "0";
+    fs::create_directories(dir);
+    std::ofstream out(dir / "surfaceFieldValue.dat");
+    out << "# Time\tsum(alphaPhi0.water)\tsum(phi)\n";
+    for (double t : {6.0, 8.0, 10.0}) out << t << "\t" << flux_m3_s << "\t0\n";
+    out << extra_row;
+  };
+  write_patch("discharge_inlet", -q * thickness, "");
+  write_patch("discharge_outlet", 0.9 * q * thickness, "");
+  CompareOptions options;
+  options.plots = false;
+  std::ostringstream log;
+  CaseComparison c = compare_case_directory(fx.run(), options, log);
+  REQUIRE(c.vof.available);
+  auto balance_note = [](const CaseComparison& cc) {
+    for (const auto& n : cc.vof.metrics.notes)
+      if (n.find("water balance") != std::string::npos) return n;
+    return std::string();
+  };
+  // The synthetic jump does not move: trend 0; the outlet passes 90 %: filling by 10 % of q.
+  CHECK(c.vof.metrics.toe_trend_m_per_s == Approx(0.0).margin(1e-9));
+  CHECK_THAT(balance_note(c), Catch::Contains("= -10 % of q (filling)") && Catch::Contains("NOT steady"));
+  write_patch("discharge_outlet", q * thickness, "9.5 garbage\n");
+  c = compare_case_directory(fx.run(), options, log);
+  REQUIRE(c.vof.available);
+  CHECK(std::isfinite(row(c, "eta").vof));
+  CHECK_THAT(balance_note(c), Catch::StartsWith("water balance unavailable") &&
+                                  Catch::Contains("discharge_outlet/0/surfaceFieldValue.dat:5"));
+}
