@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "cases/jump_toe.hpp"
@@ -62,4 +63,21 @@ TEST_CASE("a splash thinner than the persistence length does not trip the toe", 
   // Searching starts at x_from; no rise at all gives "none".
   const Profile flat = schematic_jump(y1, y1, 0.8, 0.3, ds, 1.5);
   CHECK(find_jump_toe(flat.x, flat.zeta, 0.1, y1, ToeCriterion{}) == flat.x.size());
+}
+
+TEST_CASE("steadiness rule: the least-squares slope of a toe track and the drift tolerance", "[cases][toe]") {
+  using hydrojump::cases::least_squares_slope;
+  using hydrojump::cases::toe_drift_tolerance_m;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  // A straight track x = 0.4 + 0.02 t: the slope exactly; frames without a toe (NaN) are skipped.
+  CHECK(least_squares_slope({6.0, 7.0, 8.0, 9.0}, {0.52, 0.54, 0.56, 0.58}) == Approx(0.02).margin(1e-12));
+  CHECK(least_squares_slope({6.0, 7.0, 8.0, 9.0}, {0.52, nan, 0.56, 0.58}) == Approx(0.02).margin(1e-12));
+  // Scatter about a fixed toe: sum (t - 2.5)(x - 0.5) / sum (t - 2.5)^2 = -0.02 / 5.
+  CHECK(least_squares_slope({1.0, 2.0, 3.0, 4.0}, {0.50, 0.52, 0.48, 0.50}) == Approx(-0.004).margin(1e-12));
+  // Fewer than three frames with a toe, or no spread in time: no slope.
+  CHECK(std::isnan(least_squares_slope({1.0, 2.0, 3.0}, {0.5, nan, 0.6})));
+  CHECK(std::isnan(least_squares_slope({2.0, 2.0, 2.0}, {0.5, 0.6, 0.7})));
+  // The tolerance: a bed wavelength on a corrugated bed, 2 y1 on a smooth one.
+  CHECK(toe_drift_tolerance_m("sinusoidal", 0.068, 0.0254) == 0.068);
+  CHECK(toe_drift_tolerance_m("smooth", 0.0, 0.0254) == Approx(0.0508));
 }
