@@ -16,6 +16,7 @@
 #include "cases/spec_reader.hpp"
 #include "compare/readers.hpp"
 #include "compare/report.hpp"
+#include "reference/discharge_samples.hpp"
 #include "sph/kernel.hpp"
 
 namespace fs = std::filesystem;
@@ -81,16 +82,9 @@ std::string sph_run_note(const fs::path& summary_file) {
 std::string vof_top_outflow_note(const fs::path& vof_dir, double t0, double t1, double inflow_q_m2_s,
                                  double thickness_m) {
   const fs::path function_dir = vof_dir / "postProcessing" / "discharge_atmosphere";
-  const auto rows = read_surface_field_value(function_dir);
-  double sum = 0.0;
-  std::size_t count = 0;
-  for (const auto& [t, flux] : rows) {
-    if (t < t0 - 1e-9 || t > t1 + 1e-9) continue;
-    sum += flux;
-    ++count;
-  }
-  if (count == 0 || inflow_q_m2_s <= 0.0 || thickness_m <= 0.0) return {};
-  const double q_top = sum / static_cast<double>(count) / thickness_m;  // > 0: water leaving
+  const auto top = reference::surface_field_value_mean(function_dir, t0, t1);
+  if (!top || !(inflow_q_m2_s > 0.0) || !(thickness_m > 0.0)) return {};
+  const double q_top = *top / thickness_m;  // > 0: water leaving
   if (q_top <= top_outflow_note_fraction * inflow_q_m2_s) return {};
   std::ostringstream o;
   o << std::setprecision(3) << "water leaves through the top of the domain (patch atmosphere, "
@@ -101,31 +95,16 @@ std::string vof_top_outflow_note(const fs::path& vof_dir, double t0, double t1, 
 }
 
 std::string vof_run_note(const VofRunNoteInputs& in) {
-  const fs::path post = in.vof_dir / "postProcessing";
-  // Mean of a function object's first column over the window, and how many rows it had there.
-  auto window_mean = [&in](const fs::path& function_dir) {
-    double sum = 0.0;
-    std::size_t count = 0;
-    for (const auto& [t, flux] : read_surface_field_value(function_dir)) {
-      if (t < in.window_start_s - 1e-9 || t > in.window_end_s + 1e-9) continue;
-      sum += flux;
-      ++count;
-    }
-    return std::make_pair(count > 0 ? sum / static_cast<double>(count) : 0.0, count);
-  };
-  const auto [inlet, n_in] = window_mean(post / "discharge_inlet");
-  const auto [outlet, n_out] = window_mean(post / "discharge_outlet");
-  const auto [top, n_top] = window_mean(post / "discharge_atmosphere");
-  if (n_in == 0 || n_out == 0 || !(in.inflow_q_m2_s > 0.0) || !(in.thickness_m > 0.0)) return {};
-  const double q_in = -inlet / in.thickness_m, q_out = outlet / in.thickness_m, q_top = top / in.thickness_m;
-  const double imbalance = (q_out + q_top - q_in) / in.inflow_q_m2_s;
+  const auto q = reference::patch_discharges(in.vof_dir, in.window_start_s, in.window_end_s, in.thickness_m);
+  if (!q || !(in.inflow_q_m2_s > 0.0)) return {};
+  const double imbalance = (q->outflow_m2_s + q->top_outflow_m2_s - q->inflow_m2_s) / in.inflow_q_m2_s;
   const bool trend_known = std::isfinite(in.toe_trend_m_per_s);
   const bool steady = std::abs(imbalance) < cases::steady_discharge_tolerance && trend_known &&
                       std::abs(in.toe_trend_m_per_s) * cases::steady_span_s < in.toe_drift_tolerance_m;
   std::ostringstream o;
   o << std::setprecision(4) << "water balance over the window (postProcessing/discharge_inlet, _outlet"
-    << (n_top > 0 ? ", _atmosphere" : "") << "): in " << q_in << ", out " << q_out;
-  if (n_top > 0) o << " + top " << q_top;
+    << (q->top_sampled ? ", _atmosphere" : "") << "): in " << q->inflow_m2_s << ", out " << q->outflow_m2_s;
+  if (q->top_sampled) o << " + top " << q->top_outflow_m2_s;
   o << " m^2/s; outflow - inflow = " << std::setprecision(3) << 100.0 * imbalance << " % of q"
     << (imbalance > 0.0 ? " (draining)" : " (filling)") << "; toe trend ";
   if (trend_known)

@@ -265,29 +265,4 @@ bool has_openfoam_results(const fs::path& vof_dir) {
   return false;
 }
 
-std::vector<std::pair<double, double>> read_surface_field_value(const fs::path& function_dir) {
-  std::vector<std::pair<double, double>> rows;
-  for (const auto& [start, dir] : reference::sample_times(function_dir)) {
-    const fs::path file = dir / "surfaceFieldValue.dat";
-    if (!fs::exists(file)) continue;
-    while (!rows.empty() && rows.back().first >= start - 1e-12) rows.pop_back();
-    std::ifstream in(file);
-    if (!in) throw std::runtime_error(file.string() + ": cannot be read");
-    std::string line;
-    int line_number = 0;
-    while (std::getline(in, line)) {
-      ++line_number;
-      if (line.find_first_not_of(" \t\r") == std::string::npos || line[line.find_first_not_of(" \t")] == '#') continue;
-      std::istringstream ss(line);
-      double t = 0.0, value = 0.0;
-      if (!(ss >> t >> value)) {
-        throw std::runtime_error(file.string() + ":" + std::to_string(line_number) +
-                                 ": expected a time and a value, got \"" + line + "\"");
-      }
-      rows.emplace_back(t, value);
-    }
-  }
-  return rows;
-}
-
 }  // namespace hydrojump::compare

@@ -63,11 +63,4 @@ std::filesystem::path find_pvd(const std::filesystem::path& sph_dir);
 // True when `vof_dir` holds an OpenFOAM case with at least one written time after 0.
 bool has_openfoam_results(const std::filesystem::path& vof_dir);
 
-// One column of an OpenFOAM `surfaceFieldValue` function object over time: the rows (t, value of the
-// first field) of every `<function_dir>/<start time>/surfaceFieldValue.dat`. A resumed run starts a
-// new start-time directory; its rows replace the earlier directory's rows from that start time on.
-// Empty when the directory does not exist (cases written before the function object was added).
-// Throws naming the file on a row that is not two or more numbers.
-std::vector<std::pair<double, double>> read_surface_field_value(const std::filesystem::path& function_dir);
-
 }  // namespace hydrojump::compare

@@ -14,6 +14,7 @@
 #include <fstream>
 #include <iostream>
 #include <limits>
+#include <iomanip>
 #include <sstream>
 #include <thread>
 
@@ -28,6 +29,7 @@
 #include "cases/results_case.hpp"
 #include "cases/spec_reader.hpp"
 #include "reference/case_writer.hpp"
+#include "reference/discharge_samples.hpp"
 #include "reference/foam_dictionary.hpp"
 #include "reference/solver_log.hpp"
 
@@ -625,10 +627,27 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
                   t, vof.end_time_s, 100.0 * t / vof.end_time_s, log.time_step_s().value_or(0.0),
                   log.courant_max().value_or(0.0), format_duration(wall).c_str(),
                   format_duration(eta).c_str());
+    std::string line = buffer;
+    // A stilling basin's water balance over the last simulated second of this run, or since it
+    // started (discharge_samples.hpp).
+    const double balance_from = std::max(t_begin, t - 1.0);
+    if (c.stilling_basin() && t > balance_from) {
+      try {
+        if (const auto q = patch_discharges(dir, balance_from, t, vof.mesh.thickness_m)) {
+          std::ostringstream balance;
+          balance << std::setprecision(4) << ", q_in " << q->inflow_m2_s << ", q_out " << q->outflow_m2_s;
+          if (q->top_outflow_m2_s > 0.001 * q->inflow_m2_s) balance << " + top " << q->top_outflow_m2_s;
+          balance << " m2/s (last " << t - balance_from << " s)";
+          line += balance.str();
+        }
+      } catch (const std::exception&) {
+        // a sample file being written: the next progress line reads it again
+      }
+    }
     if (interactive) {
-      out << "\r" << buffer << "    " << (final_line ? "\n" : "") << std::flush;
+      out << "\r" << line << "    " << (final_line ? "\n" : "") << std::flush;
     } else {
-      out << buffer << "\n" << std::flush;
+      out << line << "\n" << std::flush;
     }
   };
   StopRequestGuard stop_guard;

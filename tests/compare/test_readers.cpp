@@ -8,6 +8,7 @@
 
 #include "compare/case_comparison.hpp"
 #include "compare/readers.hpp"
+#include "reference/discharge_samples.hpp"
 #include "foam_case_writer.hpp"
 #include "synthetic_fields.hpp"
 #include "temp_dir.hpp"
@@ -134,13 +135,13 @@ TEST_CASE("water leaving the VOF domain through its top is read over restarts an
     for (const auto& [t, v] : rows) out << t << "\t" << v << "\t" << -v << "\n";
   };
   // No samples (a case written before the function object existed): no note, no error.
-  CHECK(read_surface_field_value(dir).empty());
+  CHECK(hydrojump::reference::read_surface_field_value(dir).empty());
   CHECK(vof_top_outflow_note(tmp.path(), 0.0, 10.0, 0.0508, 0.005).empty());
   // A first run wrote rows up to 6 s; it was resumed from 5 s, which rewrote 5 s on (rows from 5 s on are
   // the resumed run's, the earlier run's rows at 5.5 and 6 s are dropped).
   write_rows("0", {{4.5, 0.0}, {5.0, 1.0}, {5.5, 1.0}, {6.0, 1.0}});
   write_rows("5", {{5.0, 5.08e-5}, {5.5, 5.08e-5}, {6.0, 5.08e-5}, {6.5, 0.0}});
-  const auto rows = read_surface_field_value(dir);
+  const auto rows = hydrojump::reference::read_surface_field_value(dir);
   REQUIRE(rows.size() == 5);
   CHECK(rows[1].first == 5.0);
   CHECK(rows[1].second == 5.08e-5);
@@ -155,7 +156,7 @@ TEST_CASE("water leaving the VOF domain through its top is read over restarts an
   write_rows("7", {{7.0, 0.0099 * 0.0508 * 0.005}});
   CHECK(vof_top_outflow_note(tmp.path(), 7.0, 7.0, 0.0508, 0.005).empty());
   { std::ofstream(dir / "7" / "surfaceFieldValue.dat", std::ios::app) << "7.5 n/a\n"; }
-  CHECK_THROWS_WITH(read_surface_field_value(dir), Catch::Contains("7/surfaceFieldValue.dat:4") &&
+  CHECK_THROWS_WITH(hydrojump::reference::read_surface_field_value(dir), Catch::Contains("7/surfaceFieldValue.dat:4") &&
                                                        Catch::Contains("expected a time and a value"));
 }
 

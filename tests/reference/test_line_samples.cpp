@@ -7,6 +7,7 @@
 
 #include <unistd.h>
 
+#include "reference/discharge_samples.hpp"
 #include "reference/line_samples.hpp"
 
 namespace fs = std::filesystem;
@@ -58,5 +59,40 @@ TEST_CASE("raw .xy files are read and bad ones rejected with the file name", "[r
   REQUIRE(times.size() == 2);
   CHECK(times[0].first == 0.25);
   CHECK(times[1].first == 0.5);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("patch discharges: window means per unit width, outward fluxes, restarts and missing samples",
+          "[reference][samples]") {
+  using hydrojump::reference::patch_discharges;
+  const fs::path dir = fs::temp_directory_path() / ("hydrojump-discharges-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  auto write = [&](const std::string& function, const std::string& start, const std::string& rows) {
+    fs::create_directories(dir / "postProcessing" / function / start);
+    std::ofstream(dir / "postProcessing" / function / start / "surfaceFieldValue.dat")
+        << "# Time\tsum(alphaPhi0.water)\tsum(phi)\n" << rows;
+  };
+  const double thickness = 0.005;
+  // Nothing sampled (a case written before these function objects): nothing to say.
+  CHECK_FALSE(patch_discharges(dir, 0.0, 1.0, thickness).has_value());
+  // Inflow 0.1 m^2/s (an inward flux is negative), outflow 0.08 then 0.12: mean 0.1 over [1, 2].
+  write("discharge_inlet", "0", "1\t-5e-4\t0\n1.5\t-5e-4\t0\n2\t-5e-4\t0\n3\t-1\t0\n");
+  write("discharge_outlet", "0", "1\t4e-4\t0\n1.5\t5e-4\t0\n2\t6e-4\t0\n3\t1\t0\n");
+  auto q = patch_discharges(dir, 1.0, 2.0, thickness);
+  REQUIRE(q.has_value());
+  CHECK(q->inflow_m2_s == Approx(0.1).epsilon(1e-12));
+  CHECK(q->outflow_m2_s == Approx(0.1).epsilon(1e-12));
+  CHECK_FALSE(q->top_sampled);
+  CHECK(q->top_outflow_m2_s == 0.0);
+  // The top, restarted at 1.5 s: the restart's rows replace the first run's from 1.5 s on.
+  write("discharge_atmosphere", "0", "1\t0\t0\n1.5\t9\t0\n2\t9\t0\n");
+  write("discharge_atmosphere", "1.5", "1.5\t1.5e-5\t0\n2\t1.5e-5\t0\n");
+  q = patch_discharges(dir, 1.0, 2.0, thickness);
+  REQUIRE(q.has_value());
+  CHECK(q->top_sampled);
+  CHECK(q->top_outflow_m2_s == Approx(0.002).epsilon(1e-12));  // (0 + 3e-3 + 3e-3) / 3
+  // A window without rows, or no thickness: nothing.
+  CHECK_FALSE(patch_discharges(dir, 5.0, 6.0, thickness).has_value());
+  CHECK_FALSE(patch_discharges(dir, 1.0, 2.0, 0.0).has_value());
   fs::remove_all(dir);
 }

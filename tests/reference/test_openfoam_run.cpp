@@ -113,6 +113,8 @@ TEST_CASE("a tiny corrugated basin meshes, passes checkMesh, runs and resumes", 
   CHECK(checkmesh_cells(dir) == vof.mesh.cell_count());
   CHECK(fs::exists(dir / "0.02"));
   CHECK_THAT(out.str(), Catch::Contains("reached t = 0.02"));
+  // The progress lines carry the basin's water balance: the inflow q = 0.0508 m^2/s.
+  CHECK_THAT(out.str(), Catch::Contains(", q_in 0.0508, q_out ") && Catch::Contains("m2/s (last 0.02 s)"));
 
   // The inlet carries q = y1 U1 per unit width (sum of the water flux / spanwise thickness).
   const auto inlet = rows_of(dir / "postProcessing/discharge_inlet/0/surfaceFieldValue.dat");
