@@ -17,6 +17,7 @@ struct VofOptions {
   std::string dir;
   int np = 1;
   bool resume = false;
+  double end_time_s = 0.0;  // 0: the controlDict's endTime
   bool self_test = false;
   bool force_body_fitted = false;
   double progress_interval_s = 30.0;
@@ -48,6 +49,10 @@ void register_commands(CLI::App& app) {
                 "(decides whether mesh_strategy = \"body_fitted\" can run on this build)");
   vof->add_flag("--force-body-fitted", options->force_body_fitted,
                 "run a body_fitted mesh even when the self-test shows the defect (for patched builds)");
+  vof->add_option("--end-time", options->end_time_s,
+                  "run to this simulated time in s instead of the case's end time (written into "
+                  "system/controlDict; with --resume it extends a finished run)")
+      ->check(cases::positive_finite_number());
   vof->add_option("--progress-interval", options->progress_interval_s,
                   "seconds between progress lines when the output is not a terminal (default 30)")
       ->check(cases::positive_finite_number());
@@ -68,6 +73,7 @@ void register_commands(CLI::App& app) {
     run.resume = options->resume;
     run.progress_interval_s = options->progress_interval_s;
     run.force_body_fitted = options->force_body_fitted;
+    if (options->end_time_s > 0.0) run.end_time_s = options->end_time_s;
     run_vof_case(options->dir, run, std::cout);
   });
 }

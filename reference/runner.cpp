@@ -15,6 +15,7 @@
 #include <iostream>
 #include <limits>
 #include <iomanip>
+#include <regex>
 #include <sstream>
 #include <thread>
 
@@ -329,6 +330,42 @@ double run_self_test_box(const fs::path& dir, double shear_m) {
   return worst;
 }
 
+// The `endTime` entry of CASE/system/controlDict (what interFoam obeys).
+const std::regex end_time_entry(R"((^|\n)([ \t]*endTime[ \t]+)([^;\n]+);)");
+
+double control_dict_end_time(const fs::path& dir) {
+  const fs::path file = dir / "system/controlDict";
+  std::ifstream in(file);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::smatch m;
+  if (!std::regex_search(text, m, end_time_entry)) {
+    throw OpenFoamError(file.string() + ": no `endTime` entry (regenerate the case with `hydrojump generate`)");
+  }
+  char* end = nullptr;
+  const std::string value = m[3].str();
+  const double t = std::strtod(value.c_str(), &end);
+  if (end == value.c_str() || !(t > 0.0)) {
+    throw OpenFoamError(file.string() + ": endTime \"" + value + "\" is not a positive number of seconds");
+  }
+  return t;
+}
+
+// Rewrites that entry (the rest of the file, hand edits included, is kept), atomically.
+void set_control_dict_end_time(const fs::path& dir, double end_time_s) {
+  const fs::path file = dir / "system/controlDict";
+  std::ifstream in(file);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::ostringstream value;
+  value << std::setprecision(12) << end_time_s;
+  std::smatch m;
+  if (!std::regex_search(text, m, end_time_entry)) {
+    throw OpenFoamError(file.string() + ": no `endTime` entry (regenerate the case with `hydrojump generate`)");
+  }
+  const auto value_begin = static_cast<std::size_t>(m.position(3));
+  cases::write_file_atomically(file, text.substr(0, value_begin) + value.str() +
+                                         text.substr(value_begin + static_cast<std::size_t>(m.length(3))));
+}
+
 }  // namespace
 
 // ------------------------------------------------------------------------------------ public
@@ -528,6 +565,25 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
     start = times.empty() ? std::nullopt : std::optional<double>(times.back().first);
   }
 
+  // The end time: system/controlDict's endTime, which --end-time rewrites (to extend a run).
+  double end_time_s = control_dict_end_time(dir);
+  if (options.end_time_s) {
+    if (!(*options.end_time_s > 0.0) || (start && *options.end_time_s <= *start + 1e-12)) {
+      throw OpenFoamError("--end-time " + format_seconds(*options.end_time_s) + " s: must be after " +
+                          (start ? "the latest time " + format_seconds(*start) + " s of " + dir.string()
+                                 : std::string("t = 0")));
+    }
+    if (std::abs(*options.end_time_s - end_time_s) > 1e-12) {
+      set_control_dict_end_time(dir, *options.end_time_s);
+      out << "End time " << format_seconds(*options.end_time_s) << " s (was " << format_seconds(end_time_s)
+          << " s; system/controlDict updated)\n";
+      end_time_s = *options.end_time_s;
+    }
+  } else if (start && *start >= end_time_s - 1e-12) {
+    out << "The run already reached its end time " << format_seconds(end_time_s)
+        << " s (extend it with --resume --end-time T)\n";
+  }
+
   const auto wall_begin = std::chrono::steady_clock::now();
   if (!start) {
     // What `compare` and `generate` check these results against.
@@ -600,7 +656,7 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
     offset = fs::file_size(log_file, ec);
     if (ec) offset = 0;
   }
-  out << "Running " << command_text(solver) << " to t = " << format_seconds(vof.end_time_s)
+  out << "Running " << command_text(solver) << " to t = " << format_seconds(end_time_s)
       << " s (log: log.interFoam)\n" << std::flush;
   const pid_t pid = spawn(solver, dir, log_file, start.has_value());
   SolverLog log(DivergenceLimits{c.vof.max_courant, 25.0, 1e-9});
@@ -621,10 +677,10 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - solver_begin).count();
     const double t = log.time_s().value_or(t_begin);
     const double done = t - t_begin;
-    const double eta = done > 0 ? (vof.end_time_s - t) * wall / done : std::nan("");
+    const double eta = done > 0 ? (end_time_s - t) * wall / done : std::nan("");
     char buffer[256];
     std::snprintf(buffer, sizeof buffer, "  t = %.4g / %.4g s (%.1f %%), dt = %.3g s, Co max %.3g, wall %s, ETA %s",
-                  t, vof.end_time_s, 100.0 * t / vof.end_time_s, log.time_step_s().value_or(0.0),
+                  t, end_time_s, 100.0 * t / end_time_s, log.time_step_s().value_or(0.0),
                   log.courant_max().value_or(0.0), format_duration(wall).c_str(),
                   format_duration(eta).c_str());
     std::string line = buffer;
@@ -701,9 +757,9 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
                         (log.failed() ? log.failure_context() : log.tail()));
   }
   const double reached = log.time_s().value_or(t_begin);
-  if (reached < vof.end_time_s * (1.0 - 1e-6) - 1e-12) {
+  if (reached < end_time_s * (1.0 - 1e-6) - 1e-12) {
     throw OpenFoamError("interFoam ended at t = " + format_seconds(reached) + " s before the end time " +
-                        format_seconds(vof.end_time_s) + " s." + resume_hint + "\nLast lines of log.interFoam:\n" +
+                        format_seconds(end_time_s) + " s." + resume_hint + "\nLast lines of log.interFoam:\n" +
                         log.tail());
   }
   if (parallel) {

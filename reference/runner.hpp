@@ -34,6 +34,8 @@ struct RunOptions {
   bool resume = false;                 // continue from the latest time directory
   double progress_interval_s = 30.0;   // wall seconds between progress lines when not on a terminal
   bool force_body_fitted = false;      // run a body_fitted mesh even if the self-test fails (experts)
+  std::optional<double> end_time_s;    // run to this time: written into system/controlDict's endTime
+                                       // (extends a finished run with --resume); else that endTime
 };
 
 // What the runner needs from the machine. Throws OpenFoamError naming what is missing.

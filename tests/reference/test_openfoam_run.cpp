@@ -162,6 +162,21 @@ TEST_CASE("a tiny corrugated basin meshes, passes checkMesh, runs and resumes", 
   CHECK(fs::exists(dir / "0.02.incomplete"));
   CHECK(fs::file_size(dir / "0.02/alpha.water.gz") > 100);
   CHECK_THAT(read(dir / "log.interFoam"), Catch::Contains("resumed by hydrojump"));
+
+  // --end-time extends the finished run (system/controlDict's endTime rewritten, the rest kept); an end
+  // time not after the latest time directory is refused.
+  reference::RunOptions extend = resume;
+  extend.end_time_s = 0.02;
+  CHECK_THROWS_WITH(reference::run_vof_case(dir, extend, refused),
+                    Catch::Contains("--end-time 0.02 s: must be after the latest time 0.02 s"));
+  extend.end_time_s = 0.03;
+  std::ostringstream out3;
+  reference::run_vof_case(dir, extend, out3);
+  CHECK_THAT(out3.str(), Catch::Contains("End time 0.03 s (was 0.02 s") && Catch::Contains("to t = 0.03 s") &&
+                             Catch::Contains("reached t = 0.03"));
+  CHECK(fs::exists(dir / "0.03"));
+  const std::string control = read(dir / "system/controlDict");
+  CHECK_THAT(control, Catch::Contains("endTime         0.03;") && Catch::Contains("// endTime = run.end_time_s"));
   fs::remove_all(dir);
 }
 
