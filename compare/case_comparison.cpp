@@ -342,12 +342,36 @@ CaseComparison compare_case(const cases::Study& study, const fs::path& run_dir, 
   return r;
 }
 
+std::string summary_text(const CaseComparison& c) {
+  std::ostringstream o;
+  auto lab = [&o](const std::optional<double>& v) {
+    if (v) o << " [" << *v << "]";
+  };
+  for (const MethodOutcome* m : {&c.sph, &c.vof}) {
+    if (!m->available) continue;
+    const JumpMetrics& r = m->metrics;
+    o << std::setprecision(4) << m->method << ": toe " << r.toe_mean_of_frames_x_m << " +- " << r.toe_std_m << " m";
+    if (std::isfinite(r.toe_trend_m_per_s)) o << " (trend " << std::showpos << r.toe_trend_m_per_s << std::noshowpos << " m/s)";
+    o << ", y2 " << r.sequent_depth_m << " m";
+    lab(c.lab.sequent_depth_m);
+    o << ", eta " << 100.0 * r.eta << " %";
+    lab(c.lab.eta_percent);
+    o << ", Lj " << r.jump_length_m << " m";
+    lab(c.lab.jump_length_m);
+    o << "\n";
+    for (const auto& n : r.notes) o << m->method << ": " << n << "\n";
+  }
+  return o.str();
+}
+
 CaseComparison compare_case_directory(const fs::path& run_dir, const CompareOptions& options, std::ostream& log) {
   if (!fs::is_directory(run_dir)) throw std::runtime_error(run_dir.string() + ": run directory does not exist");
   const cases::Study study = load_run_case(run_dir);
   CaseComparison r = compare_case(study, run_dir, options, log);
   const fs::path out = options.out_dir.empty() ? run_dir : options.out_dir;
   write_report(r, out, options.plots, log);
+  log << "summary over " << window_text(r.window_start_s, r.window_end_s) << " (experiment in brackets):\n"
+      << summary_text(r) << std::flush;
   return r;
 }
 

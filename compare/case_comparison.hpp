@@ -68,7 +68,14 @@ cases::Study load_run_case(const std::filesystem::path& run_dir);
 CaseComparison compare_case(const cases::Study& study, const std::filesystem::path& run_dir,
                             const CompareOptions& options, std::ostream& log);
 
-// compare_case, then write_report into options.out_dir (default RUN_DIR). Returns the comparison.
+// The console summary of a comparison: per method with results, the toe (frames' mean, sd, trend), y2,
+// eta and Lj with the experiment's values in brackets, then the method's notes, e.g.
+//   vof: toe 0.627 +- 0.015 m (trend +0.0128 m/s), y2 0.0972 m [0.104], eta 44.02 % [48.43], Lj 0.3825 m [0.41]
+//   vof: water balance over the window (...): ...; NOT steady by the window means (...)
+std::string summary_text(const CaseComparison& c);
+
+// compare_case, then write_report into options.out_dir (default RUN_DIR), then summary_text into `log`.
+// Returns the comparison.
 CaseComparison compare_case_directory(const std::filesystem::path& run_dir, const CompareOptions& options,
                                       std::ostream& log);
 

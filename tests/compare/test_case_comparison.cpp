@@ -181,6 +181,10 @@ TEST_CASE("compare_case_directory on a synthetic jump gives both methods with me
   CHECK(c.surface.rms_m < 0.002);
   CHECK(std::abs(row(c, "eta").sph - row(c, "eta").vof) < 0.2);
   CHECK(row(c, "eta").experiment == Approx(48.43));
+  // The console summary: both methods, with the experiment's values in brackets.
+  CHECK_THAT(log.str(), Catch::Contains("summary over [6, 10] s (experiment in brackets):\nsph: toe ") &&
+                            Catch::Contains("\nvof: toe ") && Catch::Contains("[48.43], Lj ") &&
+                            Catch::Contains(" m [0.104], eta "));
 
   // Outputs.
   for (const char* f : {"comparison.json", "report.md", "report.html", "csv/sections.csv", "csv/profiles.csv",
