@@ -330,40 +330,42 @@ double run_self_test_box(const fs::path& dir, double shear_m) {
   return worst;
 }
 
-// The `endTime` entry of CASE/system/controlDict (what interFoam obeys).
-const std::regex end_time_entry(R"((^|\n)([ \t]*endTime[ \t]+)([^;\n]+);)");
+// The `endTime` entry of CASE/system/controlDict (what interFoam obeys): the file's text and where
+// the entry's value lies in it.
+struct EndTimeEntry {
+  std::string text;
+  std::size_t value_begin = 0, value_length = 0;
+  double value_s = 0.0;
+};
 
-double control_dict_end_time(const fs::path& dir) {
+EndTimeEntry read_end_time_entry(const fs::path& dir) {
+  static const std::regex entry(R"((^|\n)[ \t]*endTime[ \t]+([^;\n]+);)");
   const fs::path file = dir / "system/controlDict";
   std::ifstream in(file);
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EndTimeEntry e;
+  e.text.assign((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   std::smatch m;
-  if (!std::regex_search(text, m, end_time_entry)) {
+  if (!std::regex_search(e.text, m, entry)) {
     throw OpenFoamError(file.string() + ": no `endTime` entry (regenerate the case with `hydrojump generate`)");
   }
+  e.value_begin = static_cast<std::size_t>(m.position(2));
+  e.value_length = static_cast<std::size_t>(m.length(2));
+  const std::string value = m[2].str();
   char* end = nullptr;
-  const std::string value = m[3].str();
-  const double t = std::strtod(value.c_str(), &end);
-  if (end == value.c_str() || !(t > 0.0)) {
+  e.value_s = std::strtod(value.c_str(), &end);
+  if (end == value.c_str() || !(e.value_s > 0.0)) {
     throw OpenFoamError(file.string() + ": endTime \"" + value + "\" is not a positive number of seconds");
   }
-  return t;
+  return e;
 }
 
-// Rewrites that entry (the rest of the file, hand edits included, is kept), atomically.
+// Rewrites that entry's value (the rest of the file, hand edits included, is kept), atomically.
 void set_control_dict_end_time(const fs::path& dir, double end_time_s) {
-  const fs::path file = dir / "system/controlDict";
-  std::ifstream in(file);
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const EndTimeEntry e = read_end_time_entry(dir);
   std::ostringstream value;
   value << std::setprecision(12) << end_time_s;
-  std::smatch m;
-  if (!std::regex_search(text, m, end_time_entry)) {
-    throw OpenFoamError(file.string() + ": no `endTime` entry (regenerate the case with `hydrojump generate`)");
-  }
-  const auto value_begin = static_cast<std::size_t>(m.position(3));
-  cases::write_file_atomically(file, text.substr(0, value_begin) + value.str() +
-                                         text.substr(value_begin + static_cast<std::size_t>(m.length(3))));
+  cases::write_file_atomically(dir / "system/controlDict", e.text.substr(0, e.value_begin) + value.str() +
+                                                               e.text.substr(e.value_begin + e.value_length));
 }
 
 }  // namespace
@@ -566,7 +568,7 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
   }
 
   // The end time: system/controlDict's endTime, which --end-time rewrites (to extend a run).
-  double end_time_s = control_dict_end_time(dir);
+  double end_time_s = read_end_time_entry(dir).value_s;
   if (options.end_time_s) {
     if (!(*options.end_time_s > 0.0) || (start && *options.end_time_s <= *start + 1e-12)) {
       throw OpenFoamError("--end-time " + format_seconds(*options.end_time_s) + " s: must be after " +
