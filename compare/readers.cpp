@@ -20,8 +20,6 @@
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLPolyDataReader.h>
 
-#include "reference/line_samples.hpp"
-
 namespace fs = std::filesystem;
 
 namespace hydrojump::compare {
