@@ -47,6 +47,11 @@ double toe_drift_tolerance_m(const std::string& bed_profile, double wavelength_m
   return bed_profile == "smooth" ? 2.0 * inflow_depth_m : wavelength_m;
 }
 
+bool steady_by_means(double outflow_minus_inflow_over_q, double toe_trend_m_per_s, double toe_drift_tolerance_m) {
+  return std::abs(outflow_minus_inflow_over_q) < steady_discharge_tolerance &&
+         std::abs(toe_trend_m_per_s) * steady_span_s < toe_drift_tolerance_m;
+}
+
 double least_squares_slope(const std::vector<double>& t, const std::vector<double>& y) {
   const double nan_value = std::numeric_limits<double>::quiet_NaN();
   double st = 0.0, sy = 0.0;

@@ -58,6 +58,10 @@ inline constexpr double steady_span_s = 1.0;                // the drift is meas
 // (bed_profile "smooth").
 double toe_drift_tolerance_m(const std::string& bed_profile, double wavelength_m, double inflow_depth_m);
 
+// The rule above on a window's means: |outflow_minus_inflow_over_q| < steady_discharge_tolerance and
+// |toe_trend_m_per_s| * steady_span_s < toe_drift_tolerance_m (false when either input is NaN).
+bool steady_by_means(double outflow_minus_inflow_over_q, double toe_trend_m_per_s, double toe_drift_tolerance_m);
+
 // Least-squares slope dy/dt over the pairs with finite y (NaN with fewer than 3 of them):
 //   slope = sum (t_k - t_mean)(y_k - y_mean) / sum (t_k - t_mean)^2
 double least_squares_slope(const std::vector<double>& t, const std::vector<double>& y);

@@ -99,8 +99,7 @@ std::string vof_run_note(const VofRunNoteInputs& in) {
   if (!q || !(in.inflow_q_m2_s > 0.0)) return {};
   const double imbalance = (q->outflow_m2_s + q->top_outflow_m2_s - q->inflow_m2_s) / in.inflow_q_m2_s;
   const bool trend_known = std::isfinite(in.toe_trend_m_per_s);
-  const bool steady = std::abs(imbalance) < cases::steady_discharge_tolerance && trend_known &&
-                      std::abs(in.toe_trend_m_per_s) * cases::steady_span_s < in.toe_drift_tolerance_m;
+  const bool steady = cases::steady_by_means(imbalance, in.toe_trend_m_per_s, in.toe_drift_tolerance_m);
   std::ostringstream o;
   o << std::setprecision(4) << "water balance over the window (postProcessing/discharge_inlet, _outlet"
     << (q->top_sampled ? ", _atmosphere" : "") << "): in " << q->inflow_m2_s << ", out " << q->outflow_m2_s;

@@ -16,7 +16,6 @@ namespace hydrojump::sph {
 namespace {
 
 constexpr double nan_value = std::numeric_limits<double>::quiet_NaN();
-using cases::steady_discharge_tolerance;
 using cases::steady_span_s;
 
 struct MeanStd {
@@ -199,12 +198,11 @@ bool BasinMonitor::steady_at(std::size_t k) const {
   }
   const MeanStd a = mean_std(qin), b = mean_std(qout);
   if (a.count == 0 || b.count == 0) return false;
-  if (!(std::abs(a.mean - b.mean) < steady_discharge_tolerance * setup_.discharge_m2_s)) return false;
   // A jump not found in some frames counts as unsteady.
   for (const double x : toes)
     if (!std::isfinite(x)) return false;
-  const double drift = std::abs(cases::least_squares_slope(ts, toes)) * steady_span_s;
-  return drift < setup_.drift_tolerance_m;
+  return cases::steady_by_means((b.mean - a.mean) / setup_.discharge_m2_s, cases::least_squares_slope(ts, toes),
+                                setup_.drift_tolerance_m);
 }
 
 double BasinMonitor::steady_from() const {
@@ -373,8 +371,9 @@ std::string BasinMonitor::summary_json() const {
                         (window_last->mass_in - window_first->mass_in)) /
                        (setup_.rho0 * setup_.discharge_m2_s * (window_last->t - window_first->t));
   const double toe_trend = toe_found.size() >= 2 ? cases::least_squares_slope(toe_t, toe_found) : nan_value;
-  const bool steady_means = jump_state() == "in_basin" && std::abs(window_imbalance) < steady_discharge_tolerance &&
-                            std::abs(toe_trend) * steady_span_s < setup_.drift_tolerance_m && toe_missing == 0;
+  const bool steady_means = jump_state() == "in_basin" &&
+                            cases::steady_by_means(window_imbalance, toe_trend, setup_.drift_tolerance_m) &&
+                            toe_missing == 0;
   const double from = steady_from();
   const bool window_complete = last && last->t >= b - 1e-9;
   const bool steady_window = std::isfinite(from) && from <= a + 1e-9 && window_complete;

@@ -65,7 +65,7 @@ TEST_CASE("a splash thinner than the persistence length does not trip the toe", 
   CHECK(find_jump_toe(flat.x, flat.zeta, 0.1, y1, ToeCriterion{}) == flat.x.size());
 }
 
-TEST_CASE("steadiness rule: the least-squares slope of a toe track and the drift tolerance", "[cases][toe]") {
+TEST_CASE("steadiness rule: the least-squares slope of a toe track, the verdict on the means and the drift tolerance", "[cases][toe]") {
   using hydrojump::cases::least_squares_slope;
   using hydrojump::cases::toe_drift_tolerance_m;
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -77,6 +77,14 @@ TEST_CASE("steadiness rule: the least-squares slope of a toe track and the drift
   // Fewer than three frames with a toe, or no spread in time: no slope.
   CHECK(std::isnan(least_squares_slope({1.0, 2.0, 3.0}, {0.5, nan, 0.6})));
   CHECK(std::isnan(least_squares_slope({2.0, 2.0, 2.0}, {0.5, 0.6, 0.7})));
+  // The verdict on a window's means: both conditions strictly, NaN is not steady.
+  using hydrojump::cases::steady_by_means;
+  CHECK(steady_by_means(0.019, 0.06, 0.068));
+  CHECK(steady_by_means(-0.019, -0.06, 0.068));
+  CHECK_FALSE(steady_by_means(0.02, 0.0, 0.068));
+  CHECK_FALSE(steady_by_means(0.0, 0.068, 0.068));
+  CHECK_FALSE(steady_by_means(nan, 0.0, 0.068));
+  CHECK_FALSE(steady_by_means(0.0, nan, 0.068));
   // The tolerance: a bed wavelength on a corrugated bed, 2 y1 on a smooth one.
   CHECK(toe_drift_tolerance_m("sinusoidal", 0.068, 0.0254) == 0.068);
   CHECK(toe_drift_tolerance_m("smooth", 0.0, 0.0254) == Approx(0.0508));
