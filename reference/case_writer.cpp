@@ -412,8 +412,6 @@ VofCase build_vof_case(const cases::Study& study, const cases::Case& c, const st
   vof.case_id = c.id;
   vof.resolution = resolution;
   vof.mesh = plan_mesh(c, geo, res);
-  vof.end_time_s = c.run.end_time_s;
-  vof.output_interval_s = c.run.output_interval_s;
   const MeshPlan& plan = vof.mesh;
   const double z_low = plan.z_bands.front().begin_m;
   const std::string provenance =

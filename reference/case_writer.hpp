@@ -89,8 +89,6 @@ struct VofCase {
   std::map<std::string, foam::Dictionary> files;    // by relative path
   std::vector<FoamStep> mesh_steps;                 // blockMesh, [topoSet, subsetMesh]
   std::string allrun;                               // the Allrun script
-  double end_time_s = 0.0;
-  double output_interval_s = 0.0;
 };
 
 // Why the OpenFOAM reference cannot model `c` (nothing when it can): the periodic Poiseuille channel
