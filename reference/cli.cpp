@@ -18,6 +18,7 @@ struct VofOptions {
   int np = 1;
   bool resume = false;
   double end_time_s = 0.0;  // 0: the controlDict's endTime
+  std::string map_from;     // empty: setFields' initial state
   bool self_test = false;
   bool force_body_fitted = false;
   double progress_interval_s = 30.0;
@@ -53,6 +54,11 @@ void register_commands(CLI::App& app) {
                   "run to this simulated time in s instead of the case's end time (written into "
                   "system/controlDict; with --resume it extends a finished run)")
       ->check(cases::positive_finite_number());
+  vof->add_option("--map-from", options->map_from,
+                  "start from the latest time of another run of the same case (its vof directory, e.g. a "
+                  "settled `quick` run), interpolated onto this mesh by OpenFOAM's mapFields -consistent, "
+                  "instead of setFields' initial water; a fresh start only, the time still starts at 0")
+      ->check(CLI::ExistingDirectory);
   vof->add_option("--progress-interval", options->progress_interval_s,
                   "seconds between progress lines when the output is not a terminal (default 30)")
       ->check(cases::positive_finite_number());
@@ -74,6 +80,7 @@ void register_commands(CLI::App& app) {
     run.progress_interval_s = options->progress_interval_s;
     run.force_body_fitted = options->force_body_fitted;
     if (options->end_time_s > 0.0) run.end_time_s = options->end_time_s;
+    if (!options->map_from.empty()) run.map_from = std::filesystem::path(options->map_from);
     run_vof_case(options->dir, run, std::cout);
   });
 }

@@ -16,6 +16,7 @@
 #include <limits>
 #include <iomanip>
 #include <regex>
+#include <set>
 #include <sstream>
 #include <thread>
 
@@ -456,6 +457,58 @@ OpenFoamInstallation check_openfoam(bool need_mpi) {
   return inst;
 }
 
+// The run whose state `--map-from` starts this one from: its directory and latest complete time.
+struct MapSource {
+  fs::path dir;
+  double time_s = 0.0;
+  std::string time_name;  // its time directory's name, as mapFields -sourceTime wants it
+};
+
+// Checks that `source` holds a finished (or interrupted) run of case `case_id`, not `target` itself.
+MapSource check_map_source(const fs::path& source_in, const fs::path& target, const std::string& case_id) {
+  const fs::path source = fs::absolute(source_in).lexically_normal();
+  const std::string what = "--map-from " + source.string();
+  std::error_code ec;
+  if (!fs::is_directory(source, ec)) throw OpenFoamError(what + ": no such directory");
+  if (fs::equivalent(source, target, ec)) throw OpenFoamError(what + ": that is the case being run");
+  if (!fs::exists(source / "case.toml")) {
+    throw OpenFoamError(what + ": not a generated OpenFOAM case (case.toml is missing)");
+  }
+  const cases::Study source_study = cases::load_study(source / "case.toml");
+  if (source_study.cases.size() != 1 || source_study.cases.front().id != case_id) {
+    throw OpenFoamError(what + ": holds case \"" +
+                        (source_study.cases.empty() ? std::string() : source_study.cases.front().id) +
+                        "\", not \"" + case_id + "\" (the state of another case is not an initial state for this one)");
+  }
+  auto times = time_directories(source);
+  while (!times.empty() && !time_directory_complete(times.back().second)) times.pop_back();
+  if (times.empty()) {
+    const bool decomposed = latest_time(source / "processor0").has_value();
+    throw OpenFoamError(what + ": no complete time directory after t = 0" +
+                        (decomposed ? std::string(" (its results are in processor*/: run reconstructPar there first)")
+                                    : std::string()));
+  }
+  return MapSource{source, times.back().first, times.back().second.filename().string()};
+}
+
+// Interpolates the source's fields at its latest time onto this mesh (into 0/), then removes what
+// mapFields brings beyond the fields the case starts with (fieldAverage means and the like).
+//   mapFields SRC -sourceTime T -consistent
+void map_initial_state(const fs::path& dir, const MapSource& source, std::ostream& out) {
+  out << "Initial state from " << source.dir.string() << " at t = " << format_seconds(source.time_s) << " s\n";
+  run_step(dir, {"mapFields", source.dir.string(), "-sourceTime", source.time_name, "-consistent"},
+           "log.mapFields", out);
+  std::set<std::string> initial;
+  for (const auto& entry : fs::directory_iterator(dir / "0.orig")) initial.insert(entry.path().filename().string());
+  std::vector<fs::path> extra;
+  for (const auto& entry : fs::directory_iterator(dir / "0")) {
+    std::string name = entry.path().filename().string();
+    if (name.size() > 3 && name.compare(name.size() - 3, 3, ".gz") == 0) name.resize(name.size() - 3);
+    if (!initial.count(name)) extra.push_back(entry.path());
+  }
+  for (const fs::path& p : extra) fs::remove_all(p);
+}
+
 std::optional<double> latest_time(const fs::path& case_dir) {
   const auto times = time_directories(case_dir);
   if (times.empty()) return std::nullopt;
@@ -529,6 +582,12 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
       parallel && start_decomposed && (!start_serial || *start_decomposed >= *start_serial);
   std::optional<double> start = continue_decomposed ? start_decomposed : start_serial;
   const bool mesh_exists = fs::exists(dir / "constant/polyMesh/owner") || fs::exists(dir / "constant/polyMesh/owner.gz");
+  if (start && options.map_from) {
+    throw OpenFoamError("--map-from starts a new run, but " + dir.string() + " already holds results up to t = " +
+                        format_seconds(*start) + " s: generate a fresh case directory for the mapped run");
+  }
+  const std::optional<MapSource> map_source =
+      options.map_from ? std::optional<MapSource>(check_map_source(*options.map_from, dir, c.id)) : std::nullopt;
   if (start && !options.resume) {
     throw OpenFoamError(dir.string() + " already holds results up to t = " + format_seconds(*start) +
                         " s: use --resume to continue from there, or delete the time directories to "
@@ -622,6 +681,7 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
     fs::remove_all(dir / "0", ec);
     fs::copy(dir / "0.orig", dir / "0", fs::copy_options::recursive);
     run_step(dir, {"setFields"}, "log.setFields", out);
+    if (map_source) map_initial_state(dir, *map_source, out);
   } else {
     out << "Resuming from t = " << format_seconds(*start) << " s"
         << (mesh_exists ? "" : " (no mesh found: run without --resume)") << "\n";

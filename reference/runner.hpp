@@ -10,7 +10,11 @@
 //      (Courant blow-up, time-step collapse, NaN, crash) that stops the solver and prints the last
 //      lines of the log;
 //   5. `--resume` continues from the latest complete time directory (an incomplete one, left by a
-//      killed run, is moved aside to <time>.incomplete).
+//      killed run, is moved aside to <time>.incomplete);
+//   6. `--map-from SRC` (a fresh start only) replaces the setFields state by the latest complete time
+//      of another run of the same case, interpolated onto this mesh with OpenFOAM's `mapFields
+//      -consistent` (mesh sequencing: a finer run started from a settled coarser one). The run still
+//      starts at t = 0.
 // Every step logs to DIR/log.<application>.
 #pragma once
 
@@ -36,6 +40,8 @@ struct RunOptions {
   bool force_body_fitted = false;      // run a body_fitted mesh even if the self-test fails (experts)
   std::optional<double> end_time_s;    // run to this time: written into system/controlDict's endTime
                                        // (extends a finished run with --resume); else that endTime
+  std::optional<std::filesystem::path> map_from;  // another run of the same case (its vof directory)
+                                                  // whose latest time becomes this run's initial state
 };
 
 // What the runner needs from the machine. Throws OpenFoamError naming what is missing.

@@ -76,6 +76,31 @@ double water_depth(const fs::path& alpha_xy) {
   return reference::water_depth(reference::read_line_sample(alpha_xy));
 }
 
+// The numbers of a field file's internalField (a compressed OpenFOAM field; vectors flattened).
+std::vector<double> internal_field(const fs::path& gz_file) {
+  const fs::path plain = fs::temp_directory_path() / ("hydrojump-field-" + std::to_string(::getpid()));
+  const std::string command = "gzip -dc '" + gz_file.string() + "' > '" + plain.string() + "'";
+  REQUIRE(std::system(command.c_str()) == 0);
+  std::string text = read(plain);
+  fs::remove(plain);
+  const auto begin = text.find("internalField");
+  const auto end = text.find("boundaryField", begin);
+  REQUIRE(begin != std::string::npos);
+  REQUIRE(end != std::string::npos);
+  std::string body = text.substr(begin, end - begin);
+  const auto open = body.find('(');
+  REQUIRE(open != std::string::npos);  // a nonuniform field
+  body = body.substr(open);
+  for (char& ch : body) {
+    if (ch == '(' || ch == ')' || ch == ';') ch = ' ';
+  }
+  std::istringstream in(body);
+  std::vector<double> values;
+  double v;
+  while (in >> v) values.push_back(v);
+  return values;
+}
+
 long checkmesh_cells(const fs::path& dir) {
   const std::string log = read(dir / "log.checkMesh");
   const auto pos = log.find("    cells:");
@@ -178,6 +203,64 @@ TEST_CASE("a tiny corrugated basin meshes, passes checkMesh, runs and resumes", 
   const std::string control = read(dir / "system/controlDict");
   CHECK_THAT(control, Catch::Contains("endTime         0.03;") && Catch::Contains("// endTime = run.end_time_s"));
   fs::remove_all(dir);
+}
+
+TEST_CASE("a run started from another run's state (--map-from) takes its fields and starts at t = 0",
+          "[reference][openfoam]") {
+  require_openfoam();
+  const std::string spec = basin_spec("", 0.02, 0.01);
+  const fs::path source = generate(spec, "map-source");
+  const fs::path target = generate(spec, "map-target");
+  std::ostringstream out;
+  reference::RunOptions mapped;
+  mapped.map_from = source;
+  // A source without results is refused before anything is meshed.
+  CHECK_THROWS_WITH(reference::run_vof_case(target, mapped, out),
+                    Catch::Contains("--map-from " + source.string()) &&
+                        Catch::Contains("no complete time directory after t = 0"));
+  CHECK(!fs::exists(target / "log.blockMesh"));
+  reference::run_vof_case(source, reference::RunOptions{}, out);
+
+  // The target's mesh equals the source's, so mapFields must reproduce the source's last fields.
+  mapped.end_time_s = 0.01;
+  std::ostringstream run;
+  reference::run_vof_case(target, mapped, run);
+  INFO(run.str());
+  CHECK_THAT(run.str(), Catch::Contains("Initial state from " + source.string() + " at t = 0.02 s") &&
+                            Catch::Contains("mapFields") && Catch::Contains("reached t = 0.01"));
+  CHECK_THAT(read(target / "log.mapFields"), Catch::Contains("Source time: 0.02"));
+  for (const char* field : {"alpha.water.gz", "U.gz", "p_rgh.gz"}) {
+    INFO(field);
+    const std::vector<double> expected = internal_field(source / "0.02" / field);
+    const std::vector<double> got = internal_field(target / "0" / field);
+    REQUIRE(got.size() == expected.size());
+    double worst = 0.0, scale = 0.0;
+    for (std::size_t i = 0; i < got.size(); ++i) {
+      worst = std::max(worst, std::abs(got[i] - expected[i]));
+      scale = std::max(scale, std::abs(expected[i]));
+    }
+    CHECK(worst <= 1e-6 * scale);
+  }
+  // Only the fields the case starts with are kept in 0/ (no fieldAverage means from the source).
+  for (const auto& entry : fs::directory_iterator(target / "0")) {
+    INFO(entry.path().string());
+    CHECK(entry.path().filename().string().find("Mean") == std::string::npos);
+  }
+  CHECK(fs::exists(target / "0.01/alpha.water.gz"));
+
+  // Refused: a directory that already holds results, the case itself, another case.
+  CHECK_THROWS_WITH(reference::run_vof_case(target, mapped, out),
+                    Catch::Contains("--map-from starts a new run") && Catch::Contains("up to t = 0.01 s"));
+  const fs::path fresh = generate(spec, "map-fresh");
+  reference::RunOptions self = mapped;
+  self.map_from = fresh;
+  CHECK_THROWS_WITH(reference::run_vof_case(fresh, self, out), Catch::Contains("that is the case being run"));
+  const fs::path dam = generate(dam_break_spec(), "map-dam");
+  reference::RunOptions other = mapped;
+  other.map_from = dam;
+  CHECK_THROWS_WITH(reference::run_vof_case(fresh, other, out),
+                    Catch::Contains("holds case \"dam\", not \"basin\""));
+  for (const fs::path& d : {source, target, fresh, dam}) fs::remove_all(d);
 }
 
 TEST_CASE("a tiny basin runs with the k-epsilon turbulence model", "[reference][openfoam]") {
