@@ -50,7 +50,7 @@ std::string summary_token(const std::string& json, const std::string& key) {
 
 }  // namespace
 
-std::string sph_run_note(const fs::path& summary_file) {
+std::string sph_run_note(const fs::path& summary_file, double window_start_s, double window_end_s) {
   if (!fs::exists(summary_file)) return {};
   std::string json;
   try {
@@ -63,8 +63,26 @@ std::string sph_run_note(const fs::path& summary_file) {
   const std::string window = summary_token(json, "steady_over_window");
   const std::string q_error = summary_token(json, "inflow_discharge_relative_error");
   if (state.empty()) return {};
+  // The monitor's own averaging window: its verdicts are for that window, which `compare --window` may
+  // have moved.
+  std::string run_window;
+  bool other_window = false;
+  {
+    const std::string key = "\"averaging_window_s\": [";
+    const auto at = json.find(key);
+    double a = 0.0, b = 0.0;
+    char comma = 0;
+    std::istringstream in(at == std::string::npos ? std::string() : json.substr(at + key.size(), 64));
+    if (in >> a >> comma >> b && comma == ',') {
+      std::ostringstream w;
+      w << ", its averaging window " << a << "-" << b << " s";
+      run_window = w.str();
+      other_window = window_end_s > window_start_s &&
+                     (std::abs(a - window_start_s) > 1e-6 || std::abs(b - window_end_s) > 1e-6);
+    }
+  }
   std::ostringstream o;
-  o << "run monitor (" << summary_file.filename().string() << "): jump " << state
+  o << "run monitor (" << summary_file.filename().string() << run_window << "): jump " << state
     << (window == "true" ? ", steady over the averaging window" : ", NOT steady over the averaging window");
   if (!from.empty() && from != "null") o << " (steady from t = " << from << " s)";
   if (!q_error.empty() && q_error != "null") o << "; inflow discharge error " << std::stod(q_error) * 100.0 << " %";
@@ -75,6 +93,10 @@ std::string sph_run_note(const fs::path& summary_file) {
     o << "; over the window outflow - inflow = " << std::stod(imbalance) * 100.0 << " % of q";
     if (!trend.empty() && trend != "null") o << ", toe trend " << std::stod(trend) << " m/s";
     o << (by_means == "true" ? " (steady by the window means)" : " (NOT steady by the window means)");
+  }
+  if (other_window) {
+    o << "; these verdicts are for the run's window, not for this comparison's " << window_start_s << "-"
+      << window_end_s << " s (sph/basin.csv has the discharges and toe at every output)";
   }
   return o.str();
 }
@@ -329,7 +351,7 @@ CaseComparison compare_case(const cases::Study& study, const fs::path& run_dir, 
   }
   // The SPH run's own verdict (summary.json of sph/basin_monitor.hpp), when it wrote one.
   if (r.sph.available) {
-    const std::string note = sph_run_note(run_dir / "sph" / "summary.json");
+    const std::string note = sph_run_note(run_dir / "sph" / "summary.json", r.window_start_s, r.window_end_s);
     if (!note.empty()) r.sph.metrics.notes.push_back(note);
   }
   if (r.sph.available && r.vof.available) {

@@ -108,7 +108,10 @@ struct VofRunNoteInputs {
 std::string vof_run_note(const VofRunNoteInputs& in);
 
 // One line on the SPH run's own verdict from its summary.json (jump state, steady or not, inflow
-// discharge error); empty when the file is absent or unreadable.
-std::string sph_run_note(const std::filesystem::path& summary_file);
+// discharge error, over the run's averaging window, which the line names); when the comparison's
+// window [window_start_s, window_end_s] is another one, the line says that its verdicts are not for it.
+// Empty when the file is absent or unreadable. window_end_s <= window_start_s: no comparison window.
+std::string sph_run_note(const std::filesystem::path& summary_file, double window_start_s = 0.0,
+                         double window_end_s = 0.0);
 
 }  // namespace hydrojump::compare

@@ -85,5 +85,12 @@ TEST_CASE("The comparator reads the SPH run monitor's verdict from its summary.j
   CHECK_THAT(note, Catch::Contains("steady from t = 1 s"));
   CHECK_THAT(note, Catch::Contains("outflow - inflow = 0 % of q"));
   CHECK_THAT(note, Catch::Contains("(steady by the window means)"));
+  CHECK_THAT(note, Catch::Contains("its averaging window 1.5-2 s"));
+  CHECK_THAT(note, !Catch::Contains("not for this comparison"));
+  // Compared over the run's own window: nothing to warn; over another: the verdicts are not for it.
+  CHECK_THAT(hydrojump::compare::sph_run_note(dir.path() / "summary.json", 1.5, 2.0),
+             !Catch::Contains("not for this comparison"));
+  CHECK_THAT(hydrojump::compare::sph_run_note(dir.path() / "summary.json", 0.5, 1.0),
+             Catch::Contains("these verdicts are for the run's window, not for this comparison's 0.5-1 s"));
   CHECK(hydrojump::compare::sph_run_note(dir.path() / "absent.json").empty());
 }
