@@ -457,6 +457,8 @@ OpenFoamInstallation check_openfoam(bool need_mpi) {
   return inst;
 }
 
+namespace {
+
 // The run whose state `--map-from` starts this one from: its directory and latest complete time.
 struct MapSource {
   fs::path dir;
@@ -508,6 +510,8 @@ void map_initial_state(const fs::path& dir, const MapSource& source, std::ostrea
   }
   for (const fs::path& p : extra) fs::remove_all(p);
 }
+
+}  // namespace
 
 std::optional<double> latest_time(const fs::path& case_dir) {
   const auto times = time_directories(case_dir);
