@@ -459,11 +459,11 @@ OpenFoamInstallation check_openfoam(bool need_mpi) {
 
 namespace {
 
-// The run whose state `--map-from` starts this one from: its directory and latest complete time.
+// The run whose state `--map-from` starts this one from: its directory and the name of its latest
+// complete time directory (as mapFields -sourceTime wants it).
 struct MapSource {
   fs::path dir;
-  double time_s = 0.0;
-  std::string time_name;  // its time directory's name, as mapFields -sourceTime wants it
+  std::string time_name;
 };
 
 // Checks that `source` holds a finished (or interrupted) run of case `case_id`, not `target` itself.
@@ -490,14 +490,14 @@ MapSource check_map_source(const fs::path& source_in, const fs::path& target, co
                         (decomposed ? std::string(" (its results are in processor*/: run reconstructPar there first)")
                                     : std::string()));
   }
-  return MapSource{source, times.back().first, times.back().second.filename().string()};
+  return MapSource{source, times.back().second.filename().string()};
 }
 
 // Interpolates the source's fields at its latest time onto this mesh (into 0/), then removes what
 // mapFields brings beyond the fields the case starts with (fieldAverage means and the like).
 //   mapFields SRC -sourceTime T -consistent
 void map_initial_state(const fs::path& dir, const MapSource& source, std::ostream& out) {
-  out << "Initial state from " << source.dir.string() << " at t = " << format_seconds(source.time_s) << " s\n";
+  out << "Initial state from " << source.dir.string() << " at t = " << source.time_name << " s\n";
   run_step(dir, {"mapFields", source.dir.string(), "-sourceTime", source.time_name, "-consistent"},
            "log.mapFields", out);
   std::set<std::string> initial;
