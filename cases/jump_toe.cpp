@@ -73,4 +73,32 @@ double least_squares_slope(const std::vector<double>& t, const std::vector<doubl
   return den > 0.0 ? num / den : nan_value;
 }
 
+WindowBalance window_balance(const std::vector<double>& t, const std::vector<double>& q_in,
+                             const std::vector<double>& q_out, const std::vector<double>& toe_x, double t0,
+                             double t1, double q) {
+  const double nan_value = std::numeric_limits<double>::quiet_NaN();
+  WindowBalance b;
+  b.outflow_minus_inflow_over_q = b.toe_trend_m_per_s = b.first_output_s = b.last_output_s = nan_value;
+  std::vector<double> window_t, window_toe;
+  double imbalance_volume = 0.0;  // sum (q_out - q_in) dt, m^2
+  const std::size_t n = std::min({t.size(), q_in.size(), q_out.size(), toe_x.size()});
+  for (std::size_t k = 0; k < n; ++k) {
+    if (t[k] < t0 - 1e-9 || t[k] > t1 + 1e-9) continue;
+    if (b.outputs == 0) {
+      b.first_output_s = t[k];
+    } else {
+      imbalance_volume += (q_out[k] - q_in[k]) * (t[k] - b.last_output_s);
+    }
+    b.last_output_s = t[k];
+    ++b.outputs;
+    window_t.push_back(t[k]);
+    window_toe.push_back(toe_x[k]);
+    if (!std::isfinite(toe_x[k])) ++b.toe_missing;
+  }
+  if (b.outputs >= 2 && q > 0.0)
+    b.outflow_minus_inflow_over_q = imbalance_volume / (q * (b.last_output_s - b.first_output_s));
+  b.toe_trend_m_per_s = least_squares_slope(window_t, window_toe);
+  return b;
+}
+
 }  // namespace hydrojump::cases

@@ -62,6 +62,27 @@ double toe_drift_tolerance_m(const std::string& bed_profile, double wavelength_m
 // |toe_trend_m_per_s| * steady_span_s < toe_drift_tolerance_m (false when either input is NaN).
 bool steady_by_means(double outflow_minus_inflow_over_q, double toe_trend_m_per_s, double toe_drift_tolerance_m);
 
+// A basin's water balance and toe trend over the outputs t_k in [t0, t1] of a run monitor's time series
+// (the SPH run's basin.csv: q_in_k, q_out_k are the discharges over the interval (t_{k-1}, t_k]):
+//
+//   outflow - inflow = sum_k (q_out_k - q_in_k) (t_k - t_{k-1}) / (q (t_last - t_first))
+//                      over the outputs t_first < t_k <= t_last, t_first and t_last the first and the
+//                      last output in [t0, t1]                       (> 0: the basin drains)
+//   toe trend        = least_squares_slope over the outputs in [t0, t1] with a toe
+//
+// the same as the monitor's mass totals (mass_out - mass_in between t_first and t_last, divided by
+// rho0 q (t_last - t_first)). NaN for a window with fewer than two outputs.
+struct WindowBalance {
+  double outflow_minus_inflow_over_q = 0.0;
+  double toe_trend_m_per_s = 0.0;
+  std::size_t outputs = 0;       // outputs in [t0, t1]
+  std::size_t toe_missing = 0;   // of them, outputs without a toe
+  double first_output_s = 0.0, last_output_s = 0.0;
+};
+WindowBalance window_balance(const std::vector<double>& t, const std::vector<double>& q_in,
+                             const std::vector<double>& q_out, const std::vector<double>& toe_x, double t0,
+                             double t1, double q);
+
 // Least-squares slope dy/dt over the pairs with finite y (NaN with fewer than 3 of them):
 //   slope = sum (t_k - t_mean)(y_k - y_mean) / sum (t_k - t_mean)^2
 double least_squares_slope(const std::vector<double>& t, const std::vector<double>& y);

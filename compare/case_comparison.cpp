@@ -7,6 +7,8 @@
 #include <ostream>
 #include <sstream>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "cases/fingerprint.hpp"
 #include "cases/geometry.hpp"
@@ -46,6 +48,64 @@ std::string summary_token(const std::string& json, const std::string& key) {
   std::string token = json.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
   if (!token.empty() && token.front() == '"') token = token.substr(1, token.size() - 2);
   return token;
+}
+
+// The named columns of a run monitor's CSV table (basin.csv), each as a vector of numbers ("nan" ->
+// NaN); empty when the file is absent, unreadable or lacks a column.
+std::vector<std::vector<double>> csv_columns(const fs::path& file, const std::vector<std::string>& names) {
+  std::string text;
+  try {
+    text = cases::read_text_file(file);
+  } catch (const std::exception&) {
+    return {};
+  }
+  std::istringstream lines(text);
+  std::string header;
+  if (!std::getline(lines, header)) return {};
+  std::vector<std::string> heads;
+  {
+    std::istringstream in(header);
+    for (std::string cell; std::getline(in, cell, ',');) heads.push_back(cell);
+  }
+  std::vector<std::size_t> index;
+  for (const auto& name : names) {
+    const auto at = std::find(heads.begin(), heads.end(), name);
+    if (at == heads.end()) return {};
+    index.push_back(static_cast<std::size_t>(at - heads.begin()));
+  }
+  std::vector<std::vector<double>> columns(names.size());
+  for (std::string line; std::getline(lines, line);) {
+    std::vector<std::string> cells;
+    std::istringstream in(line);
+    for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
+    if (cells.size() != heads.size()) continue;  // a torn last line
+    for (std::size_t c = 0; c < names.size(); ++c)
+      columns[c].push_back(std::strtod(cells[index[c]].c_str(), nullptr));
+  }
+  return columns;
+}
+
+// The comparison window's balance from the run's basin.csv (cases::window_balance), as a clause of the
+// note; empty when the table or its columns are missing.
+std::string sph_window_balance_clause(const fs::path& basin_csv, double t0, double t1, double q,
+                                      double toe_drift_tolerance_m) {
+  const auto c = csv_columns(basin_csv, {"t_s", "inflow_discharge_m2_s", "outflow_discharge_m2_s", "toe_x_m"});
+  if (c.empty()) return {};
+  const cases::WindowBalance b = cases::window_balance(c[0], c[1], c[2], c[3], t0, t1, q);
+  if (!std::isfinite(b.outflow_minus_inflow_over_q)) return {};
+  std::ostringstream o;
+  o << std::setprecision(3) << "; over this comparison's window (" << basin_csv.filename().string() << ", outputs "
+    << b.first_output_s << "-" << b.last_output_s << " s) outflow - inflow = " << 100.0 * b.outflow_minus_inflow_over_q
+    << " % of q, toe trend ";
+  if (std::isfinite(b.toe_trend_m_per_s))
+    o << b.toe_trend_m_per_s << " m/s";
+  else
+    o << "unknown";
+  if (b.toe_missing > 0) o << ", no toe in " << b.toe_missing << " of " << b.outputs << " outputs";
+  const bool steady = b.toe_missing == 0 &&
+                      cases::steady_by_means(b.outflow_minus_inflow_over_q, b.toe_trend_m_per_s, toe_drift_tolerance_m);
+  o << (steady ? " (steady by the window means)" : " (NOT steady by the window means)");
+  return o.str();
 }
 
 }  // namespace
@@ -96,7 +156,14 @@ std::string sph_run_note(const fs::path& summary_file, double window_start_s, do
   }
   if (other_window) {
     o << "; these verdicts are for the run's window, not for this comparison's " << window_start_s << "-"
-      << window_end_s << " s (sph/basin.csv has the discharges and toe at every output)";
+      << window_end_s << " s";
+    const std::string q_token = summary_token(json, "discharge_m2_s");
+    const std::string tolerance_token = summary_token(json, "toe_drift_tolerance_m");
+    std::string clause;
+    if (!q_token.empty() && !tolerance_token.empty() && q_token != "null" && tolerance_token != "null")
+      clause = sph_window_balance_clause(summary_file.parent_path() / "basin.csv", window_start_s, window_end_s,
+                                         std::stod(q_token), std::stod(tolerance_token));
+    o << (clause.empty() ? " (no basin.csv beside it to recompute them)" : clause);
   }
   return o.str();
 }

@@ -109,7 +109,9 @@ std::string vof_run_note(const VofRunNoteInputs& in);
 
 // One line on the SPH run's own verdict from its summary.json (jump state, steady or not, inflow
 // discharge error, over the run's averaging window, which the line names); when the comparison's
-// window [window_start_s, window_end_s] is another one, the line says that its verdicts are not for it.
+// window [window_start_s, window_end_s] is another one, the line says that its verdicts are not for it
+// and gives the water balance and toe trend over the comparison's window from the run's basin.csv
+// beside summary.json (cases::window_balance, the monitor's own rule), steady by the window means or not.
 // Empty when the file is absent or unreadable. window_end_s <= window_start_s: no comparison window.
 std::string sph_run_note(const std::filesystem::path& summary_file, double window_start_s = 0.0,
                          double window_end_s = 0.0);

@@ -311,15 +311,11 @@ std::string BasinMonitor::status_line() const {
 std::string BasinMonitor::summary_json() const {
   const double a = setup_.average_start_s, b = setup_.average_end_s;
   auto in_window = [&](const BasinSample& s) { return s.t >= a - 1e-9 && s.t <= b + 1e-9; };
-  std::vector<double> qin, qout, toe, toe_t, toe_found, outlet_depth;
-  const BasinSample* window_first = nullptr;
-  const BasinSample* window_last = nullptr;
+  std::vector<double> qin, qout, toe, outlet_depth;
   const std::size_t n_sec = setup_.sections.size();
   std::vector<std::vector<double>> depth(n_sec), surface(n_sec), discharge(n_sec);
   for (const auto& s : samples_) {
     if (!in_window(s)) continue;
-    if (!window_first) window_first = &s;
-    window_last = &s;
     // q_in/q_out cover the interval before the sample: count it if that interval lies in the window.
     if (s.t > a + 1e-9) {
       qin.push_back(s.q_in);
@@ -327,10 +323,6 @@ std::string BasinMonitor::summary_json() const {
     }
     toe.push_back(s.toe_x);
     if (std::isfinite(s.outlet_target_depth)) outlet_depth.push_back(s.outlet_target_depth);
-    if (std::isfinite(s.toe_x)) {
-      toe_t.push_back(s.t);
-      toe_found.push_back(s.toe_x);
-    }
     for (std::size_t k = 0; k < n_sec; ++k) {
       depth[k].push_back(s.depth[k]);
       surface[k].push_back(s.surface[k]);
@@ -361,16 +353,22 @@ std::string BasinMonitor::summary_json() const {
     const double injected = last->mass_in - first->mass_in;
     mass_error = injected > 0.0 ? (mass_change - net_in) / injected : nan_value;
   }
-  // The same two conditions on the whole window: (mass out - mass in) / (rho0 q (t_end - t_start))
-  // from the running totals at its first and last samples, and the toe's least-squares trend. Waves
-  // leaving the basin make 1 s means of q_out swing by more than 2 % in runs whose window balances;
-  // a basin still filling or draining shows here.
-  double window_imbalance = nan_value;
-  if (window_first && window_last && window_last->t > window_first->t)
-    window_imbalance = ((window_last->mass_out - window_first->mass_out) -
-                        (window_last->mass_in - window_first->mass_in)) /
-                       (setup_.rho0 * setup_.discharge_m2_s * (window_last->t - window_first->t));
-  const double toe_trend = toe_found.size() >= 2 ? cases::least_squares_slope(toe_t, toe_found) : nan_value;
+  // The same two conditions on the whole window (cases::window_balance): the interval discharges
+  // weighted by their intervals, i.e. (mass out - mass in) / (rho0 q (t_last - t_first)) between the
+  // window's first and last outputs, and the toe's least-squares trend. Waves leaving the basin make 1 s
+  // means of q_out swing by more than 2 % in runs whose window balances; a basin still filling or
+  // draining shows here.
+  std::vector<double> all_t, all_q_in, all_q_out, all_toe;
+  for (const auto& s : samples_) {
+    all_t.push_back(s.t);
+    all_q_in.push_back(s.q_in);
+    all_q_out.push_back(s.q_out);
+    all_toe.push_back(s.toe_x);
+  }
+  const cases::WindowBalance balance =
+      cases::window_balance(all_t, all_q_in, all_q_out, all_toe, a, b, setup_.discharge_m2_s);
+  const double window_imbalance = balance.outflow_minus_inflow_over_q;
+  const double toe_trend = balance.toe_trend_m_per_s;
   const bool steady_means = jump_state() == "in_basin" &&
                             cases::steady_by_means(window_imbalance, toe_trend, setup_.drift_tolerance_m) &&
                             toe_missing == 0;

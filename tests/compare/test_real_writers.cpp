@@ -5,7 +5,9 @@
 // Fails when the OpenFOAM tools are not installed (they are a dependency).
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -93,4 +95,38 @@ TEST_CASE("The comparator reads the SPH run monitor's verdict from its summary.j
   CHECK_THAT(hydrojump::compare::sph_run_note(dir.path() / "summary.json", 0.5, 1.0),
              Catch::Contains("these verdicts are for the run's window, not for this comparison's 0.5-1 s"));
   CHECK(hydrojump::compare::sph_run_note(dir.path() / "absent.json").empty());
+}
+
+TEST_CASE("Over another window the comparator recomputes the SPH water balance from basin.csv", "[compare][sph]") {
+  hydrojump::compare::testing::TempDir dir("sph_note_window");
+  // The outflow carries 10 % more than q until t = 1 s (the basin drains), then exactly q; the toe
+  // stands still. Window of the run 1.5-2 s.
+  hydrojump::sph::BasinMonitorSetup s = basin_fixture::setup();
+  s.average_end_s = 2.0;
+  hydrojump::sph::BasinMonitor monitor(s);
+  const hydrojump::sph::ParticleSet ps = basin_fixture::step_particles(0.5);
+  const double rho_q = 1000.0 * 0.05;
+  for (int k = 0; k <= 20; ++k) {
+    const double t = 0.1 * k;
+    monitor.record(ps, t, rho_q * t, rho_q * (t + 0.1 * std::min(t, 1.0)));
+  }
+  std::ofstream(dir.path() / "summary.json") << monitor.summary_json();
+  const std::filesystem::path summary = dir.path() / "summary.json";
+  // The run's own window: balanced, and nothing recomputed.
+  const std::string own = hydrojump::compare::sph_run_note(summary, 1.5, 2.0);
+  CHECK_THAT(own, Catch::Contains("(steady by the window means)"));
+  CHECK_THAT(own, !Catch::Contains("this comparison's window"));
+  // Without basin.csv the note says that it cannot recompute.
+  CHECK_THAT(hydrojump::compare::sph_run_note(summary, 0.5, 1.0), Catch::Contains("no basin.csv beside it"));
+  std::ofstream(dir.path() / "basin.csv") << monitor.csv();
+  // 0.5-1 s: q_out = 1.1 q throughout, so outflow - inflow = +10 % of q and the window is not steady.
+  const std::string early = hydrojump::compare::sph_run_note(summary, 0.5, 1.0);
+  INFO(early);
+  CHECK_THAT(early, Catch::Contains("over this comparison's window (basin.csv, outputs 0.5-1 s) outflow - inflow = 10 % of q"));
+  CHECK_THAT(early, Catch::Contains("toe trend 0 m/s (NOT steady by the window means)"));
+  // 0.5-1.5 s: half the window drains at +10 %, so +5 %.
+  CHECK_THAT(hydrojump::compare::sph_run_note(summary, 0.5, 1.5), Catch::Contains("outflow - inflow = 5 % of q"));
+  // 1.2-1.8 s: balanced (to rounding) and steady.
+  CHECK_THAT(hydrojump::compare::sph_run_note(summary, 1.2, 1.8),
+             Catch::Contains("% of q, toe trend 0 m/s (steady by the window means)"));
 }
