@@ -72,14 +72,31 @@ TEST_CASE("The initial states written by the SPH generator and the OpenFOAM writ
   }
 }
 
-TEST_CASE("The comparator reads the SPH run monitor's verdict from its summary.json", "[compare][sph]") {
-  hydrojump::compare::testing::TempDir dir("sph_note");
-  // A summary written by the SPH run monitor itself: a stationary jump, in = out = q, window 1.5-2 s.
+namespace {
+
+// The SPH run monitor of a stationary jump (basin_fixture's step at x = 0.5 m) over 0-2 s, outputs
+// every 0.1 s, averaging window 1.5-2 s; inflow q = 0.05 m^2/s throughout, the outflow's volume since
+// t = 0 being q * outflow_seconds(t).
+template <class OutflowSeconds>
+hydrojump::sph::BasinMonitor stationary_jump_monitor(OutflowSeconds outflow_seconds) {
   hydrojump::sph::BasinMonitorSetup s = basin_fixture::setup();
   s.average_end_s = 2.0;
   hydrojump::sph::BasinMonitor monitor(s);
   const hydrojump::sph::ParticleSet ps = basin_fixture::step_particles(0.5);
-  for (int k = 0; k <= 20; ++k) monitor.record(ps, 0.1 * k, 1000.0 * 0.05 * 0.1 * k, 1000.0 * 0.05 * 0.1 * k);
+  const double rho_q = 1000.0 * 0.05;
+  for (int k = 0; k <= 20; ++k) {
+    const double t = 0.1 * k;
+    monitor.record(ps, t, rho_q * t, rho_q * outflow_seconds(t));
+  }
+  return monitor;
+}
+
+}  // namespace
+
+TEST_CASE("The comparator reads the SPH run monitor's verdict from its summary.json", "[compare][sph]") {
+  hydrojump::compare::testing::TempDir dir("sph_note");
+  // A summary written by the SPH run monitor itself: a stationary jump, in = out = q, window 1.5-2 s.
+  const auto monitor = stationary_jump_monitor([](double t) { return t; });
   std::ofstream(dir.path() / "summary.json") << monitor.summary_json();
   const std::string note = hydrojump::compare::sph_run_note(dir.path() / "summary.json");
   CHECK_THAT(note, Catch::Contains("jump in_basin"));
@@ -101,15 +118,7 @@ TEST_CASE("Over another window the comparator recomputes the SPH water balance f
   hydrojump::compare::testing::TempDir dir("sph_note_window");
   // The outflow carries 10 % more than q until t = 1 s (the basin drains), then exactly q; the toe
   // stands still. Window of the run 1.5-2 s.
-  hydrojump::sph::BasinMonitorSetup s = basin_fixture::setup();
-  s.average_end_s = 2.0;
-  hydrojump::sph::BasinMonitor monitor(s);
-  const hydrojump::sph::ParticleSet ps = basin_fixture::step_particles(0.5);
-  const double rho_q = 1000.0 * 0.05;
-  for (int k = 0; k <= 20; ++k) {
-    const double t = 0.1 * k;
-    monitor.record(ps, t, rho_q * t, rho_q * (t + 0.1 * std::min(t, 1.0)));
-  }
+  const auto monitor = stationary_jump_monitor([](double t) { return t + 0.1 * std::min(t, 1.0); });
   std::ofstream(dir.path() / "summary.json") << monitor.summary_json();
   const std::filesystem::path summary = dir.path() / "summary.json";
   // The run's own window: balanced, and nothing recomputed.
