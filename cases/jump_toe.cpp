@@ -83,7 +83,9 @@ WindowBalance window_balance(const std::vector<double>& t, const std::vector<dou
   double imbalance_volume = 0.0;  // sum (q_out - q_in) dt, m^2
   const std::size_t n = std::min({t.size(), q_in.size(), q_out.size(), toe_x.size()});
   for (std::size_t k = 0; k < n; ++k) {
+    if (t[k] >= t1 - 1e-9) b.reaches_window_end = true;
     if (t[k] < t0 - 1e-9 || t[k] > t1 + 1e-9) continue;
+    if (b.outputs > 0 && !(t[k] > b.last_output_s)) continue;  // a repeated or earlier time: not an interval
     if (b.outputs == 0) {
       b.first_output_s = t[k];
     } else {

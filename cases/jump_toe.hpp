@@ -71,13 +71,15 @@ bool steady_by_means(double outflow_minus_inflow_over_q, double toe_trend_m_per_
 //   toe trend        = least_squares_slope over the outputs in [t0, t1] with a toe
 //
 // the same as the monitor's mass totals (mass_out - mass_in between t_first and t_last, divided by
-// rho0 q (t_last - t_first)). NaN for a window with fewer than two outputs.
+// rho0 q (t_last - t_first)). NaN for a window with fewer than two outputs or with a discharge missing
+// (NaN) after its first output. Outputs at a time not after the previous one are skipped.
 struct WindowBalance {
   double outflow_minus_inflow_over_q = 0.0;
   double toe_trend_m_per_s = 0.0;
   std::size_t outputs = 0;       // outputs in [t0, t1]
   std::size_t toe_missing = 0;   // of them, outputs without a toe
   double first_output_s = 0.0, last_output_s = 0.0;
+  bool reaches_window_end = false;  // the series has an output at t >= t1 (the window is complete)
 };
 WindowBalance window_balance(const std::vector<double>& t, const std::vector<double>& q_in,
                              const std::vector<double>& q_out, const std::vector<double>& toe_x, double t0,

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <iomanip>
 #include <ostream>
 #include <sstream>
@@ -86,23 +87,32 @@ std::vector<std::vector<double>> csv_columns(const fs::path& file, const std::ve
 }
 
 // The comparison window's balance from the run's basin.csv (cases::window_balance), as a clause of the
-// note; empty when the table or its columns are missing.
+// note: "; over this comparison's window (...) outflow - inflow = ..." or why it cannot be given.
 std::string sph_window_balance_clause(const fs::path& basin_csv, double t0, double t1, double q,
                                       double toe_drift_tolerance_m) {
+  const std::string name = basin_csv.filename().string();
+  if (!fs::exists(basin_csv)) return "; no " + name + " beside it to recompute them";
   const auto c = csv_columns(basin_csv, {"t_s", "inflow_discharge_m2_s", "outflow_discharge_m2_s", "toe_x_m"});
-  if (c.empty()) return {};
+  if (c.empty())
+    return "; " + name + " is unreadable or lacks a column of t_s, inflow_discharge_m2_s, outflow_discharge_m2_s, toe_x_m";
   const cases::WindowBalance b = cases::window_balance(c[0], c[1], c[2], c[3], t0, t1, q);
-  if (!std::isfinite(b.outflow_minus_inflow_over_q)) return {};
+  if (b.outputs < 2)
+    return "; " + name + " has " + std::to_string(b.outputs) +
+           " output(s) in this comparison's window, too few for its water balance";
+  if (!std::isfinite(b.outflow_minus_inflow_over_q))
+    return "; " + name + " lacks a discharge (NaN) in this comparison's window";
+  // The trend to 1e-6 m/s: a toe standing still prints 0, not the rounding of its least-squares sums.
+  const double trend = std::round(b.toe_trend_m_per_s * 1e6) / 1e6 + 0.0;
   std::ostringstream o;
-  o << std::setprecision(3) << "; over this comparison's window (" << basin_csv.filename().string() << ", outputs "
-    << b.first_output_s << "-" << b.last_output_s << " s) outflow - inflow = " << 100.0 * b.outflow_minus_inflow_over_q
-    << " % of q, toe trend ";
-  if (std::isfinite(b.toe_trend_m_per_s))
-    o << b.toe_trend_m_per_s << " m/s";
+  o << std::setprecision(3) << "; over this comparison's window (" << name << ", outputs " << b.first_output_s << "-"
+    << b.last_output_s << " s) outflow - inflow = " << 100.0 * b.outflow_minus_inflow_over_q << " % of q, toe trend ";
+  if (std::isfinite(trend))
+    o << trend << " m/s";
   else
     o << "unknown";
   if (b.toe_missing > 0) o << ", no toe in " << b.toe_missing << " of " << b.outputs << " outputs";
-  const bool steady = b.toe_missing == 0 &&
+  if (!b.reaches_window_end) o << "; the run has not reached " << t1 << " s";
+  const bool steady = b.toe_missing == 0 && b.reaches_window_end &&
                       cases::steady_by_means(b.outflow_minus_inflow_over_q, b.toe_trend_m_per_s, toe_drift_tolerance_m);
   o << (steady ? " (steady by the window means)" : " (NOT steady by the window means)");
   return o.str();
@@ -159,11 +169,12 @@ std::string sph_run_note(const fs::path& summary_file, double window_start_s, do
       << window_end_s << " s";
     const std::string q_token = summary_token(json, "discharge_m2_s");
     const std::string tolerance_token = summary_token(json, "toe_drift_tolerance_m");
-    std::string clause;
     if (!q_token.empty() && !tolerance_token.empty() && q_token != "null" && tolerance_token != "null")
-      clause = sph_window_balance_clause(summary_file.parent_path() / "basin.csv", window_start_s, window_end_s,
-                                         std::stod(q_token), std::stod(tolerance_token));
-    o << (clause.empty() ? " (no basin.csv beside it to recompute them)" : clause);
+      o << sph_window_balance_clause(summary_file.parent_path() / "basin.csv", window_start_s, window_end_s,
+                                     std::stod(q_token), std::stod(tolerance_token));
+    else
+      o << "; " << summary_file.filename().string()
+        << " lacks the prescribed discharge or the toe drift tolerance to recompute them";
   }
   return o.str();
 }

@@ -169,16 +169,17 @@ void BasinMonitor::record(const ParticleSet& particles, double t, double mass_in
     s.surface.push_back(zb + sec_cols[k].depth);
     s.discharge.push_back(sec_cols[k].discharge);
   }
+  // A resumed run re-records the checkpoint's time: replace instead of duplicating (before q, so that
+  // the replacement's q is over the interval from the sample before it).
+  while (!samples_.empty() && samples_.back().t >= t - 1e-12) samples_.pop_back();
   // q over the interval since the previous sample: created / removed mass over rho0 and the interval.
-  if (!samples_.empty() && t > samples_.back().t) {
+  if (!samples_.empty()) {
     const BasinSample& p = samples_.back();
     s.q_in = (mass_in - p.mass_in) / (setup_.rho0 * (t - p.t));
     s.q_out = (mass_out - p.mass_out) / (setup_.rho0 * (t - p.t));
   } else {
     s.q_in = s.q_out = nan_value;
   }
-  // A resumed run re-records the checkpoint's time: replace instead of duplicating.
-  while (!samples_.empty() && samples_.back().t >= t - 1e-12) samples_.pop_back();
   samples_.push_back(std::move(s));
 }
 

@@ -91,13 +91,12 @@ TEST_CASE("steadiness rule: the least-squares slope of a toe track, the verdict 
 }
 
 TEST_CASE("window balance: interval discharges weighted by their intervals, over the outputs in the window", "[cases][toe]") {
-  using hydrojump::cases::window_balance;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   // Uneven outputs; q = 0.05. Each row's q_in, q_out cover the interval before it.
   const std::vector<double> t{0.0, 1.0, 1.5, 3.0, 4.0, 6.0};
   const std::vector<double> q_in{nan, 0.05, 0.05, 0.05, 0.05, 0.05};
   const std::vector<double> q_out{nan, 0.07, 0.06, 0.04, 0.05, 0.05};
-  const std::vector<double> toe{0.50, 0.51, nan, 0.53, 0.54, 0.56};
+  const std::vector<double> toe{0.50, 0.51, nan, 0.53, 0.54, 0.70};  // the last one off the line
   // [1, 4]: outputs 1, 1.5, 3, 4; sum (q_out - q_in) dt = 0.01 * 0.5 - 0.01 * 1.5 + 0 = -0.01 over
   // q * 3 s = 0.15: -1/15 (filling); the first output's own interval (0, 1] lies outside.
   const auto b = window_balance(t, q_in, q_out, toe, 1.0, 4.0, 0.05);
@@ -105,13 +104,23 @@ TEST_CASE("window balance: interval discharges weighted by their intervals, over
   CHECK(b.toe_missing == 1);
   CHECK(b.first_output_s == 1.0);
   CHECK(b.last_output_s == 4.0);
-  CHECK(b.outflow_minus_inflow_over_q == Approx(-1.0 / 15.0).margin(1e-12));
-  // Toe trend over (1, 0.51), (3, 0.53), (4, 0.54): exactly 0.01 m/s.
-  CHECK(b.toe_trend_m_per_s == Approx(0.01).margin(1e-12));
+  CHECK(b.outflow_minus_inflow_over_q == Approx(-1.0 / 15.0).epsilon(0).margin(1e-12));
+  CHECK(b.reaches_window_end);
+  // Toe trend over (1, 0.51), (3, 0.53), (4, 0.54) only: exactly 0.01 m/s.
+  CHECK(b.toe_trend_m_per_s == Approx(0.01).epsilon(0).margin(1e-12));
   // A window between outputs, or with only one, has no balance.
   CHECK(std::isnan(window_balance(t, q_in, q_out, toe, 4.5, 5.5, 0.05).outflow_minus_inflow_over_q));
   CHECK(std::isnan(window_balance(t, q_in, q_out, toe, 3.5, 5.5, 0.05).outflow_minus_inflow_over_q));
   // The whole run: (0.02 * 1 + 0.01 * 0.5 - 0.01 * 1.5) / (0.05 * 6) = 0.01 / 0.3.
   CHECK(window_balance(t, q_in, q_out, toe, 0.0, 6.0, 0.05).outflow_minus_inflow_over_q ==
-        Approx(0.01 / 0.3).margin(1e-12));
+        Approx(0.01 / 0.3).epsilon(0).margin(1e-12));
+  // A window past the last output is not complete.
+  CHECK_FALSE(window_balance(t, q_in, q_out, toe, 4.0, 7.0, 0.05).reaches_window_end);
+  // A discharge missing after the window's first output: no balance.
+  std::vector<double> q_gap = q_out;
+  q_gap[3] = nan;
+  CHECK(std::isnan(window_balance(t, q_in, q_gap, toe, 1.0, 4.0, 0.05).outflow_minus_inflow_over_q));
+  // A repeated output time (a torn resume) is skipped, not counted as an interval.
+  const std::vector<double> t_rep{0.0, 1.0, 1.5, 1.5, 3.0, 4.0};
+  CHECK(window_balance(t_rep, q_in, q_out, toe, 1.0, 4.0, 0.05).outputs == 4);
 }

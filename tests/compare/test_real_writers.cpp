@@ -126,7 +126,7 @@ TEST_CASE("Over another window the comparator recomputes the SPH water balance f
   CHECK_THAT(own, Catch::Contains("(steady by the window means)"));
   CHECK_THAT(own, !Catch::Contains("this comparison's window"));
   // Without basin.csv the note says that it cannot recompute.
-  CHECK_THAT(hydrojump::compare::sph_run_note(summary, 0.5, 1.0), Catch::Contains("no basin.csv beside it"));
+  CHECK_THAT(hydrojump::compare::sph_run_note(summary, 0.5, 1.0), Catch::Contains("no basin.csv beside it to recompute them"));
   std::ofstream(dir.path() / "basin.csv") << monitor.csv();
   // 0.5-1 s: q_out = 1.1 q throughout, so outflow - inflow = +10 % of q and the window is not steady.
   const std::string early = hydrojump::compare::sph_run_note(summary, 0.5, 1.0);
@@ -135,6 +135,12 @@ TEST_CASE("Over another window the comparator recomputes the SPH water balance f
   CHECK_THAT(early, Catch::Contains("toe trend 0 m/s (NOT steady by the window means)"));
   // 0.5-1.5 s: half the window drains at +10 %, so +5 %.
   CHECK_THAT(hydrojump::compare::sph_run_note(summary, 0.5, 1.5), Catch::Contains("outflow - inflow = 5 % of q"));
+  // A window reaching past the run's end (2 s): balanced, but not complete, so not called steady.
+  CHECK_THAT(hydrojump::compare::sph_run_note(summary, 1.5, 2.5),
+             Catch::Contains("the run has not reached 2.5 s (NOT steady by the window means)"));
+  // A window past the run's end: no outputs to balance.
+  CHECK_THAT(hydrojump::compare::sph_run_note(summary, 3.0, 4.0),
+             Catch::Contains("basin.csv has 0 output(s) in this comparison's window, too few for its water balance"));
   // 1.2-1.8 s: balanced (to rounding) and steady.
   CHECK_THAT(hydrojump::compare::sph_run_note(summary, 1.2, 1.8),
              Catch::Contains("% of q, toe trend 0 m/s (steady by the window means)"));

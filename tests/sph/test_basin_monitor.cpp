@@ -134,6 +134,9 @@ TEST_CASE("a resumed monitor continues from the checkpoint's rows", "[sph][basin
   // The checkpoint's own time is recorded again on resume: replaced, not duplicated.
   resumed.record(ps, 0.5, rho0 * q * 0.5, 0.0);
   CHECK(resumed.samples().size() == first.samples().size());
+  // ... with its discharges over the interval from the sample before it, as first recorded.
+  CHECK(std::isfinite(resumed.samples().back().q_in));
+  CHECK(resumed.csv() == first.csv());
   CHECK_THROWS(resumed.restore({"0,1,2"}));
 }
 
