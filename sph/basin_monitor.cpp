@@ -313,9 +313,14 @@ std::string BasinMonitor::summary_json() const {
   const double a = setup_.average_start_s, b = setup_.average_end_s;
   auto in_window = [&](const BasinSample& s) { return s.t >= a - 1e-9 && s.t <= b + 1e-9; };
   std::vector<double> qin, qout, toe, outlet_depth;
+  std::vector<double> all_t, all_q_in, all_q_out, all_toe;  // every sample, for cases::window_balance
   const std::size_t n_sec = setup_.sections.size();
   std::vector<std::vector<double>> depth(n_sec), surface(n_sec), discharge(n_sec);
   for (const auto& s : samples_) {
+    all_t.push_back(s.t);
+    all_q_in.push_back(s.q_in);
+    all_q_out.push_back(s.q_out);
+    all_toe.push_back(s.toe_x);
     if (!in_window(s)) continue;
     // q_in/q_out cover the interval before the sample: count it if that interval lies in the window.
     if (s.t > a + 1e-9) {
@@ -359,13 +364,6 @@ std::string BasinMonitor::summary_json() const {
   // window's first and last outputs, and the toe's least-squares trend. Waves leaving the basin make 1 s
   // means of q_out swing by more than 2 % in runs whose window balances; a basin still filling or
   // draining shows here.
-  std::vector<double> all_t, all_q_in, all_q_out, all_toe;
-  for (const auto& s : samples_) {
-    all_t.push_back(s.t);
-    all_q_in.push_back(s.q_in);
-    all_q_out.push_back(s.q_out);
-    all_toe.push_back(s.toe_x);
-  }
   const cases::WindowBalance balance =
       cases::window_balance(all_t, all_q_in, all_q_out, all_toe, a, b, setup_.discharge_m2_s);
   const double window_imbalance = balance.outflow_minus_inflow_over_q;
