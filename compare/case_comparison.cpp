@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "cases/csv_table.hpp"
 #include "cases/fingerprint.hpp"
 #include "cases/geometry.hpp"
 #include "cases/hydraulics.hpp"
@@ -51,37 +52,20 @@ std::string summary_token(const std::string& json, const std::string& key) {
   return token;
 }
 
-// The named columns of a run monitor's CSV table (basin.csv), each as a vector of numbers ("nan" ->
-// NaN); empty when the file is absent, unreadable or lacks a column.
+// The named columns of a run monitor's CSV table (basin.csv), each as a vector of numbers ("nan" and
+// empty cells -> NaN); empty when the file is absent, unreadable or lacks a column.
 std::vector<std::vector<double>> csv_columns(const fs::path& file, const std::vector<std::string>& names) {
-  std::string text;
-  try {
-    text = cases::read_text_file(file);
-  } catch (const std::exception&) {
-    return {};
-  }
-  std::istringstream lines(text);
-  std::string header;
-  if (!std::getline(lines, header)) return {};
-  std::vector<std::string> heads;
-  {
-    std::istringstream in(header);
-    for (std::string cell; std::getline(in, cell, ',');) heads.push_back(cell);
-  }
+  const cases::CsvTable table = cases::read_csv_table(file);
   std::vector<std::size_t> index;
   for (const auto& name : names) {
-    const auto at = std::find(heads.begin(), heads.end(), name);
-    if (at == heads.end()) return {};
-    index.push_back(static_cast<std::size_t>(at - heads.begin()));
+    const auto at = table.column(name);
+    if (!at) return {};
+    index.push_back(*at);
   }
   std::vector<std::vector<double>> columns(names.size());
-  for (std::string line; std::getline(lines, line);) {
-    std::vector<std::string> cells;
-    std::istringstream in(line);
-    for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
-    if (cells.size() != heads.size()) continue;  // a torn last line
-    for (std::size_t c = 0; c < names.size(); ++c)
-      columns[c].push_back(std::strtod(cells[index[c]].c_str(), nullptr));
+  for (const auto& cells : table.rows) {
+    if (cells.size() != table.header.size()) continue;  // a torn last line
+    for (std::size_t c = 0; c < names.size(); ++c) columns[c].push_back(cases::csv_number(cells[index[c]]));
   }
   return columns;
 }

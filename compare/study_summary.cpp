@@ -6,33 +6,21 @@
 #include <map>
 #include <sstream>
 
+#include "cases/csv_table.hpp"
+
 namespace fs = std::filesystem;
 
 namespace hydrojump::compare {
 
 namespace {
 
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> out;
-  std::string cell;
-  std::istringstream in(line);
-  while (std::getline(in, cell, ',')) out.push_back(cell);
-  if (!line.empty() && line.back() == ',') out.emplace_back();
-  return out;
-}
-
 // Rows of a small CSV as maps column -> text.
 std::vector<std::map<std::string, std::string>> read_csv(const fs::path& file) {
+  const cases::CsvTable table = cases::read_csv_table(file);
   std::vector<std::map<std::string, std::string>> rows;
-  std::ifstream in(file);
-  std::string line;
-  if (!std::getline(in, line)) return rows;
-  const auto header = split(line);
-  while (std::getline(in, line)) {
-    if (line.empty()) continue;
-    const auto cells = split(line);
+  for (const auto& cells : table.rows) {
     std::map<std::string, std::string> row;
-    for (std::size_t i = 0; i < header.size() && i < cells.size(); ++i) row[header[i]] = cells[i];
+    for (std::size_t i = 0; i < table.header.size() && i < cells.size(); ++i) row[table.header[i]] = cells[i];
     rows.push_back(row);
   }
   return rows;
@@ -40,12 +28,7 @@ std::vector<std::map<std::string, std::string>> read_csv(const fs::path& file) {
 
 double value(const std::map<std::string, std::string>& row, const std::string& key) {
   const auto it = row.find(key);
-  if (it == row.end() || it->second.empty()) return std::nan("");
-  try {
-    return std::stod(it->second);
-  } catch (const std::exception&) {
-    return std::nan("");
-  }
+  return it == row.end() ? std::nan("") : cases::csv_number(it->second);
 }
 
 std::string fix(double v, int decimals, bool sign = false) {

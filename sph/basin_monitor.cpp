@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "cases/csv_table.hpp"
 #include "cases/hydraulics.hpp"
 #include "cases/jump_toe.hpp"
 #include "sph/settings.hpp"
@@ -246,9 +247,7 @@ void BasinMonitor::restore(const std::vector<std::string>& csv_rows) {
   samples_.clear();
   for (const auto& row : csv_rows) {
     std::vector<double> v;
-    std::stringstream in(row);
-    std::string cell;
-    while (std::getline(in, cell, ',')) v.push_back(std::strtod(cell.c_str(), nullptr));  // "nan" -> NaN
+    for (const auto& cell : cases::split_csv_line(row)) v.push_back(cases::csv_number(cell));  // "nan" -> NaN
     const std::size_t n_sec = setup_.sections.size();
     if (v.size() != 8 + 3 * n_sec) throw std::runtime_error("basin monitor: a checkpoint row does not match the case");
     BasinSample s;

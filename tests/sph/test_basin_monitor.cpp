@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "basin_fixture.hpp"
+#include "cases/csv_table.hpp"
 #include "sph/basin_monitor.hpp"
 
 using namespace hydrojump;
@@ -154,8 +155,7 @@ TEST_CASE("the water in the basin: all fluid with an inflow buffer, not a piston
     monitor.record(ps, 0.0, 0.0, 0.0);
     const std::string row = monitor.csv_rows().back();
     std::vector<double> v;
-    std::stringstream in(row);
-    for (std::string cell; std::getline(in, cell, ',');) v.push_back(std::strtod(cell.c_str(), nullptr));
+    for (const auto& cell : hydrojump::cases::split_csv_line(row)) v.push_back(hydrojump::cases::csv_number(cell));
     REQUIRE(v.size() > 6);
     return v[6];  // t, toe, q_in, q_out, mass_in, mass_out, fluid_mass, ...
   };
