@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <unistd.h>
+
 #include "cases/csv_table.hpp"
 
 namespace cases = hydrojump::cases;
@@ -34,7 +36,7 @@ TEST_CASE("CSV cells are numbers only when the whole cell is one, and a missing 
 }
 
 TEST_CASE("CSV files read back as a header and rows, and an unreadable file as an empty table", "[cases][csv]") {
-  const fs::path dir = fs::temp_directory_path() / "hydrojump_test_csv_table";
+  const fs::path dir = fs::temp_directory_path() / ("hydrojump_test_csv_table_" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   const fs::path file = dir / "basin.csv";
