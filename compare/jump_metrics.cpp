@@ -6,6 +6,7 @@
 #include <iomanip>
 #include <cmath>
 #include <sstream>
+#include <utility>
 
 namespace hydrojump::compare {
 
@@ -132,6 +133,7 @@ JumpMetrics compute_jump_metrics(const MethodStatistics& m, const JumpInputs& in
     r.toe_std_m = ts.std;
     r.toe_frames_found = ts.count;
     if (m.times.size() == toes.size()) r.toe_trend_m_per_s = cases::least_squares_slope(m.times, toes);
+    r.toe_frames_x_m = std::move(toes);
   }
   if (toe == st.size()) {
     std::ostringstream s;

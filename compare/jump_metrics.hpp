@@ -69,6 +69,7 @@ struct JumpMetrics {
   double toe_std_m = not_a_number;              // standard deviation (steadiness of the jump)
   int toe_frames_found = 0;                     // and the number of frames with a toe
   double toe_trend_m_per_s = not_a_number;      // least-squares slope of the frames' toes over time
+  std::vector<double> toe_frames_x_m;           // each frame's toe (NaN: none), aligned with the frames' times
   double sequent_depth_m = not_a_number;       // y2
   double sequent_depth_std_m = not_a_number;
   double upstream_depth_m = not_a_number;      // depth at the upstream section (check against y1)

@@ -313,6 +313,19 @@ void write_csvs(const CaseComparison& c, const fs::path& dir) {
     }
     cases::write_file_atomically(dir / "section_timeseries.csv", ts.str());
   }
+  {
+    // The toe criterion on each frame's instantaneous surface ("nan": no toe in that frame), to follow
+    // a toe that moves over the window; the frames' mean, sd and trend in metrics.csv summarise it.
+    std::ostringstream s;
+    s << "method,time_s,toe_x_m\n";
+    for (int i = 0; i < 2; ++i) {
+      const MethodOutcome* m = methods_of(c, i);
+      if (!m->available || m->metrics.toe_frames_x_m.size() != m->stats.times.size()) continue;
+      for (std::size_t k = 0; k < m->stats.times.size(); ++k)
+        s << m->method << "," << num(m->stats.times[k]) << "," << num(m->metrics.toe_frames_x_m[k]) << "\n";
+    }
+    cases::write_file_atomically(dir / "toe_frames.csv", s.str());
+  }
   cases::write_file_atomically(dir / "profiles.csv", prof.str());
   cases::write_file_atomically(dir / "longitudinal.csv", lon.str());
   {

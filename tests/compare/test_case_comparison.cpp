@@ -6,7 +6,10 @@
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
+#include <string>
+#include <vector>
 
+#include "cases/csv_table.hpp"
 #include "cases/geometry.hpp"
 #include "cases/hydraulics.hpp"
 #include "cases/spec_reader.hpp"
@@ -189,8 +192,24 @@ TEST_CASE("compare_case_directory on a synthetic jump gives both methods with me
   // Outputs.
   for (const char* f : {"comparison.json", "report.md", "report.html", "csv/sections.csv", "csv/profiles.csv",
                         "csv/longitudinal.csv", "csv/metrics.csv", "csv/eta.csv", "csv/section_timeseries.csv", "csv/snapshot_sph.csv",
-                        "csv/snapshot_vof.csv"})
+                        "csv/snapshot_vof.csv", "csv/toe_frames.csv"})
     CHECK(fs::exists(fx.run() / f));
+  {
+    // One row per frame in the window, in time order per method, each frame's toe where the mean surface's is
+    // (the synthetic jump stands still).
+    const cases::CsvTable toes = cases::read_csv_table(fx.run() / "csv" / "toe_frames.csv");
+    REQUIRE(toes.header == std::vector<std::string>{"method", "time_s", "toe_x_m"});
+    REQUIRE(toes.rows.size() == 5u);
+    const std::vector<std::string> methods{"sph", "sph", "sph", "vof", "vof"};
+    const std::vector<double> times{6.5, 8.0, 9.5, 7.0, 9.0};
+    for (std::size_t k = 0; k < toes.rows.size(); ++k) {
+      INFO("row " << k);
+      REQUIRE(toes.rows[k].size() == 3u);
+      CHECK(toes.rows[k][0] == methods[k]);
+      CHECK(cases::csv_number(toes.rows[k][1]) == Approx(times[k]).margin(1e-9));
+      CHECK(cases::csv_number(toes.rows[k][2]) == Approx(c.sph.metrics.toe_x_m).margin(0.01));
+    }
+  }
   std::ifstream md(fx.run() / "report.md");
   std::stringstream mds;
   mds << md.rdbuf();

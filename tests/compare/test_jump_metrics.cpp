@@ -182,6 +182,11 @@ TEST_CASE("Toe and jump and roller lengths of a synthetic mean surface", "[compa
   const double x_toe = x_t + 0.5 * y1 * L / (y2 - y1);
   CHECK(r.toe_x_m == Approx(x_toe).margin(ds));
   CHECK(r.toe_mean_of_frames_x_m == Approx(x_toe).margin(ds));
+  // Each frame's toe, in the frames' order: the mean position shifted by -2, 0 and +2 cm.
+  REQUIRE(r.toe_frames_x_m.size() == 3u);
+  CHECK(r.toe_frames_x_m[0] == Approx(x_toe - 0.02).margin(ds));
+  CHECK(r.toe_frames_x_m[1] == Approx(x_toe).margin(ds));
+  CHECK(r.toe_frames_x_m[2] == Approx(x_toe + 0.02).margin(ds));
   // Settled: within 5 % of (y2 - y1) of y2 from x_t + 0.95 L on.
   CHECK(r.jump_end_x_m == Approx(x_t + 0.95 * L).margin(ds));
   CHECK(r.jump_length_m == Approx(x_t + 0.95 * L - x_toe).margin(2 * ds));
