@@ -1,5 +1,7 @@
 #include "cases/jump_toe.hpp"
 
+#include "cases/output_times.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -75,7 +77,7 @@ double least_squares_slope(const std::vector<double>& t, const std::vector<doubl
 
 WindowBalance window_balance(const std::vector<double>& t, const std::vector<double>& q_in,
                              const std::vector<double>& q_out, const std::vector<double>& toe_x, double t0,
-                             double t1, double q) {
+                             double t1, double time_tolerance_s, double q) {
   const double nan_value = std::numeric_limits<double>::quiet_NaN();
   WindowBalance b;
   b.outflow_minus_inflow_over_q = b.toe_trend_m_per_s = b.first_output_s = b.last_output_s = nan_value;
@@ -83,8 +85,8 @@ WindowBalance window_balance(const std::vector<double>& t, const std::vector<dou
   double imbalance_volume = 0.0;  // sum (q_out - q_in) dt, m^2
   const std::size_t n = std::min({t.size(), q_in.size(), q_out.size(), toe_x.size()});
   for (std::size_t k = 0; k < n; ++k) {
-    if (t[k] >= t1 - 1e-9) b.reaches_window_end = true;
-    if (t[k] < t0 - 1e-9 || t[k] > t1 + 1e-9) continue;
+    if (t[k] >= t1 - time_tolerance_s) b.reaches_window_end = true;
+    if (!in_output_window(t[k], t0, t1, time_tolerance_s)) continue;
     if (b.outputs > 0 && !(t[k] > b.last_output_s)) continue;  // a repeated or earlier time: not an interval
     if (b.outputs == 0) {
       b.first_output_s = t[k];

@@ -63,7 +63,8 @@ double toe_drift_tolerance_m(const std::string& bed_profile, double wavelength_m
 bool steady_by_means(double outflow_minus_inflow_over_q, double toe_trend_m_per_s, double toe_drift_tolerance_m);
 
 // A basin's water balance and toe trend over the outputs t_k in [t0, t1] of a run monitor's time series
-// (the SPH run's basin.csv: q_in_k, q_out_k are the discharges over the interval (t_{k-1}, t_k]):
+// (the SPH run's basin.csv: q_in_k, q_out_k are the discharges over the interval (t_{k-1}, t_k]); an
+// output within `time_tolerance_s` of the window is in it (cases/output_times.hpp: outputs come late):
 //
 //   outflow - inflow = sum_k (q_out_k - q_in_k) (t_k - t_{k-1}) / (q (t_last - t_first))
 //                      over the outputs t_first < t_k <= t_last, t_first and t_last the first and the
@@ -79,11 +80,11 @@ struct WindowBalance {
   std::size_t outputs = 0;       // outputs in [t0, t1]
   std::size_t toe_missing = 0;   // of them, outputs without a toe
   double first_output_s = 0.0, last_output_s = 0.0;
-  bool reaches_window_end = false;  // the series has an output at t >= t1 (the window is complete)
+  bool reaches_window_end = false;  // the series has an output at t >= t1 - tolerance (the window is complete)
 };
 WindowBalance window_balance(const std::vector<double>& t, const std::vector<double>& q_in,
                              const std::vector<double>& q_out, const std::vector<double>& toe_x, double t0,
-                             double t1, double q);
+                             double t1, double time_tolerance_s, double q);
 
 // Least-squares slope dy/dt over the pairs with finite y (NaN with fewer than 3 of them):
 //   slope = sum (t_k - t_mean)(y_k - y_mean) / sum (t_k - t_mean)^2

@@ -16,6 +16,7 @@
 #include "cases/geometry.hpp"
 #include "cases/hydraulics.hpp"
 #include "cases/jump_toe.hpp"
+#include "cases/output_times.hpp"
 #include "cases/results_case.hpp"
 #include "cases/spec_reader.hpp"
 #include "compare/readers.hpp"
@@ -72,14 +73,14 @@ std::vector<std::vector<double>> csv_columns(const fs::path& file, const std::ve
 
 // The comparison window's balance from the run's basin.csv (cases::window_balance), as a clause of the
 // note: "; over this comparison's window (...) outflow - inflow = ..." or why it cannot be given.
-std::string sph_window_balance_clause(const fs::path& basin_csv, double t0, double t1, double q,
+std::string sph_window_balance_clause(const fs::path& basin_csv, double t0, double t1, double time_tolerance_s, double q,
                                       double toe_drift_tolerance_m) {
   const std::string name = basin_csv.filename().string();
   if (!fs::exists(basin_csv)) return "; no " + name + " beside it to recompute them";
   const auto c = csv_columns(basin_csv, {"t_s", "inflow_discharge_m2_s", "outflow_discharge_m2_s", "toe_x_m"});
   if (c.empty())
     return "; " + name + " is unreadable or lacks a column of t_s, inflow_discharge_m2_s, outflow_discharge_m2_s, toe_x_m";
-  const cases::WindowBalance b = cases::window_balance(c[0], c[1], c[2], c[3], t0, t1, q);
+  const cases::WindowBalance b = cases::window_balance(c[0], c[1], c[2], c[3], t0, t1, time_tolerance_s, q);
   if (b.outputs < 2)
     return "; " + name + " has " + std::to_string(b.outputs) +
            " output(s) in this comparison's window, too few for its water balance";
@@ -104,7 +105,8 @@ std::string sph_window_balance_clause(const fs::path& basin_csv, double t0, doub
 
 }  // namespace
 
-std::string sph_run_note(const fs::path& summary_file, double window_start_s, double window_end_s) {
+std::string sph_run_note(const fs::path& summary_file, double window_start_s, double window_end_s,
+                         double time_tolerance_s) {
   if (!fs::exists(summary_file)) return {};
   std::string json;
   try {
@@ -155,7 +157,7 @@ std::string sph_run_note(const fs::path& summary_file, double window_start_s, do
     const std::string tolerance_token = summary_token(json, "toe_drift_tolerance_m");
     if (!q_token.empty() && !tolerance_token.empty() && q_token != "null" && tolerance_token != "null")
       o << sph_window_balance_clause(summary_file.parent_path() / "basin.csv", window_start_s, window_end_s,
-                                     std::stod(q_token), std::stod(tolerance_token));
+                                     time_tolerance_s, std::stod(q_token), std::stod(tolerance_token));
     else
       o << "; " << summary_file.filename().string()
         << " lacks the prescribed discharge or the toe drift tolerance to recompute them";
@@ -313,13 +315,15 @@ CaseComparison compare_case(const cases::Study& study, const fs::path& run_dir, 
     grid_bed[static_cast<std::size_t>(i)] = geo.bed.elevation(grid.x_min + i * length / (grid.nx - 1));
 
   const double t0 = r.window_start_s, t1 = r.window_end_s;
+  // Outputs come up to a time step after their nominal time (cases/output_times.hpp).
+  const double time_tolerance_s = cases::output_time_tolerance_s(c.run.output_interval_s);
   // ---- SPH
   r.sph.method = "sph";
   try {
     const fs::path pvd = options.sph_pvd.empty() ? find_pvd(run_dir / "sph") : options.sph_pvd;
     r.sph.source = pvd.string();
     const auto all = read_pvd(pvd);
-    const auto entries = entries_in_window(all, t0, t1);
+    const auto entries = entries_in_window(all, t0, t1, time_tolerance_s);
     if (entries.empty()) {
       r.sph.status = "missing: no output time of " + pvd.string() + " lies in the averaging window " +
                      window_text(t0, t1) + " (the series covers " + window_text(all.front().time_s, all.back().time_s) + ")";
@@ -363,7 +367,7 @@ CaseComparison compare_case(const cases::Study& study, const fs::path& run_dir, 
         r.vof.status += "; it holds a decomposed run: reconstruct it first (reconstructPar)";
     } else {
       OpenFoamResults foam(vof_dir);
-      const auto times = foam.times_in_window(t0, t1);
+      const auto times = foam.times_in_window(t0, t1, time_tolerance_s);
       if (times.empty()) {
         r.vof.status = "missing: no written time of " + vof_dir.string() + " lies in the averaging window " +
                        window_text(t0, t1) + " (times " + window_text(foam.times().front(), foam.times().back()) + ")";
@@ -413,7 +417,7 @@ CaseComparison compare_case(const cases::Study& study, const fs::path& run_dir, 
   }
   // The SPH run's own verdict (summary.json of sph/basin_monitor.hpp), when it wrote one.
   if (r.sph.available) {
-    const std::string note = sph_run_note(run_dir / "sph" / "summary.json", r.window_start_s, r.window_end_s);
+    const std::string note = sph_run_note(run_dir / "sph" / "summary.json", r.window_start_s, r.window_end_s, time_tolerance_s);
     if (!note.empty()) r.sph.metrics.notes.push_back(note);
   }
   if (r.sph.available && r.vof.available) {

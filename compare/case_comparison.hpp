@@ -113,7 +113,8 @@ std::string vof_run_note(const VofRunNoteInputs& in);
 // and gives the water balance and toe trend over the comparison's window from the run's basin.csv
 // beside summary.json (cases::window_balance, the monitor's own rule), steady by the window means or not.
 // Empty when the file is absent or unreadable. window_end_s <= window_start_s: no comparison window.
+// basin.csv's outputs within time_tolerance_s of the window are in it (cases/output_times.hpp).
 std::string sph_run_note(const std::filesystem::path& summary_file, double window_start_s = 0.0,
-                         double window_end_s = 0.0);
+                         double window_end_s = 0.0, double time_tolerance_s = 1e-9);
 
 }  // namespace hydrojump::compare

@@ -1,5 +1,7 @@
 #include "compare/readers.hpp"
 
+#include "cases/output_times.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <fstream>
@@ -67,10 +69,10 @@ std::vector<PvdEntry> read_pvd(const fs::path& pvd_file) {
   return out;
 }
 
-std::vector<PvdEntry> entries_in_window(const std::vector<PvdEntry>& entries, double t0, double t1) {
+std::vector<PvdEntry> entries_in_window(const std::vector<PvdEntry>& entries, double t0, double t1, double tolerance_s) {
   std::vector<PvdEntry> out;
   for (const auto& e : entries)
-    if (e.time_s >= t0 - 1e-9 && e.time_s <= t1 + 1e-9) out.push_back(e);
+    if (cases::in_output_window(e.time_s, t0, t1, tolerance_s)) out.push_back(e);
   return out;
 }
 
@@ -178,10 +180,10 @@ OpenFoamResults::OpenFoamResults(const fs::path& case_dir) : impl_(std::make_uni
 
 OpenFoamResults::~OpenFoamResults() = default;
 
-std::vector<double> OpenFoamResults::times_in_window(double t0, double t1) const {
+std::vector<double> OpenFoamResults::times_in_window(double t0, double t1, double tolerance_s) const {
   std::vector<double> out;
   for (double t : times_)
-    if (t >= t0 - 1e-9 && t <= t1 + 1e-9) out.push_back(t);
+    if (cases::in_output_window(t, t0, t1, tolerance_s)) out.push_back(t);
   return out;
 }
 

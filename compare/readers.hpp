@@ -28,8 +28,8 @@ struct PvdEntry {
 // .pvd's directory). Throws std::runtime_error naming the file when it is unreadable or malformed.
 std::vector<PvdEntry> read_pvd(const std::filesystem::path& pvd_file);
 
-// The entries with t0 <= time <= t1 (a tolerance of 1e-9 s).
-std::vector<PvdEntry> entries_in_window(const std::vector<PvdEntry>& entries, double t0, double t1);
+// The entries in the window [t0, t1] within `tolerance_s` (cases/output_times.hpp: outputs come late).
+std::vector<PvdEntry> entries_in_window(const std::vector<PvdEntry>& entries, double t0, double t1, double tolerance_s);
 
 // One particle file. Throws std::runtime_error naming the file and the missing array.
 ParticleFrame read_vtp_particles(const std::filesystem::path& vtp_file, double time_s);
@@ -45,7 +45,8 @@ class OpenFoamResults {
 
   // Times of the written time directories (the 0 directory included).
   const std::vector<double>& times() const { return times_; }
-  std::vector<double> times_in_window(double t0, double t1) const;
+  // The times in the window [t0, t1] within `tolerance_s` (cases/output_times.hpp).
+  std::vector<double> times_in_window(double t0, double t1, double tolerance_s) const;
   // The internal mesh's cells at `time_s` (one of times()).
   CellFrame read(double time_s);
 

@@ -11,6 +11,7 @@
 #include "cases/csv_table.hpp"
 #include "cases/hydraulics.hpp"
 #include "cases/jump_toe.hpp"
+#include "cases/output_times.hpp"
 #include "sph/settings.hpp"
 
 namespace hydrojump::sph {
@@ -98,6 +99,7 @@ BasinMonitorSetup BasinMonitorSetup::from_case(const cases::Case& c, const cases
   s.drift_tolerance_m = cases::toe_drift_tolerance_m(b->bed.profile, b->bed.wavelength_m, b->inflow_depth_m);
   s.average_start_s = c.run.average_start_s;
   s.average_end_s = c.run.average_end_s > 0.0 ? c.run.average_end_s : c.run.end_time_s;
+  s.output_interval_s = c.run.output_interval_s;
   s.sections = geometry.sections;
   s.bed_elevation = [bed = geometry.bed](double x) { return bed.elevation(x); };
   s.measured_sequent_depth_m = b->measured.sequent_depth_m ? *b->measured.sequent_depth_m : nan_value;
@@ -310,7 +312,9 @@ std::string BasinMonitor::status_line() const {
 
 std::string BasinMonitor::summary_json() const {
   const double a = setup_.average_start_s, b = setup_.average_end_s;
-  auto in_window = [&](const BasinSample& s) { return s.t >= a - 1e-9 && s.t <= b + 1e-9; };
+  // Outputs come up to a time step after their nominal time (cases/output_times.hpp).
+  const double tol = cases::output_time_tolerance_s(setup_.output_interval_s);
+  auto in_window = [&](const BasinSample& s) { return cases::in_output_window(s.t, a, b, tol); };
   std::vector<double> qin, qout, toe, outlet_depth;
   std::vector<double> all_t, all_q_in, all_q_out, all_toe;  // every sample, for cases::window_balance
   const std::size_t n_sec = setup_.sections.size();
@@ -322,7 +326,7 @@ std::string BasinMonitor::summary_json() const {
     all_toe.push_back(s.toe_x);
     if (!in_window(s)) continue;
     // q_in/q_out cover the interval before the sample: count it if that interval lies in the window.
-    if (s.t > a + 1e-9) {
+    if (s.t > a + tol) {
       qin.push_back(s.q_in);
       qout.push_back(s.q_out);
     }
@@ -364,15 +368,15 @@ std::string BasinMonitor::summary_json() const {
   // means of q_out swing by more than 2 % in runs whose window balances; a basin still filling or
   // draining shows here.
   const cases::WindowBalance balance =
-      cases::window_balance(all_t, all_q_in, all_q_out, all_toe, a, b, setup_.discharge_m2_s);
+      cases::window_balance(all_t, all_q_in, all_q_out, all_toe, a, b, tol, setup_.discharge_m2_s);
   const double window_imbalance = balance.outflow_minus_inflow_over_q;
   const double toe_trend = balance.toe_trend_m_per_s;
   const bool steady_means = jump_state() == "in_basin" &&
                             cases::steady_by_means(window_imbalance, toe_trend, setup_.drift_tolerance_m) &&
                             toe_missing == 0;
   const double from = steady_from();
-  const bool window_complete = last && last->t >= b - 1e-9;
-  const bool steady_window = std::isfinite(from) && from <= a + 1e-9 && window_complete;
+  const bool window_complete = last && last->t >= b - tol;
+  const bool steady_window = std::isfinite(from) && from <= a + tol && window_complete;
 
   std::ostringstream o;
   o << "{\n";

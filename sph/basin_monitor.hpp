@@ -80,6 +80,7 @@ struct BasinMonitorSetup {
   double toe_search_from_m = 0.0;   // the "upstream" section (or the inflow)
   double drift_tolerance_m = 0.0;   // wavelength (corrugated) or 2 y1 (smooth)
   double average_start_s = 0.0, average_end_s = 0.0;
+  double output_interval_s = 0.0;   // the window accepts outputs within 1 % of it (cases/output_times.hpp)
   std::vector<cases::Section> sections;
   std::function<double(double)> bed_elevation;
   // Measured values of the spec, copied into the summary for comparison (NaN when absent).

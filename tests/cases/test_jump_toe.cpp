@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cases/jump_toe.hpp"
+#include "cases/output_times.hpp"
 
 using namespace hydrojump::cases;
 
@@ -99,7 +100,7 @@ TEST_CASE("window balance: interval discharges weighted by their intervals, over
   const std::vector<double> toe{0.50, 0.51, nan, 0.53, 0.54, 0.70};  // the last one off the line
   // [1, 4]: outputs 1, 1.5, 3, 4; sum (q_out - q_in) dt = 0.01 * 0.5 - 0.01 * 1.5 + 0 = -0.01 over
   // q * 3 s = 0.15: -1/15 (filling); the first output's own interval (0, 1] lies outside.
-  const auto b = window_balance(t, q_in, q_out, toe, 1.0, 4.0, 0.05);
+  const auto b = window_balance(t, q_in, q_out, toe, 1.0, 4.0, 1e-9, 0.05);
   CHECK(b.outputs == 4);
   CHECK(b.toe_missing == 1);
   CHECK(b.first_output_s == 1.0);
@@ -109,18 +110,36 @@ TEST_CASE("window balance: interval discharges weighted by their intervals, over
   // Toe trend over (1, 0.51), (3, 0.53), (4, 0.54) only: exactly 0.01 m/s.
   CHECK(b.toe_trend_m_per_s == Approx(0.01).epsilon(0).margin(1e-12));
   // A window between outputs, or with only one, has no balance.
-  CHECK(std::isnan(window_balance(t, q_in, q_out, toe, 4.5, 5.5, 0.05).outflow_minus_inflow_over_q));
-  CHECK(std::isnan(window_balance(t, q_in, q_out, toe, 3.5, 5.5, 0.05).outflow_minus_inflow_over_q));
+  CHECK(std::isnan(window_balance(t, q_in, q_out, toe, 4.5, 5.5, 1e-9, 0.05).outflow_minus_inflow_over_q));
+  CHECK(std::isnan(window_balance(t, q_in, q_out, toe, 3.5, 5.5, 1e-9, 0.05).outflow_minus_inflow_over_q));
   // The whole run: (0.02 * 1 + 0.01 * 0.5 - 0.01 * 1.5) / (0.05 * 6) = 0.01 / 0.3.
-  CHECK(window_balance(t, q_in, q_out, toe, 0.0, 6.0, 0.05).outflow_minus_inflow_over_q ==
+  CHECK(window_balance(t, q_in, q_out, toe, 0.0, 6.0, 1e-9, 0.05).outflow_minus_inflow_over_q ==
         Approx(0.01 / 0.3).epsilon(0).margin(1e-12));
   // A window past the last output is not complete.
-  CHECK_FALSE(window_balance(t, q_in, q_out, toe, 4.0, 7.0, 0.05).reaches_window_end);
+  CHECK_FALSE(window_balance(t, q_in, q_out, toe, 4.0, 7.0, 1e-9, 0.05).reaches_window_end);
   // A discharge missing after the window's first output: no balance.
   std::vector<double> q_gap = q_out;
   q_gap[3] = nan;
-  CHECK(std::isnan(window_balance(t, q_in, q_gap, toe, 1.0, 4.0, 0.05).outflow_minus_inflow_over_q));
+  CHECK(std::isnan(window_balance(t, q_in, q_gap, toe, 1.0, 4.0, 1e-9, 0.05).outflow_minus_inflow_over_q));
   // A repeated output time (a torn resume) is skipped, not counted as an interval.
   const std::vector<double> t_rep{0.0, 1.0, 1.5, 1.5, 3.0, 4.0};
-  CHECK(window_balance(t_rep, q_in, q_out, toe, 1.0, 4.0, 0.05).outputs == 4);
+  CHECK(window_balance(t_rep, q_in, q_out, toe, 1.0, 4.0, 1e-9, 0.05).outputs == 4);
+  // Every output a little late (as the SPH solver writes them: the first step at or after the nominal
+  // time): within 1 % of a 0.5 s output interval the window [1, 4] is the same four outputs; with only
+  // 1e-9 s it loses the output of 4 s.
+  std::vector<double> t_late = t;
+  for (double& v : t_late) v += 6.8e-6;
+  const double tolerance = output_time_tolerance_s(0.5);
+  CHECK(tolerance == Approx(0.005).epsilon(1e-12));
+  const auto late = window_balance(t_late, q_in, q_out, toe, 1.0, 4.0, tolerance, 0.05);
+  CHECK(late.outputs == 4);
+  CHECK(late.last_output_s == Approx(4.0 + 6.8e-6).epsilon(1e-12));
+  CHECK(late.outflow_minus_inflow_over_q == Approx(-1.0 / 15.0).epsilon(1e-9));
+  CHECK(late.reaches_window_end);
+  CHECK(window_balance(t_late, q_in, q_out, toe, 1.0, 4.0, 1e-9, 0.05).outputs == 3);
+  // The tolerance never takes in a neighbouring output: [1.5, 3] holds 1.5 and 3 only.
+  CHECK(window_balance(t_late, q_in, q_out, toe, 1.5, 3.0, tolerance, 0.05).outputs == 2);
+  CHECK(in_output_window(2.0 - 0.004, 2.0, 3.0, tolerance));
+  CHECK_FALSE(in_output_window(2.0 - 0.006, 2.0, 3.0, tolerance));
+  CHECK(output_time_tolerance_s(0.0) == 1e-9);
 }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <vector>
 
 #include "compare/case_comparison.hpp"
 #include "compare/readers.hpp"
@@ -38,9 +39,18 @@ TEST_CASE("PVD and VTP series give the window frames and arrays and exact sectio
   const auto all = read_pvd(tmp.path() / "particles.pvd");
   REQUIRE(all.size() == 3);
   CHECK(all[2].time_s == Approx(1.5));
-  const auto win = entries_in_window(all, 0.9, 2.0);
+  const auto win = entries_in_window(all, 0.9, 2.0, 1e-9);
   REQUIRE(win.size() == 2);
   CHECK(win[0].time_s == Approx(1.0));
+  // Outputs written a time step after their nominal time belong to it (1 % of the 0.5 s interval):
+  // [1, 1.5] holds the outputs of 1 and 1.5 s, not the one of 0.5 s.
+  std::vector<PvdEntry> late = all;
+  for (auto& e : late) e.time_s += 6.8e-6;
+  const auto late_win = entries_in_window(late, 1.0, 1.5, 0.005);
+  REQUIRE(late_win.size() == 2);
+  CHECK(late_win[1].time_s == Approx(1.5 + 6.8e-6).epsilon(1e-12));
+  CHECK(entries_in_window(late, 1.0, 1.5, 1e-9).size() == 1);
+  CHECK(entries_in_window(late, 0.6, 1.5, 0.005).size() == 2);
 
   const ParticleFrame f1 = read_vtp_particles(win[0].file, win[0].time_s);  // the (x, z, 0) layout
   CHECK(*std::max_element(f1.z.begin(), f1.z.end()) == Approx(0.17 - 0.005));
@@ -95,7 +105,9 @@ TEST_CASE("An OpenFOAM case written by hand gives its times and cells and fields
   OpenFoamResults foam(tmp.path());
   REQUIRE(foam.times().size() == 2);
   CHECK(foam.times()[0] == Approx(0.5));
-  CHECK(foam.times_in_window(0.8, 5.0).size() == 1);
+  CHECK(foam.times_in_window(0.8, 5.0, 1e-9).size() == 1);
+  CHECK(foam.times_in_window(0.8, 0.995, 0.01).size() == 1);  // the output of 1 s, 5 ms past the window
+  CHECK(foam.times_in_window(0.8, 0.985, 0.01).empty());
 
   const CellFrame f1 = foam.read(1.0);
   REQUIRE(f1.xc.size() == 2400u);

@@ -1,0 +1,35 @@
+// Which outputs of a run lie in a time window.
+//
+// Both solvers write an output at the first time step that reaches its nominal time, so an output may
+// come up to one time step late (the SPH solver wrote the output of 20 s at 20.0000068 s). A window
+// [t0, t1] therefore accepts an output within a tolerance of its bounds:
+//
+//   t0 - tolerance <= t <= t1 + tolerance,   tolerance = 1 % of the output interval
+//
+// far more than a time step (1e-5 to 1e-3 s) and far less than the spacing of two outputs, so a late
+// output counts for its nominal time and never the neighbouring output for it. Without the tolerance a
+// window [16, 20] s lost its last output and took the interval before 16 s into its water balance.
+//
+// Usage
+//   | function                | returns                                                           |
+//   |-------------------------|-------------------------------------------------------------------|
+//   | output_time_tolerance_s | 1 % of the output interval (1e-9 s if the interval is unknown, 0) |
+//   | in_output_window        | whether an output at t belongs to the window [t0, t1]             |
+// Example:
+//   const double tol = cases::output_time_tolerance_s(c.run.output_interval_s);
+//   for (double t : times) if (cases::in_output_window(t, 16.0, 20.0, tol)) use(t);
+#pragma once
+
+#include <algorithm>
+
+namespace hydrojump::cases {
+
+inline double output_time_tolerance_s(double output_interval_s) {
+  return std::max(1e-9, 0.01 * output_interval_s);
+}
+
+inline bool in_output_window(double t, double t0, double t1, double tolerance_s) {
+  return t >= t0 - tolerance_s && t <= t1 + tolerance_s;
+}
+
+}  // namespace hydrojump::cases
