@@ -544,6 +544,7 @@ void write_report(const CaseComparison& c, const fs::path& out, bool plots, std:
       {"profiles.png", "Time-mean velocity profiles u(z) at the sections"},
       {"velocity_decay.png", "Decay of the maximum and mean velocity along the basin (normalised by U1)"},
       {"eta.png", "Energy dissipation rate: smooth-bed theory, experiment, published SPH, this SPH, this VOF"},
+      {"toe_frames.png", "The toe of each frame over the window, the time-mean surface's toe and the basin start"},
       {"snapshot_sph.png", "SPH velocity field, last frame of the window"},
       {"snapshot_vof.png", "VOF velocity field, last frame of the window"}};
   for (const auto& [file, caption] : figures)

@@ -3,9 +3,9 @@
 
 Usage: plot_case.py CSV_DIR FIG_DIR
 
-Reads CSV_DIR/{case,longitudinal,sections,profiles,metrics,eta}.csv and snapshot_<method>.csv and
-writes FIG_DIR/surface.png, profiles.png, velocity_decay.png, eta.png, snapshot_sph.png,
-snapshot_vof.png (each only when its data exist).
+Reads CSV_DIR/{case,longitudinal,sections,profiles,metrics,eta,toe_frames}.csv and
+snapshot_<method>.csv and writes FIG_DIR/surface.png, profiles.png, velocity_decay.png, eta.png,
+toe_frames.png, snapshot_sph.png, snapshot_vof.png (each only when its data exist).
 """
 import math
 import os
@@ -57,6 +57,32 @@ def plot_surface(csv_dir, fig_dir, case):
     ax.legend(fontsize=7, ncol=3, loc="upper left")
     ax.grid(alpha=0.3)
     save(fig, os.path.join(fig_dir, "surface.png"))
+
+
+def plot_toe_frames(csv_dir, fig_dir, case):
+    """Each frame's toe against time per method, with the corrugated reach's start (a toe upstream of it
+    has left the reach) and the time-mean surface's toe."""
+    toes = by_method(read_rows(os.path.join(csv_dir, "toe_frames.csv")))
+    if not toes:
+        return
+    fig, ax = plt.subplots(figsize=(7, 3.2))
+    for method, rows in toes.items():
+        t = np.array([r["time_s"] for r in rows], dtype=float)
+        x = np.array([r["toe_x_m"] for r in rows], dtype=float)
+        st = METHOD_STYLE.get(method, {"color": "k", "label": method})
+        ax.plot(t, x, "o-", color=st["color"], ms=2.5, lw=0.9, label=st["label"] + ": each frame")
+        toe = case.get(method + "_toe_x_m")
+        if toe is not None and finite(float(toe)):
+            ax.axhline(float(toe), color=st["color"], ls=":", lw=0.9, label=st["label"] + ": time-mean surface")
+    start = float(case.get("basin_start_m", "nan"))
+    if math.isfinite(start):
+        ax.axhline(start, color="0.4", ls="--", lw=0.8, label="basin (reach) start")
+    ax.set_xlabel("t (s)")
+    ax.set_ylabel("toe x (m)")
+    ax.set_title("Case %s: the toe of each frame over the window" % case.get("case", ""))
+    ax.legend(fontsize=7, loc="best")
+    ax.grid(alpha=0.3)
+    save(fig, os.path.join(fig_dir, "toe_frames.png"))
 
 
 def plot_profiles(csv_dir, fig_dir, case):
@@ -202,6 +228,7 @@ def main(argv):
     plot_profiles(csv_dir, fig_dir, case)
     plot_decay(csv_dir, fig_dir, case)
     eta_bars([os.path.join(csv_dir, "eta.csv")], os.path.join(fig_dir, "eta.png"))
+    plot_toe_frames(csv_dir, fig_dir, case)
     for method in ("sph", "vof"):
         plot_snapshot(csv_dir, fig_dir, case, method)
     return 0

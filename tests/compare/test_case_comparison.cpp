@@ -228,7 +228,7 @@ TEST_CASE("compare_case_directory on a synthetic jump gives both methods with me
   const std::string cmd = "/usr/bin/python3 -c \"import json,sys; json.load(open(sys.argv[1]))\" '" +
                           (fx.run() / "comparison.json").string() + "'";
   CHECK(std::system(cmd.c_str()) == 0);
-  for (const char* f : {"surface.png", "profiles.png", "velocity_decay.png", "eta.png", "snapshot_sph.png",
+  for (const char* f : {"surface.png", "profiles.png", "velocity_decay.png", "eta.png", "toe_frames.png", "snapshot_sph.png",
                         "snapshot_vof.png"})
     CHECK(fs::exists(fx.run() / "figures" / f));
   // eta bars across runs (the study-level figure) from the case directories
