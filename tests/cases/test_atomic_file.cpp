@@ -7,6 +7,7 @@
 
 #include "cases/atomic_file.hpp"
 #include "cases/fingerprint.hpp"
+#include "tests/temp_dir.hpp"
 
 using namespace hydrojump::cases;
 
@@ -20,8 +21,8 @@ std::string read(const std::filesystem::path& p) {
 }  // namespace
 
 TEST_CASE("Atomic writes replace whole files and leave no temporaries", "[cases][io]") {
-  const auto dir = std::filesystem::temp_directory_path() / "hydrojump_test_atomic" / "sub";
-  std::filesystem::remove_all(dir.parent_path());
+  const hydrojump::testing::TempDir tmp("atomic");
+  const auto dir = tmp.path() / "sub";  // not there yet: the write creates it
   const auto file = dir / "out.txt";
   write_file_atomically(file, "first");
   CHECK(read(file) == "first");
@@ -37,7 +38,6 @@ TEST_CASE("Atomic writes replace whole files and leave no temporaries", "[cases]
   int entries = 0;
   for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++entries;
   CHECK(entries == 1);
-  std::filesystem::remove_all(dir.parent_path());
 }
 
 TEST_CASE("fingerprint is FNV-1a 64 (published test vectors)", "[cases][fingerprint]") {

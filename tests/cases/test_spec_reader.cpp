@@ -10,6 +10,7 @@
 #include "cases/geometry.hpp"
 #include "cases/results_case.hpp"
 #include "cases/spec_reader.hpp"
+#include "tests/temp_dir.hpp"
 
 using namespace hydrojump::cases;
 
@@ -75,11 +76,10 @@ int line_of(const std::string& text, const std::string& needle) {
 
 // The first case of `s` written as a resolved one-case spec (quick) and loaded back.
 Study resolved_reload(const Study& s, const std::string& name) {
-  const auto file = std::filesystem::temp_directory_path() / ("hydrojump_test_" + name + ".toml");
+  const hydrojump::testing::TempDir tmp("resolved_reload");
+  const auto file = tmp.path() / (name + ".toml");
   write_resolved_case(s, s.cases[0], "quick", file);
-  Study r = load_study(file);
-  std::filesystem::remove(file);
-  return r;
+  return load_study(file);
 }
 
 }  // namespace
@@ -136,10 +136,9 @@ TEST_CASE("The verification specs load", "[cases][spec]") {
 TEST_CASE("A resolved dam-break case carries its measured front and can be moved", "[cases][spec]") {
   namespace fs = std::filesystem;
   const Study dam = load_study(source_dir + "/cases/dam_break.toml");
-  const fs::path first = fs::temp_directory_path() / "hydrojump_test_dam_first";
-  const fs::path moved = fs::temp_directory_path() / "hydrojump_test_dam_moved";
-  fs::remove_all(first);
-  fs::remove_all(moved);
+  const hydrojump::testing::TempDir tmp("dam_moved");
+  const fs::path first = tmp.path() / "first";
+  const fs::path moved = tmp.path() / "moved";
   fs::create_directories(first);
   write_resolved_case(dam, dam.cases[0], "quick", first / "case.toml");
   // The case file names its copy relatively, not the spec's data file by an absolute path.
@@ -155,7 +154,6 @@ TEST_CASE("A resolved dam-break case carries its measured front and can be moved
   write_resolved_case(reloaded, reloaded.cases[0], "quick", moved / "case.toml");
   CHECK(read_text_file(copy) == read_text_file(dam.cases[0].dam_break()->measured_front_file));
   CHECK(setting_lines(read_text_file(moved / "case.toml")) == setting_lines(text));
-  fs::remove_all(moved);
 }
 
 TEST_CASE("Unknown keys are rejected with file, line and key", "[cases][spec][reject]") {
@@ -405,8 +403,8 @@ TEST_CASE("Case ids and resolution names are plain directory names", "[cases][sp
 
 TEST_CASE("A resolved case reloads to the same case", "[cases][spec]") {
   const Study s = load_study(source_dir + "/cases/ead2002.toml");
-  const auto dir = std::filesystem::temp_directory_path() / "hydrojump_test_resolved";
-  std::filesystem::remove_all(dir);
+  const hydrojump::testing::TempDir tmp("resolved");
+  const auto dir = tmp.path() / "cases";  // not there yet: the write creates it
   for (const char* id : {"B", "B_smooth"}) {
     const Case& c = *s.find_case(id);
     write_resolved_case(s, c, "default", dir / (std::string(id) + ".toml"));
@@ -424,7 +422,6 @@ TEST_CASE("A resolved case reloads to the same case", "[cases][spec]") {
     REQUIRE(rc.sections.size() == c.sections.size());
     for (std::size_t i = 0; i < c.sections.size(); ++i) CHECK(rc.sections[i].x_m == c.sections[i].x_m);
   }
-  std::filesystem::remove_all(dir);
 }
 
 TEST_CASE("The initial toe moves the start of the initial ramp and survives a resolved reload", "[cases][spec]") {

@@ -18,12 +18,13 @@
 #include "compare/report.hpp"
 #include "compare/study_summary.hpp"
 #include "foam_case_writer.hpp"
-#include "temp_dir.hpp"
+#include "tests/temp_dir.hpp"
 #include "vtp_writer.hpp"
 
 using namespace hydrojump;
 using namespace hydrojump::compare;
 using namespace hydrojump::compare::testing;
+using hydrojump::testing::TempDir;
 namespace fs = std::filesystem;
 
 namespace {

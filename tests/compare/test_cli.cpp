@@ -18,7 +18,7 @@
 
 #include "cases/child_process.hpp"
 #include "sph/checkpoint.hpp"
-#include "temp_dir.hpp"
+#include "tests/temp_dir.hpp"
 
 namespace fs = std::filesystem;
 
@@ -67,7 +67,7 @@ int run(const std::vector<std::string>& args, const fs::path& log) { return wait
 
 TEST_CASE("hydrojump sph stops on SIGTERM and SIGINT with a checkpoint, and --resume finishes the run",
           "[compare][integration][restart]") {
-  hydrojump::compare::testing::TempDir tmp("signals");
+  hydrojump::testing::TempDir tmp("signals");
   const std::string spec = std::string(HYDROJUMP_SOURCE_DIR) + "/cases/dam_break.toml";
   REQUIRE(wait_exit_status(start({"generate", spec, "--out", tmp.path().string(), "--resolution", "quick"},
                                  tmp.path() / "generate.log")) == 0);
@@ -112,7 +112,7 @@ TEST_CASE("hydrojump sph stops on SIGTERM and SIGINT with a checkpoint, and --re
 }
 
 TEST_CASE("hydrojump check prints run A's derived hydraulics", "[compare][integration][cli]") {
-  hydrojump::compare::testing::TempDir tmp("check");
+  hydrojump::testing::TempDir tmp("check");
   REQUIRE(run({"check", std::string(HYDROJUMP_SOURCE_DIR) + "/cases/ead2002.toml"}, tmp.path() / "check.log") == 0);
   // Run A by hand (y1 = 25.4 mm, U1 = 2 m/s, y2 = 0.104 m): q = 0.0508 m^2/s, Fr1 = 2/sqrt(9.81 y1) =
   // 4.01, y2* = y1/2 (sqrt(1 + 8 Fr1^2) - 1) = 0.132 m, E1 = y1 + q^2/(2 g y1^2) = 0.2293 m,
@@ -139,7 +139,7 @@ TEST_CASE("hydrojump check prints run A's derived hydraulics", "[compare][integr
 }
 
 TEST_CASE("hydrojump generate refuses an invalid spec, names the key and writes nothing", "[compare][integration][cli]") {
-  hydrojump::compare::testing::TempDir tmp("invalid");
+  hydrojump::testing::TempDir tmp("invalid");
   std::string spec = read_text(std::string(HYDROJUMP_SOURCE_DIR) + "/cases/dam_break.toml");
   const std::string good = "[case.column]\nwidth_m = 1.0";
   REQUIRE(spec.find(good) != std::string::npos);
@@ -158,7 +158,7 @@ TEST_CASE("hydrojump generate refuses an invalid spec, names the key and writes 
 TEST_CASE("hydrojump generate and check refuse what only a solver's derivation finds, and generate writes nothing", "[compare][integration][cli]") {
   // A VOF bed cell of 2 cm leaves fewer than 2 cells across y1 = 25.4 mm: the spec's rules pass,
   // the OpenFOAM mesh plan refuses. It used to do so after DIR/A/sph had been written.
-  hydrojump::compare::testing::TempDir tmp("derived");
+  hydrojump::testing::TempDir tmp("derived");
   std::string spec = read_text(std::string(HYDROJUMP_SOURCE_DIR) + "/cases/ead2002.toml");
   const std::string good = "vof_cell_size_bed_m = 0.005\nvof_cell_size_bulk_m = 0.01";
   REQUIRE(spec.find(good) != std::string::npos);
@@ -184,7 +184,7 @@ TEST_CASE("hydrojump generate and check refuse what only a solver's derivation f
 TEST_CASE("hydrojump generate keeps a finished run's results only for the settings that made them", "[compare][integration][cli]") {
   // Regenerating over a run with other settings left its results in place, and `compare` reported
   // them under the new settings.
-  hydrojump::compare::testing::TempDir tmp("regenerate");
+  hydrojump::testing::TempDir tmp("regenerate");
   const std::string original = read_text(std::string(HYDROJUMP_SOURCE_DIR) + "/cases/poiseuille.toml");
   const auto write_spec = [&](const std::string& text) {
     std::ofstream out(tmp.path() / "spec.toml");
@@ -220,7 +220,7 @@ TEST_CASE("hydrojump generate keeps a finished run's results only for the settin
 TEST_CASE("hydrojump compare refuses results made with other settings than the case.toml it reads", "[compare][integration][cli]") {
   // A hand-edited case.toml beside finished results made `compare` report them under the edited
   // settings. Each solver now records the case its run started with (results_case.toml).
-  hydrojump::compare::testing::TempDir tmp("results_case");
+  hydrojump::testing::TempDir tmp("results_case");
   const std::string spec = std::string(HYDROJUMP_SOURCE_DIR) + "/cases/poiseuille.toml";
   REQUIRE(run({"generate", spec, "--out", (tmp.path() / "runs").string()}, tmp.path() / "generate.log") == 0);
   const fs::path run_dir = tmp.path() / "runs" / "poiseuille";
@@ -261,7 +261,7 @@ TEST_CASE("hydrojump compare refuses results made with other settings than the c
 
 TEST_CASE("options refuse nan, inf, non-positive numbers, empty paths and the wrong directory, naming the option", "[compare][integration][cli]") {
   // CLI11's PositiveNumber lets "nan" through: `sph --end-time nan` then ran the case's whole end time.
-  hydrojump::compare::testing::TempDir tmp("numbers");
+  hydrojump::testing::TempDir tmp("numbers");
   const std::string study = std::string(HYDROJUMP_SOURCE_DIR) + "/cases/poiseuille.toml";
   REQUIRE(run({"generate", study, "--out", (tmp.path() / "runs").string()}, tmp.path() / "generate.log") == 0);
   const fs::path dir = tmp.path() / "runs" / "poiseuille" / "sph";
@@ -291,7 +291,7 @@ TEST_CASE("options refuse nan, inf, non-positive numbers, empty paths and the wr
 }
 
 TEST_CASE("hydrojump bench --json prints particles, steps, threads, speed and memory", "[compare][integration][cli]") {
-  hydrojump::compare::testing::TempDir tmp("bench");
+  hydrojump::testing::TempDir tmp("bench");
   REQUIRE(run({"bench", "--steps", "3", "--threads", "1", "--json"}, tmp.path() / "bench.log") == 0);
   const std::string log = read_text(tmp.path() / "bench.log");
   INFO(log);
@@ -305,7 +305,7 @@ TEST_CASE("hydrojump bench --json prints particles, steps, threads, speed and me
 }
 
 TEST_CASE("hydrojump bench --model jump runs the stilling-basin models and refuses unknown models", "[compare][integration][cli]") {
-  hydrojump::compare::testing::TempDir tmp("bench_jump");
+  hydrojump::testing::TempDir tmp("bench_jump");
   REQUIRE(run({"bench", "--model", "jump", "--steps", "2", "--threads", "1", "--json"}, tmp.path() / "bench.log") == 0);
   const std::string log = read_text(tmp.path() / "bench.log");
   INFO(log);

@@ -12,11 +12,12 @@
 #include "reference/discharge_samples.hpp"
 #include "foam_case_writer.hpp"
 #include "synthetic_fields.hpp"
-#include "temp_dir.hpp"
+#include "tests/temp_dir.hpp"
 #include "vtp_writer.hpp"
 
 using namespace hydrojump::compare;
 using namespace hydrojump::compare::testing;
+using hydrojump::testing::TempDir;
 
 TEST_CASE("PVD and VTP series give the window frames and arrays and exact section values through files",
           "[compare][readers][sph]") {

@@ -16,7 +16,7 @@
 #include "compare/generate.hpp"
 #include "../sph/basin_fixture.hpp"
 #include "sph/basin_monitor.hpp"
-#include "temp_dir.hpp"
+#include "tests/temp_dir.hpp"
 
 using namespace hydrojump;
 using namespace hydrojump::compare;
@@ -26,7 +26,7 @@ TEST_CASE("The initial states written by the SPH generator and the OpenFOAM writ
           "[compare][integration]") {
   // OpenFOAM is a dependency (scripts/setup.sh installs Debian's openfoam): missing is a failure.
   REQUIRE((fs::exists("/usr/bin/blockMesh") && fs::exists("/usr/bin/setFields")));
-  testing::TempDir tmp("writers");
+  hydrojump::testing::TempDir tmp("writers");
   const cases::Study study = cases::load_embedded_default_study();
   const cases::Case* c = study.find_case("A");
   REQUIRE(c != nullptr);
@@ -94,7 +94,7 @@ hydrojump::sph::BasinMonitor stationary_jump_monitor(OutflowSeconds outflow_seco
 }  // namespace
 
 TEST_CASE("The comparator reads the SPH run monitor's verdict from its summary.json", "[compare][sph]") {
-  hydrojump::compare::testing::TempDir dir("sph_note");
+  hydrojump::testing::TempDir dir("sph_note");
   // A summary written by the SPH run monitor itself: a stationary jump, in = out = q, window 1.5-2 s.
   const auto monitor = stationary_jump_monitor([](double t) { return t; });
   std::ofstream(dir.path() / "summary.json") << monitor.summary_json();
@@ -115,7 +115,7 @@ TEST_CASE("The comparator reads the SPH run monitor's verdict from its summary.j
 }
 
 TEST_CASE("Over another window the comparator recomputes the SPH water balance from basin.csv", "[compare][sph]") {
-  hydrojump::compare::testing::TempDir dir("sph_note_window");
+  hydrojump::testing::TempDir dir("sph_note_window");
   // The outflow carries 10 % more than q until t = 1 s (the basin drains), then exactly q; the toe
   // stands still. Window of the run 1.5-2 s.
   const auto monitor = stationary_jump_monitor([](double t) { return t + 0.1 * std::min(t, 1.0); });

@@ -21,11 +21,11 @@
 #include "compare/case_comparison.hpp"
 #include "compare/generate.hpp"
 #include "reference/runner.hpp"
-#include "temp_dir.hpp"
+#include "tests/temp_dir.hpp"
 
 namespace fs = std::filesystem;
 using namespace hydrojump;
-using hydrojump::compare::testing::TempDir;
+using hydrojump::testing::TempDir;
 
 namespace {
 

@@ -1,4 +1,9 @@
-// A fresh temporary directory per test, removed at the end of the test.
+// A fresh temporary directory per test, removed at the end of the test: named after the tag, the process
+// and a counter, so tests running at once (two builds' ctest, ctest -j) never share one.
+//
+// Example:
+//   const hydrojump::testing::TempDir tmp("atomic");
+//   write_file_atomically(tmp.path() / "out.txt", "text");
 #pragma once
 
 #include <atomic>
@@ -8,14 +13,14 @@
 
 #include <unistd.h>
 
-namespace hydrojump::compare::testing {
+namespace hydrojump::testing {
 
 class TempDir {
  public:
   explicit TempDir(const std::string& tag) {
     static std::atomic<int> counter{0};
     path_ = std::filesystem::temp_directory_path() /
-            ("hydrojump-compare-" + tag + "-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+            ("hydrojump-test-" + tag + "-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
     std::filesystem::remove_all(path_);
     std::filesystem::create_directories(path_);
   }
@@ -33,4 +38,4 @@ class TempDir {
   std::filesystem::path path_;
 };
 
-}  // namespace hydrojump::compare::testing
+}  // namespace hydrojump::testing
