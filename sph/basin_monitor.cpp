@@ -186,27 +186,24 @@ void BasinMonitor::record(const ParticleSet& particles, double t, double mass_in
   samples_.push_back(std::move(s));
 }
 
+// The window rule (cases::window_balance, as for the averaging window) over the second before output k.
 bool BasinMonitor::steady_at(std::size_t k) const {
   const double t = samples_[k].t;
-  if (t < samples_.front().t + steady_span_s - 1e-9) return false;  // not a full second of history yet
+  const double tol = cases::output_time_tolerance_s(setup_.output_interval_s);
+  if (t < samples_.front().t + steady_span_s - tol) return false;  // not a full second of history yet
   std::vector<double> ts, toes, qin, qout;
   for (std::size_t j = 0; j <= k; ++j) {
-    if (samples_[j].t < t - steady_span_s - 1e-9) continue;
+    if (samples_[j].t < t - steady_span_s - tol) continue;
     ts.push_back(samples_[j].t);
     toes.push_back(samples_[j].toe_x);
-    // Each sample's q is over the interval before it; the first one in the span covers earlier time.
-    if (samples_[j].t > t - steady_span_s + 1e-9) {
-      qin.push_back(samples_[j].q_in);
-      qout.push_back(samples_[j].q_out);
-    }
+    qin.push_back(samples_[j].q_in);
+    qout.push_back(samples_[j].q_out);
   }
-  const MeanStd a = mean_std(qin), b = mean_std(qout);
-  if (a.count == 0 || b.count == 0) return false;
+  const cases::WindowBalance b =
+      cases::window_balance(ts, qin, qout, toes, t - steady_span_s, t, tol, setup_.discharge_m2_s);
   // A jump not found in some frames counts as unsteady.
-  for (const double x : toes)
-    if (!std::isfinite(x)) return false;
-  return cases::steady_by_means((b.mean - a.mean) / setup_.discharge_m2_s, cases::least_squares_slope(ts, toes),
-                                setup_.drift_tolerance_m);
+  return b.toe_missing == 0 &&
+         cases::steady_by_means(b.outflow_minus_inflow_over_q, b.toe_trend_m_per_s, setup_.drift_tolerance_m);
 }
 
 double BasinMonitor::steady_from() const {

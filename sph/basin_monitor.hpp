@@ -17,7 +17,8 @@
 // Inflow and outflow discharge: the mass created by the inflow buffer and removed by the outflow buffer
 // between two outputs, divided by rho0 and the interval.
 //
-// Steady state, checked at every output time t over the preceding second [t - 1 s, t]:
+// Steady state, checked at every output time t over the preceding second [t - 1 s, t] by the window rule
+// below (cases::window_balance, the discharges weighted by their intervals), and a toe in every output:
 //   - |mean q_in - mean q_out| / q_prescribed < 2 %, and
 //   - toe drift |slope of a least-squares line through toe(t)| * 1 s < the bed wavelength (corrugated)
 //     or 2 y1 (smooth bed).

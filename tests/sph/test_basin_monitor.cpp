@@ -148,6 +148,8 @@ TEST_CASE("outputs a time step late still make up the averaging window", "[sph][
   REQUIRE(at != std::string::npos);
   CHECK(std::stod(json.substr(at + key.size(), 24)) == Approx(-1.0 / 15.0).epsilon(1e-6));
   CHECK(contains(json, "\"steady_by_window_means\": false"));
+  // The last second's balance (the same rule) is -0.1 q / (1 s q) = -10 % at the last output: not steady.
+  CHECK(std::isnan(monitor.steady_from()));
 }
 
 TEST_CASE("a resumed monitor continues from the checkpoint's rows", "[sph][basin]") {
