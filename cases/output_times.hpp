@@ -1,14 +1,15 @@
 // Which outputs of a run lie in a time window.
 //
-// Both solvers write an output at the first time step that reaches its nominal time, so an output may
-// come up to one time step late (the SPH solver wrote the output of 20 s at 20.0000068 s). A window
-// [t0, t1] therefore accepts an output within a tolerance of its bounds:
+// The SPH solver writes an output at the first time step that reaches its nominal time, so an output
+// may come up to one time step late (the output of 20 s at 20.0000068 s; interFoam shortens its step to
+// land on its write times). A window [t0, t1] therefore accepts an output within a tolerance of its bounds:
 //
 //   t0 - tolerance <= t <= t1 + tolerance,   tolerance = 1 % of the output interval
 //
 // far more than a time step (1e-5 to 1e-3 s) and far less than the spacing of two outputs, so a late
 // output counts for its nominal time and never the neighbouring output for it. Without the tolerance a
-// window [16, 20] s lost its last output and took the interval before 16 s into its water balance.
+// window [16, 20] s lost its last output, and the SPH monitor's mean discharges took in the interval
+// before 16 s.
 //
 // Usage
 //   | function                | returns                                                           |
