@@ -29,6 +29,7 @@
 #include "sph/run.hpp"
 #include "sph/vtk_output.hpp"
 #include "sph_test_support.hpp"
+#include "tests/temp_dir.hpp"
 
 namespace fs = std::filesystem;
 using namespace hydrojump::sph;
@@ -123,7 +124,8 @@ TEST_CASE("a checkpoint whose contents are damaged is refused by name", "[sph][r
   good.particles = loaded.particles;
   good.clock.time = 0.25;
   good.next_output_time = 0.3;
-  const fs::path file = fresh_dir("damaged_checkpoint") / "checkpoint.bin";
+  const hydrojump::testing::TempDir tmp("damaged_checkpoint");  // removed after the test
+  const fs::path file = tmp.path() / "checkpoint.bin";
   write_checkpoint(good, file);
   CHECK_NOTHROW(read_checkpoint(file));
   const auto refused = [&](const std::function<void(Checkpoint&)>& damage, const std::string& why) {
