@@ -186,30 +186,34 @@ void BasinMonitor::record(const ParticleSet& particles, double t, double mass_in
   samples_.push_back(std::move(s));
 }
 
-// The window rule (cases::window_balance, as for the averaging window) over the second before output k.
-bool BasinMonitor::steady_at(std::size_t k) const {
-  const double t = samples_[k].t;
-  const double tol = cases::output_time_tolerance_s(setup_.output_interval_s);
-  if (t < samples_.front().t + steady_span_s - tol) return false;  // not a full second of history yet
-  std::vector<double> ts, toes, qin, qout;
-  for (std::size_t j = 0; j <= k; ++j) {
-    if (samples_[j].t < t - steady_span_s - tol) continue;
-    ts.push_back(samples_[j].t);
-    toes.push_back(samples_[j].toe_x);
-    qin.push_back(samples_[j].q_in);
-    qout.push_back(samples_[j].q_out);
+BasinMonitor::BalanceSeries BasinMonitor::balance_series() const {
+  BalanceSeries s;
+  for (const auto& sample : samples_) {
+    s.t.push_back(sample.t);
+    s.q_in.push_back(sample.q_in);
+    s.q_out.push_back(sample.q_out);
+    s.toe_x.push_back(sample.toe_x);
   }
-  const cases::WindowBalance b =
-      cases::window_balance(ts, qin, qout, toes, t - steady_span_s, t, tol, setup_.discharge_m2_s);
+  return s;
+}
+
+// The window rule (cases::window_balance, as for the averaging window) over the second before output k.
+bool BasinMonitor::steady_at(const BalanceSeries& series, std::size_t k) const {
+  const double t = series.t[k];
+  const double tol = cases::output_time_tolerance_s(setup_.output_interval_s);
+  if (t < series.t.front() + steady_span_s - tol) return false;  // not a full second of history yet
+  const cases::WindowBalance b = cases::window_balance(series.t, series.q_in, series.q_out, series.toe_x,
+                                                       t - steady_span_s, t, tol, setup_.discharge_m2_s);
   // A jump not found in some frames counts as unsteady.
   return b.toe_missing == 0 &&
          cases::steady_by_means(b.outflow_minus_inflow_over_q, b.toe_trend_m_per_s, setup_.drift_tolerance_m);
 }
 
 double BasinMonitor::steady_from() const {
+  const BalanceSeries series = balance_series();
   double from = nan_value;
   for (std::size_t k = 0; k < samples_.size(); ++k) {
-    if (steady_at(k)) {
+    if (steady_at(series, k)) {
       if (!std::isfinite(from)) from = samples_[k].t;
     } else {
       from = nan_value;
@@ -313,14 +317,9 @@ std::string BasinMonitor::summary_json() const {
   const double tol = cases::output_time_tolerance_s(setup_.output_interval_s);
   auto in_window = [&](const BasinSample& s) { return cases::in_output_window(s.t, a, b, tol); };
   std::vector<double> qin, qout, toe, outlet_depth;
-  std::vector<double> all_t, all_q_in, all_q_out, all_toe;  // every sample, for cases::window_balance
   const std::size_t n_sec = setup_.sections.size();
   std::vector<std::vector<double>> depth(n_sec), surface(n_sec), discharge(n_sec);
   for (const auto& s : samples_) {
-    all_t.push_back(s.t);
-    all_q_in.push_back(s.q_in);
-    all_q_out.push_back(s.q_out);
-    all_toe.push_back(s.toe_x);
     if (!in_window(s)) continue;
     // q_in/q_out cover the interval before the sample: count it if that interval lies in the window.
     if (s.t > a + tol) {
@@ -364,15 +363,16 @@ std::string BasinMonitor::summary_json() const {
   // window's first and last outputs, and the toe's least-squares trend. Waves leaving the basin make 1 s
   // means of q_out swing by more than 2 % in runs whose window balances; a basin still filling or
   // draining shows here.
-  const cases::WindowBalance balance =
-      cases::window_balance(all_t, all_q_in, all_q_out, all_toe, a, b, tol, setup_.discharge_m2_s);
+  const BalanceSeries series = balance_series();
+  const cases::WindowBalance balance = cases::window_balance(series.t, series.q_in, series.q_out, series.toe_x,
+                                                             a, b, tol, setup_.discharge_m2_s);
   const double window_imbalance = balance.outflow_minus_inflow_over_q;
   const double toe_trend = balance.toe_trend_m_per_s;
   const bool steady_means = jump_state() == "in_basin" &&
                             cases::steady_by_means(window_imbalance, toe_trend, setup_.drift_tolerance_m) &&
                             toe_missing == 0;
   const double from = steady_from();
-  const bool window_complete = last && last->t >= b - tol;
+  const bool window_complete = balance.reaches_window_end;  // an output at or after the window's end
   const bool steady_window = std::isfinite(from) && from <= a + tol && window_complete;
 
   std::ostringstream o;

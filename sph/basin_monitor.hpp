@@ -139,7 +139,13 @@ class BasinMonitor {
   std::string jump_state() const;
 
  private:
-  bool steady_at(std::size_t k) const;
+  // Every sample's time, discharges and toe: the inputs of cases::window_balance.
+  struct BalanceSeries {
+    std::vector<double> t, q_in, q_out, toe_x;
+  };
+  BalanceSeries balance_series() const;
+  // The 1 s test at sample k on the whole series (window_balance keeps the outputs in [t_k - 1 s, t_k]).
+  bool steady_at(const BalanceSeries& series, std::size_t k) const;
   BasinMonitorSetup setup_;
   std::vector<double> stations_;
   std::vector<BasinSample> samples_;
