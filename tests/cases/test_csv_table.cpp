@@ -7,9 +7,8 @@
 #include <string>
 #include <vector>
 
-#include <unistd.h>
-
 #include "cases/csv_table.hpp"
+#include "tests/temp_dir.hpp"
 
 namespace cases = hydrojump::cases;
 namespace fs = std::filesystem;
@@ -36,9 +35,8 @@ TEST_CASE("CSV cells are numbers only when the whole cell is one, and a missing 
 }
 
 TEST_CASE("CSV files read back as a header and rows, and an unreadable file as an empty table", "[cases][csv]") {
-  const fs::path dir = fs::temp_directory_path() / ("hydrojump_test_csv_table_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const hydrojump::testing::TempDir tmp("csv_table");
+  const fs::path& dir = tmp.path();
   const fs::path file = dir / "basin.csv";
   {
     std::ofstream out(file);
@@ -56,5 +54,4 @@ TEST_CASE("CSV files read back as a header and rows, and an unreadable file as a
   const cases::CsvTable none = cases::read_csv_table(dir / "absent.csv");
   CHECK(none.header.empty());
   CHECK(none.rows.empty());
-  fs::remove_all(dir);
 }
