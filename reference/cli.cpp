@@ -37,8 +37,10 @@ void register_commands(CLI::App& app) {
       "serial or with MPI (--np N: decomposePar, mpirun, reconstructPar). Shows the simulated time and\n"
       "an ETA, stops a diverging run (Courant blow-up, NaN, crash) with the last lines of its log, and\n"
       "continues an interrupted run with --resume. Ctrl-C (or SIGTERM) makes interFoam write the current\n"
-      "time and stop, ready for --resume. Logs: DIR/log.<application>. The case can also be\n"
-      "run by hand with DIR/Allrun. Needs OpenFOAM v1912 (WM_PROJECT_DIR, default /usr/share/openfoam).\n"
+      "time and stop, ready for --resume. Outputs stay on the case's output times (a run resumed\n"
+      "between two of them first runs to the next one; an end time between two is written by a short\n"
+      "closing run). Logs: DIR/log.<application>. The case can also be run by hand with DIR/Allrun.\n"
+      "Needs OpenFOAM v1912 (WM_PROJECT_DIR, default /usr/share/openfoam).\n"
       "One process per DIR: a second one started on it stops at once, naming the first.");
   vof->add_option("DIR", options->dir, "case directory (holds case.toml, system/, constant/, 0.orig/)");
   vof->add_option("--np", options->np, "MPI ranks (1 = serial; >1 runs decomposePar + mpirun)")

@@ -511,12 +511,279 @@ void map_initial_state(const fs::path& dir, const MapSource& source, std::ostrea
   for (const fs::path& p : extra) fs::remove_all(p);
 }
 
+// ------------------------------------------------------------ legs on the output grid
+//
+// interFoam counts its write times, and its function objects their sampling times, from the time it
+// starts at (Time and timeControl in OpenFOAM v1912):
+//
+//   write index = floor((t - t_start + dt/2) / writeInterval)
+//
+// so a run resumed from a time off the grid (a stop on Ctrl-C writes the current time, e.g. 4.41491 s)
+// would write every later output shifted (4.51491, 4.61491 s, ...). The legs of plan_solver_legs
+// (runner.hpp) avoid that. A leg's controlDict replaces the case's for its duration: the case's is
+// kept as system/controlDict.hydrojump-original and put back when the leg ends (or fails), or by the
+// next `hydrojump vof` if the runner was killed meanwhile.
+
+const char* const control_dict_original = "system/controlDict.hydrojump-original";
+
+// The top-level entry `key` of a controlDict's text (the part before `functions`, where the function
+// objects' own writeControl and writeInterval are), or nothing.
+std::optional<std::string> top_level_entry(const std::string& text, const std::string& key) {
+  static const std::regex functions(R"((^|\n)[ \t]*functions\b)");
+  std::smatch f;
+  const std::string head = std::regex_search(text, f, functions) ? text.substr(0, static_cast<std::size_t>(f.position(0))) : text;
+  const std::regex entry("(^|\\n)[ \\t]*" + key + "[ \\t]+([^;\\n]+);");
+  std::smatch m;
+  if (!std::regex_search(head, m, entry)) return std::nullopt;
+  return m[2].str();
+}
+
+std::string read_text(const fs::path& file) {
+  std::ifstream in(file);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+// The controlDict's output interval when its writeControl counts simulated time, else nothing.
+std::optional<double> output_grid_interval(const fs::path& dir) {
+  const std::string text = read_text(dir / "system/controlDict");
+  const auto control = top_level_entry(text, "writeControl");
+  const auto interval_text = top_level_entry(text, "writeInterval");
+  if (!control || !interval_text) return std::nullopt;
+  if (*control != "adjustable" && *control != "adjustableRunTime" && *control != "runTime") return std::nullopt;
+  char* end = nullptr;
+  const double interval = std::strtod(interval_text->c_str(), &end);
+  if (end == interval_text->c_str() || !(interval > 0.0)) return std::nullopt;
+  return interval;
+}
+
+
+// The controlDict of one leg: endTime = the leg's end, and when the leg sets its own write interval,
+// every writeInterval equal to the case's (the top-level one and the function objects') set to it; the
+// rest of the text is kept.
+std::string leg_control_dict(const std::string& text, const SolverLeg& leg) {
+  const auto interval_text = top_level_entry(text, "writeInterval");
+  const double interval = interval_text ? std::strtod(interval_text->c_str(), nullptr) : 0.0;
+  auto number = [](double v) {
+    std::ostringstream s;
+    s << std::setprecision(12) << v;
+    return s.str();
+  };
+  static const std::regex entry(R"((^|\n)([ \t]*)(writeInterval|endTime)([ \t]+)([^;\n]+);)");
+  std::string result;
+  std::size_t copied = 0;
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), entry); it != std::sregex_iterator(); ++it) {
+    const std::smatch& m = *it;
+    const double value = std::strtod(m[5].str().c_str(), nullptr);
+    std::string replacement;
+    if (m[3] == "endTime") {
+      replacement = number(leg.end_s);
+    } else if (leg.write_interval_s && interval > 0.0 && std::abs(value - interval) <= 1e-9 * interval) {
+      replacement = number(*leg.write_interval_s);
+    } else {
+      continue;
+    }
+    const auto value_pos = static_cast<std::size_t>(m.position(5));
+    result += text.substr(copied, value_pos - copied) + replacement;
+    copied = value_pos + static_cast<std::size_t>(m.length(5));
+  }
+  return result + text.substr(copied);
+}
+
+// A leg's controlDict in place of the case's for its lifetime (see above).
+class ControlDictOverride {
+ public:
+  ControlDictOverride(const fs::path& dir, const SolverLeg& leg) : dir_(dir) {
+    const std::string original = read_text(dir / "system/controlDict");
+    cases::write_file_atomically(dir / control_dict_original, original);
+    cases::write_file_atomically(dir / "system/controlDict", leg_control_dict(original, leg));
+  }
+  ~ControlDictOverride() {
+    try {
+      restore();
+    } catch (...) {
+      // the next `hydrojump vof` puts it back (restore_control_dict_left_behind)
+    }
+  }
+  ControlDictOverride(const ControlDictOverride&) = delete;
+  ControlDictOverride& operator=(const ControlDictOverride&) = delete;
+  void restore() {
+    if (restored_) return;
+    fs::rename(dir_ / control_dict_original, dir_ / "system/controlDict");
+    restored_ = true;
+  }
+
+ private:
+  fs::path dir_;
+  bool restored_ = false;
+};
+
+// Puts back a case controlDict left aside by a runner killed during an aligning leg.
+void restore_control_dict_left_behind(const fs::path& dir, std::ostream& out) {
+  if (!fs::exists(dir / control_dict_original)) return;
+  fs::rename(dir / control_dict_original, dir / "system/controlDict");
+  out << "  system/controlDict restored from " << control_dict_original
+      << " (left by a run stopped while aligning with the output times)\n";
+}
+
+// --------------------------------------------------------------------------------- the solver
+
+// What every leg of interFoam needs: the case, the command (interFoam, or mpirun ... -parallel).
+struct SolverRun {
+  fs::path dir;
+  const cases::Case& c;
+  double thickness_m;                // spanwise cell size: discharges per unit width
+  std::vector<std::string> command;
+  bool parallel;
+  const RunOptions& options;
+  double run_end_s;                  // the end time of the whole run (progress and ETA)
+};
+
+// Runs the solver from `start` (nothing: t = 0) until `end_time_s`, showing progress, and returns the
+// time reached. A failure (divergence, crash, an early end) or a stop request throws OpenFoamError with
+// the last lines of the log and how to resume.
+double run_solver(const SolverRun& run, std::optional<double> start, double end_time_s, std::ostream& out) {
+  const fs::path& dir = run.dir;
+  const cases::Case& c = run.c;
+  const fs::path log_file = dir / "log.interFoam";
+  std::uintmax_t offset = 0;
+  if (start) {
+    std::ofstream mark(log_file, std::ios::app);
+    mark << "\n// ---- resumed by hydrojump from t = " << format_seconds(*start) << " s ----\n";
+    mark.close();
+    std::error_code ec;
+    offset = fs::file_size(log_file, ec);
+    if (ec) offset = 0;
+  }
+  out << "Running " << command_text(run.command) << " to t = " << format_seconds(end_time_s)
+      << " s (log: log.interFoam)\n" << std::flush;
+  const pid_t pid = spawn(run.command, dir, log_file, start.has_value());
+  SolverLog log(DivergenceLimits{c.vof.max_courant, 25.0, 1e-9});
+  const bool interactive = (&out == &std::cout) && ::isatty(STDOUT_FILENO);
+  const double t_begin = start.value_or(0.0);
+  const auto solver_begin = std::chrono::steady_clock::now();
+  auto last_report = solver_begin;
+  std::optional<cases::ChildExit> ended;  // how interFoam ended; nullopt while it runs
+  auto read_new = [&]() {
+    std::ifstream in(log_file, std::ios::binary);
+    if (!in) return;
+    in.seekg(static_cast<std::streamoff>(offset));
+    std::string chunk((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    offset += chunk.size();
+    log.add_text(chunk);
+  };
+  auto progress = [&](bool final_line) {
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - solver_begin).count();
+    const double t = log.time_s().value_or(t_begin);
+    const double done = t - t_begin;
+    const double eta = done > 0 ? (run.run_end_s - t) * wall / done : std::nan("");
+    char buffer[256];
+    std::snprintf(buffer, sizeof buffer, "  t = %.4g / %.4g s (%.1f %%), dt = %.3g s, Co max %.3g, wall %s, ETA %s",
+                  t, run.run_end_s, 100.0 * t / run.run_end_s, log.time_step_s().value_or(0.0),
+                  log.courant_max().value_or(0.0), format_duration(wall).c_str(),
+                  format_duration(eta).c_str());
+    std::string line = buffer;
+    // A stilling basin's water balance over the last simulated second of this run, or since it
+    // started (discharge_samples.hpp).
+    const double balance_from = std::max(t_begin, t - 1.0);
+    if (c.stilling_basin() && t > balance_from) {
+      try {
+        if (const auto q = patch_discharges(dir, balance_from, t, run.thickness_m)) {
+          std::ostringstream balance;
+          balance << std::setprecision(4) << ", q_in " << q->inflow_m2_s << ", q_out " << q->outflow_m2_s;
+          if (q->top_outflow_m2_s > 0.001 * q->inflow_m2_s) balance << " + top " << q->top_outflow_m2_s;
+          balance << " m2/s (last " << t - balance_from << " s)";
+          line += balance.str();
+        }
+      } catch (const std::exception&) {
+        // a sample file being written: the next progress line reads it again
+      }
+    }
+    if (interactive) {
+      out << "\r" << line << "    " << (final_line ? "\n" : "") << std::flush;
+    } else {
+      out << line << "\n" << std::flush;
+    }
+  };
+  StopRequestGuard stop_guard;
+  bool stop_sent = false;
+  std::chrono::steady_clock::time_point stop_time;
+  while (!ended) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    ended = cases::poll_child(pid);
+    if (stop_requested && !ended && !stop_sent) {
+      out << (interactive ? "\n" : "") << "Stop requested: interFoam writes the current time and stops...\n"
+          << std::flush;
+      ::kill(pid, write_and_stop_signal);
+      stop_sent = true;
+      stop_time = std::chrono::steady_clock::now();
+    }
+    if (stop_sent && !ended &&
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - stop_time).count() > 120.0) {
+      ended = cases::stop_child(pid);
+    }
+    read_new();
+    if (log.failed() && !ended) {
+      ended = cases::stop_child(pid);
+      read_new();
+    }
+    const auto now = std::chrono::steady_clock::now();
+    const double since = std::chrono::duration<double>(now - last_report).count();
+    if (!ended && (interactive ? since >= 1.0 : since >= run.options.progress_interval_s)) {
+      progress(false);
+      last_report = now;
+    }
+  }
+  progress(true);
+  const std::string np_option = run.parallel ? " --np " + std::to_string(run.options.np) : std::string();
+  if (stop_sent) {
+    const auto written = latest_time(run.parallel ? dir / "processor0" : dir);
+    throw OpenFoamError("interrupted: interFoam stopped at t = " + format_seconds(log.time_s().value_or(t_begin)) +
+                        " s; latest time directory " + (written ? format_seconds(*written) + " s" : std::string("none")) +
+                        ". Continue with `hydrojump vof " + dir.string() + " --resume" + np_option + "`.");
+  }
+  const auto last_written = latest_time(run.parallel ? dir / "processor0" : dir);
+  const std::string resume_hint =
+      last_written ? " The last time directory written is t = " + format_seconds(*last_written) +
+                         " s (inspect it; a run that diverged may have written non-physical fields just "
+                         "before stopping). To retry, lower maxCo/maxAlphaCo in system/controlDict, delete the "
+                         "bad time directories and run `hydrojump vof DIR --resume`."
+                   : std::string();
+  if (log.failed() || ended->status() != 0) {
+    const std::string why = log.failed() ? log.failure() : "the solver " + ended->describe();
+    throw OpenFoamError("interFoam stopped in " + dir.string() + ": " + why + "." + resume_hint +
+                        "\nLast lines of log.interFoam" + (log.failed() ? " up to the failure" : "") + ":\n" +
+                        (log.failed() ? log.failure_context() : log.tail()));
+  }
+  const double reached = log.time_s().value_or(t_begin);
+  if (reached < end_time_s * (1.0 - 1e-6) - 1e-12) {
+    throw OpenFoamError("interFoam ended at t = " + format_seconds(reached) + " s before the end time " +
+                        format_seconds(end_time_s) + " s." + resume_hint + "\nLast lines of log.interFoam:\n" +
+                        log.tail());
+  }
+  return reached;
+}
+
 }  // namespace
 
 std::optional<double> latest_time(const fs::path& case_dir) {
   const auto times = time_directories(case_dir);
   if (times.empty()) return std::nullopt;
   return times.back().first;
+}
+
+std::vector<SolverLeg> plan_solver_legs(double start_s, double end_s, std::optional<double> interval) {
+  if (!(end_s > start_s)) return {};  // the run already reached its end time
+  if (!interval) return {SolverLeg{end_s, std::nullopt}};
+  const double dt = *interval, eps = 1e-6;
+  const double first = std::ceil(start_s / dt - eps) * dt;
+  const double last = std::floor(end_s / dt + eps) * dt;
+  auto on = [&](double a, double b) { return std::abs(a - b) <= eps * dt; };
+  if (first > last + eps * dt) return {SolverLeg{end_s, end_s - start_s}};  // no grid time in between
+  std::vector<SolverLeg> legs;
+  if (!on(first, start_s)) legs.push_back(SolverLeg{on(first, end_s) ? end_s : first, first - start_s});
+  if (last > first + eps * dt) legs.push_back(SolverLeg{on(last, end_s) ? end_s : last, std::nullopt});
+  if (!on(last, end_s)) legs.push_back(SolverLeg{end_s, end_s - last});
+  return legs;
 }
 
 void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostream& out) {
@@ -529,6 +796,7 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
   }
   // One process per case directory (a second one stops here, naming the first).
   const cases::DirectoryLock lock(dir, "hydrojump vof");
+  restore_control_dict_left_behind(dir, out);
   const cases::Study study = cases::load_study(spec_file);
   if (study.cases.size() != 1 || study.cases.front().resolutions.size() != 1) {
     throw OpenFoamError(spec_file.string() + " must hold exactly one case with one resolution table "
@@ -712,121 +980,28 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
       solver.push_back(a);
     }
   }
-  const fs::path log_file = dir / "log.interFoam";
-  std::uintmax_t offset = 0;
-  if (start) {
-    std::ofstream mark(log_file, std::ios::app);
-    mark << "\n// ---- resumed by hydrojump from t = " << format_seconds(*start) << " s ----\n";
-    mark.close();
-    std::error_code ec;
-    offset = fs::file_size(log_file, ec);
-    if (ec) offset = 0;
-  }
-  out << "Running " << command_text(solver) << " to t = " << format_seconds(end_time_s)
-      << " s (log: log.interFoam)\n" << std::flush;
-  const pid_t pid = spawn(solver, dir, log_file, start.has_value());
-  SolverLog log(DivergenceLimits{c.vof.max_courant, 25.0, 1e-9});
-  const bool interactive = (&out == &std::cout) && ::isatty(STDOUT_FILENO);
+  const SolverRun run{dir, c, vof.mesh.thickness_m, solver, parallel, options, end_time_s};
+  // Legs that keep every output on the case's grid (plan_solver_legs): usually one.
   const double t_begin = start.value_or(0.0);
-  const auto solver_begin = std::chrono::steady_clock::now();
-  auto last_report = solver_begin;
-  std::optional<cases::ChildExit> ended;  // how interFoam ended; nullopt while it runs
-  auto read_new = [&]() {
-    std::ifstream in(log_file, std::ios::binary);
-    if (!in) return;
-    in.seekg(static_cast<std::streamoff>(offset));
-    std::string chunk((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    offset += chunk.size();
-    log.add_text(chunk);
-  };
-  auto progress = [&](bool final_line) {
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - solver_begin).count();
-    const double t = log.time_s().value_or(t_begin);
-    const double done = t - t_begin;
-    const double eta = done > 0 ? (end_time_s - t) * wall / done : std::nan("");
-    char buffer[256];
-    std::snprintf(buffer, sizeof buffer, "  t = %.4g / %.4g s (%.1f %%), dt = %.3g s, Co max %.3g, wall %s, ETA %s",
-                  t, end_time_s, 100.0 * t / end_time_s, log.time_step_s().value_or(0.0),
-                  log.courant_max().value_or(0.0), format_duration(wall).c_str(),
-                  format_duration(eta).c_str());
-    std::string line = buffer;
-    // A stilling basin's water balance over the last simulated second of this run, or since it
-    // started (discharge_samples.hpp).
-    const double balance_from = std::max(t_begin, t - 1.0);
-    if (c.stilling_basin() && t > balance_from) {
-      try {
-        if (const auto q = patch_discharges(dir, balance_from, t, vof.mesh.thickness_m)) {
-          std::ostringstream balance;
-          balance << std::setprecision(4) << ", q_in " << q->inflow_m2_s << ", q_out " << q->outflow_m2_s;
-          if (q->top_outflow_m2_s > 0.001 * q->inflow_m2_s) balance << " + top " << q->top_outflow_m2_s;
-          balance << " m2/s (last " << t - balance_from << " s)";
-          line += balance.str();
-        }
-      } catch (const std::exception&) {
-        // a sample file being written: the next progress line reads it again
+  std::optional<double> leg_start = start;
+  double reached = t_begin;
+  for (const SolverLeg& leg : plan_solver_legs(t_begin, end_time_s, output_grid_interval(dir))) {
+    std::optional<ControlDictOverride> leg_control;
+    if (leg.write_interval_s || std::abs(leg.end_s - end_time_s) > 1e-12) {
+      if (leg_start && leg.write_interval_s && leg.end_s < end_time_s) {
+        out << "Aligning with the output times: t = " << format_seconds(*leg_start)
+            << " s lies between two of them, so interFoam first runs to t = " << format_seconds(leg.end_s)
+            << " s (it counts its write times from where it starts)\n";
+      } else if (leg.write_interval_s) {
+        out << "The end time " << format_seconds(end_time_s)
+            << " s lies between two output times: interFoam runs to the last one, then to the end time "
+               "in a closing leg that writes it\n";
       }
+      leg_control.emplace(dir, leg);
     }
-    if (interactive) {
-      out << "\r" << line << "    " << (final_line ? "\n" : "") << std::flush;
-    } else {
-      out << line << "\n" << std::flush;
-    }
-  };
-  StopRequestGuard stop_guard;
-  bool stop_sent = false;
-  std::chrono::steady_clock::time_point stop_time;
-  while (!ended) {
-    std::this_thread::sleep_for(std::chrono::milliseconds(500));
-    ended = cases::poll_child(pid);
-    if (stop_requested && !ended && !stop_sent) {
-      out << (interactive ? "\n" : "") << "Stop requested: interFoam writes the current time and stops...\n"
-          << std::flush;
-      ::kill(pid, write_and_stop_signal);
-      stop_sent = true;
-      stop_time = std::chrono::steady_clock::now();
-    }
-    if (stop_sent && !ended &&
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - stop_time).count() > 120.0) {
-      ended = cases::stop_child(pid);
-    }
-    read_new();
-    if (log.failed() && !ended) {
-      ended = cases::stop_child(pid);
-      read_new();
-    }
-    const auto now = std::chrono::steady_clock::now();
-    const double since = std::chrono::duration<double>(now - last_report).count();
-    if (!ended && (interactive ? since >= 1.0 : since >= options.progress_interval_s)) {
-      progress(false);
-      last_report = now;
-    }
-  }
-  progress(true);
-  if (stop_sent) {
-    const auto written = latest_time(parallel ? dir / "processor0" : dir);
-    throw OpenFoamError("interrupted: interFoam stopped at t = " + format_seconds(log.time_s().value_or(t_begin)) +
-                        " s; latest time directory " + (written ? format_seconds(*written) + " s" : std::string("none")) +
-                        ". Continue with `hydrojump vof " + dir.string() + " --resume" +
-                        (parallel ? " --np " + std::to_string(options.np) : std::string()) + "`.");
-  }
-  const auto last_written = latest_time(parallel ? dir / "processor0" : dir);
-  const std::string resume_hint =
-      last_written ? " The last time directory written is t = " + format_seconds(*last_written) +
-                         " s (inspect it; a run that diverged may have written non-physical fields just "
-                         "before stopping). To retry, lower maxCo/maxAlphaCo in system/controlDict, delete the "
-                         "bad time directories and run `hydrojump vof DIR --resume`."
-                   : std::string();
-  if (log.failed() || ended->status() != 0) {
-    const std::string why = log.failed() ? log.failure() : "the solver " + ended->describe();
-    throw OpenFoamError("interFoam stopped in " + dir.string() + ": " + why + "." + resume_hint +
-                        "\nLast lines of log.interFoam" + (log.failed() ? " up to the failure" : "") + ":\n" +
-                        (log.failed() ? log.failure_context() : log.tail()));
-  }
-  const double reached = log.time_s().value_or(t_begin);
-  if (reached < end_time_s * (1.0 - 1e-6) - 1e-12) {
-    throw OpenFoamError("interFoam ended at t = " + format_seconds(reached) + " s before the end time " +
-                        format_seconds(end_time_s) + " s." + resume_hint + "\nLast lines of log.interFoam:\n" +
-                        log.tail());
+    reached = run_solver(run, leg_start, leg.end_s, out);
+    if (leg_control) leg_control->restore();
+    leg_start = leg.end_s;
   }
   if (parallel) {
     std::vector<std::string> argv = {"reconstructPar"};

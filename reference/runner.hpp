@@ -10,7 +10,8 @@
 //      (Courant blow-up, time-step collapse, NaN, crash) that stops the solver and prints the last
 //      lines of the log;
 //   5. `--resume` continues from the latest complete time directory (an incomplete one, left by a
-//      killed run, is moved aside to <time>.incomplete);
+//      killed run, is moved aside to <time>.incomplete); the run is split into legs that keep every
+//      output on the case's output times and write the end time (plan_solver_legs below);
 //   6. `--map-from SRC` (a fresh start only) replaces the setFields state by the latest complete time
 //      of another run of the same case, interpolated onto this mesh with OpenFOAM's `mapFields
 //      -consistent` (mesh sequencing: a finer run started from a settled coarser one). The run still
@@ -67,6 +68,24 @@ SelfTestResult self_test_non_orthogonal(const std::filesystem::path& work_dir);
 
 // The latest time directory of `case_dir` (> 0), or nothing.
 std::optional<double> latest_time(const std::filesystem::path& case_dir);
+
+// interFoam counts its write times from the time it starts at and writes no time that is not a write
+// time, not even its endTime. To keep every output of a run on the grid k dt_out (the SPH solver's output
+// times) and to write its end time, the runner splits a run into legs, each one interFoam run with its own
+// endTime (and write interval, when set):
+//   an aligning leg to the first grid time when the start lies off the grid (a run stopped by Ctrl-C and
+//   resumed), written once at its end; the grid times; a closing leg written once at an end time off the
+//   grid. Times within 1e-6 dt_out of the grid count as on it.
+//
+//   g_first = ceil(t_start / dt_out) dt_out,   g_last = floor(t_end / dt_out) dt_out
+//
+// Usually this is one leg (start and end on the grid); none when the start is not before the end. Without a known interval (writeControl not
+// counting simulated time) it is one leg at the case's settings.
+struct SolverLeg {
+  double end_s = 0.0;
+  std::optional<double> write_interval_s;  // this leg's writeInterval; nothing: the case's
+};
+std::vector<SolverLeg> plan_solver_legs(double start_s, double end_s, std::optional<double> output_interval_s);
 
 // Meshes and runs the case in `dir` (written by `hydrojump generate`, holding case.toml).
 // Throws OpenFoamError (or cases::SpecError for a bad case.toml).

@@ -205,6 +205,58 @@ TEST_CASE("a tiny corrugated basin meshes, passes checkMesh, runs and resumes", 
   fs::remove_all(dir);
 }
 
+TEST_CASE("a run resumed between two output times first runs to the next one: later outputs stay on the grid",
+          "[reference][openfoam]") {
+  require_openfoam();
+  // Output every 0.01 s; the first run ends between two outputs, at 0.015 s (where a stop on Ctrl-C
+  // also leaves a run).
+  const fs::path dir = generate(basin_spec("", 0.02, 0.01), "aligned");
+  reference::RunOptions first;
+  first.end_time_s = 0.015;
+  std::ostringstream out1;
+  reference::run_vof_case(dir, first, out1);
+  INFO(out1.str());
+  // interFoam writes no time that is not a write time, not even its end time: a closing leg writes it.
+  CHECK_THAT(out1.str(), Catch::Contains("The end time 0.015 s lies between two output times"));
+  CHECK(fs::exists(dir / "0.01/alpha.water.gz"));
+  REQUIRE(fs::exists(dir / "0.015/alpha.water.gz"));
+  CHECK(fs::exists(dir / "postProcessing/sections/0.015/up_alpha.water.xy"));
+  const std::string case_control = read(dir / "system/controlDict");
+
+  // A runner killed during an aligning leg leaves the case's controlDict aside: the next run puts it
+  // back before reading it.
+  fs::copy_file(dir / "system/controlDict", dir / "system/controlDict.hydrojump-original");
+  { std::ofstream(dir / "system/controlDict") << "// the aligning leg's dictionary\n"; }
+
+  reference::RunOptions resume;
+  resume.resume = true;
+  resume.end_time_s = 0.035;
+  std::ostringstream out2;
+  reference::run_vof_case(dir, resume, out2);
+  INFO(out2.str());
+  CHECK_THAT(out2.str(), Catch::Contains("system/controlDict restored") &&
+                             Catch::Contains("Aligning with the output times: t = 0.015 s") &&
+                             Catch::Contains("first runs to t = 0.02 s") && Catch::Contains("reached t = 0.035"));
+  // Counting from 0.015 s, interFoam alone would write 0.025 s and not the end time. With the legs, the
+  // fields and the sampled sections land on the grid 0.02, 0.03 s, and on the end time 0.035 s.
+  for (const char* t : {"0.02", "0.03", "0.035"}) {
+    INFO(t);
+    CHECK(fs::exists(dir / t / "alpha.water.gz"));
+  }
+  CHECK_FALSE(fs::exists(dir / "0.025"));
+  CHECK(fs::exists(dir / "postProcessing/sections/0.02/up_alpha.water.xy"));
+  CHECK(fs::exists(dir / "postProcessing/sections/0.03/up_alpha.water.xy"));
+  CHECK_FALSE(fs::exists(dir / "postProcessing/sections/0.025"));
+  // The case's controlDict is back, only its endTime changed by --end-time.
+  CHECK_FALSE(fs::exists(dir / "system/controlDict.hydrojump-original"));
+  std::string expected = case_control;
+  const std::string end_entry = "endTime         0.015;";
+  REQUIRE(expected.find(end_entry) != std::string::npos);
+  expected.replace(expected.find(end_entry), end_entry.size(), "endTime         0.035;");
+  CHECK(read(dir / "system/controlDict") == expected);
+  fs::remove_all(dir);
+}
+
 TEST_CASE("a run started from another run's state (--map-from) takes its fields and starts at t = 0",
           "[reference][openfoam]") {
   require_openfoam();
