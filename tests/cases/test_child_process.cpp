@@ -9,9 +9,8 @@
 #include <sstream>
 #include <thread>
 
-#include <unistd.h>
-
 #include "cases/child_process.hpp"
+#include "tests/temp_dir.hpp"
 
 using namespace hydrojump::cases;
 namespace fs = std::filesystem;
@@ -25,19 +24,13 @@ std::string read(const fs::path& p) {
   return s.str();
 }
 
-fs::path fresh_dir() {
-  const fs::path dir = fs::temp_directory_path() / ("hydrojump-child-" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
 ChildCommand shell(const std::string& script, const fs::path& log) { return ChildCommand({"/bin/sh", "-c", script}, log); }
 
 }  // namespace
 
 TEST_CASE("A child's exit code and output reach the caller and its log file", "[cases][process]") {
-  const fs::path dir = fresh_dir();
+  const hydrojump::testing::TempDir tmp("child");
+  const fs::path& dir = tmp.path();
   const fs::path log = dir / "out.log";
   const ChildExit e = run_child(shell("echo to-stdout; echo to-stderr >&2; exit 3", log));
   CHECK(e.exited);
@@ -57,11 +50,11 @@ TEST_CASE("A child's exit code and output reach the caller and its log file", "[
   // stdin is /dev/null: a child that reads it ends instead of waiting for a terminal.
   CHECK(run_child(shell("cat; echo read-done", log)).status() == 0);
   CHECK(read(log) == "only\nread-done\n");
-  fs::remove_all(dir);
 }
 
 TEST_CASE("A child killed by a signal reports it as 128 + the signal number", "[cases][process]") {
-  const fs::path dir = fresh_dir();
+  const hydrojump::testing::TempDir tmp("child");
+  const fs::path& dir = tmp.path();
   const ChildExit e = run_child(shell("kill -KILL $$", dir / "log"));
   CHECK_FALSE(e.exited);
   CHECK(e.signal == 9);
@@ -85,11 +78,11 @@ TEST_CASE("A child killed by a signal reports it as 128 + the signal number", "[
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   CHECK(killed.signal == 9);
   CHECK(seconds < 5.0);
-  fs::remove_all(dir);
 }
 
 TEST_CASE("A child runs in its working directory with the requested environment changes", "[cases][process]") {
-  const fs::path dir = fresh_dir();
+  const hydrojump::testing::TempDir tmp("child");
+  const fs::path& dir = tmp.path();
   fs::create_directories(dir / "work");
   ::setenv("HYDROJUMP_TEST_REMOVED", "present", 1);
   ::setenv("HYDROJUMP_TEST_REPLACED", "old", 1);
@@ -104,11 +97,11 @@ TEST_CASE("A child runs in its working directory with the requested environment 
   CHECK(std::string(std::getenv("HYDROJUMP_TEST_REPLACED")) == "old");
   ::unsetenv("HYDROJUMP_TEST_REMOVED");
   ::unsetenv("HYDROJUMP_TEST_REPLACED");
-  fs::remove_all(dir);
 }
 
 TEST_CASE("A program that cannot be started is an error naming it and the reason", "[cases][process]") {
-  const fs::path dir = fresh_dir();
+  const hydrojump::testing::TempDir tmp("child");
+  const fs::path& dir = tmp.path();
   auto message = [](const ChildCommand& c) -> std::string {
     try {
       run_child(c);
@@ -132,5 +125,4 @@ TEST_CASE("A program that cannot be started is an error naming it and the reason
   // A name on PATH is found.
   CHECK(find_on_path("sh").has_value());
   CHECK(run_child(ChildCommand({"sh", "-c", "exit 0"}, dir / "log")).status() == 0);
-  fs::remove_all(dir);
 }

@@ -11,17 +11,12 @@
 
 #include "cases/child_process.hpp"
 #include "cases/directory_lock.hpp"
+#include "tests/temp_dir.hpp"
 
 using namespace hydrojump::cases;
 namespace fs = std::filesystem;
 
 namespace {
-
-fs::path fresh_dir() {
-  const fs::path dir = fs::temp_directory_path() / ("hydrojump-lock-" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  return dir;
-}
 
 std::string busy_message(const fs::path& dir) {
   try {
@@ -35,7 +30,8 @@ std::string busy_message(const fs::path& dir) {
 }  // namespace
 
 TEST_CASE("A run directory is locked by one holder at a time", "[cases][lock]") {
-  const fs::path dir = fresh_dir() / "run";
+  const hydrojump::testing::TempDir tmp("lock");
+  const fs::path dir = tmp.path() / "run";
   {
     const DirectoryLock first(dir, "hydrojump sph");  // creates the directory
     CHECK(fs::is_directory(dir));
@@ -45,11 +41,11 @@ TEST_CASE("A run directory is locked by one holder at a time", "[cases][lock]") 
   }
   // Released with its holder: the next one gets it.
   { const DirectoryLock again(dir, "again"); }
-  fs::remove_all(dir.parent_path());
 }
 
 TEST_CASE("A lock held by a process goes with it, even when it is killed", "[cases][lock]") {
-  const fs::path dir = fresh_dir() / "run";
+  const hydrojump::testing::TempDir tmp("lock");
+  const fs::path dir = tmp.path() / "run";
   fs::create_directories(dir);
   // flock(1) from util-linux (essential in Debian) takes the same kind of lock on the same file and,
   // with --no-fork, becomes the sleeping holder itself. It waits for the lock (no --nonblock): the
@@ -69,11 +65,11 @@ TEST_CASE("A lock held by a process goes with it, even when it is killed", "[cas
   ::kill(holder, SIGKILL);
   CHECK(wait_child(holder).signal == SIGKILL);
   CHECK(busy_message(dir) == "not refused");  // no stale lock to delete by hand
-  fs::remove_all(dir.parent_path());
 }
 
 TEST_CASE("A child started while the lock is held does not keep it", "[cases][lock]") {
-  const fs::path dir = fresh_dir() / "run";
+  const hydrojump::testing::TempDir tmp("lock");
+  const fs::path dir = tmp.path() / "run";
   pid_t child = 0;
   {
     const DirectoryLock lock(dir, "parent");
@@ -82,5 +78,4 @@ TEST_CASE("A child started while the lock is held does not keep it", "[cases][lo
   // The parent let go; the sleeping child must not hold the lock.
   CHECK(busy_message(dir) == "not refused");
   stop_child(child);
-  fs::remove_all(dir.parent_path());
 }

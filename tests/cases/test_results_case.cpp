@@ -3,10 +3,10 @@
 #include <catch2/catch.hpp>
 
 #include <fstream>
-#include <unistd.h>
 
 #include "cases/fingerprint.hpp"
 #include "cases/results_case.hpp"
+#include "tests/temp_dir.hpp"
 
 namespace fs = std::filesystem;
 using namespace hydrojump::cases;
@@ -65,8 +65,8 @@ TEST_CASE("results_case: run-control lines and comments do not define a run, eve
 }
 
 TEST_CASE("results_case: results are refused under a case.toml other than the one they were made with", "[cases][results_case]") {
-  const fs::path dir = fs::temp_directory_path() / ("hydrojump_test_results_case_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
+  const hydrojump::testing::TempDir tmp("results_case");
+  const fs::path& dir = tmp.path();
   fs::create_directories(dir / "sph");
   const fs::path sph = dir / "sph";
   write(sph / "case.toml", resolved_case);
@@ -97,5 +97,4 @@ TEST_CASE("results_case: results are refused under a case.toml other than the on
   // Results without any case.toml cannot be told apart.
   fs::remove(sph / "case.toml");
   CHECK_THROWS_WITH(require_results_of(sph, dir / "other.toml"), Catch::Contains("no case.toml"));
-  fs::remove_all(dir);
 }

@@ -10,8 +10,6 @@
 #include <stdexcept>
 #include <string>
 
-#include <unistd.h>
-
 #include "cases/geometry.hpp"
 #include "cases/spec_reader.hpp"
 #include "reference/case_writer.hpp"
@@ -19,6 +17,7 @@
 #include "reference/mesh_plan.hpp"
 #include "reference/runner.hpp"
 #include "reference_test_specs.hpp"
+#include "tests/temp_dir.hpp"
 
 namespace fs = std::filesystem;
 namespace foam = hydrojump::reference::foam;
@@ -57,12 +56,6 @@ std::map<std::string, Patch> patches_of(const foam::Dictionary& block_mesh) {
     out[p.text()] = patch;
   }
   return out;
-}
-
-fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("hydrojump-reference-test-" + name + "-" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  return dir;
 }
 
 }  // namespace
@@ -422,11 +415,11 @@ TEST_CASE("cases the VOF reference cannot run are rejected with a clear message"
     CHECK_THROWS_WITH(reference::build_vof_case(study, study.cases.front(), "quick"),
                       Catch::Contains("gate") && Catch::Contains("instant"));
     // `generate` still succeeds for such a study: the vof/ directory explains why it has no case.
-    const fs::path dir = fresh_dir("lifted");
+    const hydrojump::testing::TempDir tmp("reference-lifted");
+    const fs::path dir = tmp.path() / "case";  // not there yet: write_vof_case creates it
     reference::write_vof_case(study, study.cases.front(), "quick", dir);
     CHECK(fs::exists(dir / "README.txt"));
     CHECK_FALSE(fs::exists(dir / "system"));
-    fs::remove_all(dir);
   }
   {
     const cases::Study study = parse(basin_spec());
@@ -436,7 +429,8 @@ TEST_CASE("cases the VOF reference cannot run are rejected with a clear message"
 
 TEST_CASE("write_vof_case writes a complete case directory with its resolved spec", "[reference][case]") {
   const cases::Study study = parse(basin_spec());
-  const fs::path dir = fresh_dir("write");
+  const hydrojump::testing::TempDir tmp("reference-write");
+  const fs::path dir = tmp.path() / "case";  // not there yet: write_vof_case creates it
   reference::write_vof_case(study, study.cases.front(), "quick", dir);
   const reference::VofCase vof = reference::build_vof_case(study, study.cases.front(), "quick");
   for (const auto& [path, dict] : vof.files) {
@@ -452,7 +446,6 @@ TEST_CASE("write_vof_case writes a complete case directory with its resolved spe
   CHECK(vof2.mesh.cell_count() == vof.mesh.cell_count());
   CHECK(foam::format_file(vof2.headers.at("system/controlDict"), vof2.files.at("system/controlDict")) ==
         foam::format_file(vof.headers.at("system/controlDict"), vof.files.at("system/controlDict")));
-  fs::remove_all(dir);
 }
 
 TEST_CASE("SPH-only cases get a note instead of an OpenFOAM case and the runner refuses them",
@@ -467,7 +460,8 @@ TEST_CASE("SPH-only cases get a note instead of an OpenFOAM case and the runner 
   const cases::Case& c = study.cases.front();
   CHECK_FALSE(reference::has_vof_reference(c));
   CHECK_THROWS_WITH(reference::build_vof_case(study, c, "quick"), Catch::Contains("poiseuille"));
-  const fs::path dir = fresh_dir("poiseuille");
+  const hydrojump::testing::TempDir tmp("reference-poiseuille");
+  const fs::path dir = tmp.path() / "case";  // not there yet: write_vof_case creates it
   reference::write_vof_case(study, c, "quick", dir);
   CHECK(fs::exists(dir / "README.txt"));
   CHECK(fs::exists(dir / "case.toml"));
@@ -475,5 +469,4 @@ TEST_CASE("SPH-only cases get a note instead of an OpenFOAM case and the runner 
   std::ostringstream out;
   CHECK_THROWS_WITH(reference::run_vof_case(dir, reference::RunOptions{}, out),
                     Catch::Contains("no OpenFOAM reference") && Catch::Contains("poiseuille"));
-  fs::remove_all(dir);
 }

@@ -5,10 +5,9 @@
 #include <fstream>
 #include <stdexcept>
 
-#include <unistd.h>
-
 #include "reference/discharge_samples.hpp"
 #include "reference/line_samples.hpp"
+#include "tests/temp_dir.hpp"
 
 namespace fs = std::filesystem;
 using hydrojump::reference::LineSample;
@@ -40,7 +39,8 @@ TEST_CASE("the surge front ignores detached splashes", "[reference][line_samples
 }
 
 TEST_CASE("raw .xy files are read and bad ones rejected with the file name", "[reference][line_samples]") {
-  const fs::path dir = fs::temp_directory_path() / ("hydrojump-line-samples-" + std::to_string(::getpid()));
+  const hydrojump::testing::TempDir tmp("line-samples");
+  const fs::path& dir = tmp.path();
   fs::create_directories(dir / "0.5");
   fs::create_directories(dir / "0.25");
   {
@@ -59,14 +59,13 @@ TEST_CASE("raw .xy files are read and bad ones rejected with the file name", "[r
   REQUIRE(times.size() == 2);
   CHECK(times[0].first == 0.25);
   CHECK(times[1].first == 0.5);
-  fs::remove_all(dir);
 }
 
 TEST_CASE("patch discharges: window means per unit width, outward fluxes, restarts and missing samples",
           "[reference][samples]") {
   using hydrojump::reference::patch_discharges;
-  const fs::path dir = fs::temp_directory_path() / ("hydrojump-discharges-" + std::to_string(::getpid()));
-  fs::remove_all(dir);
+  const hydrojump::testing::TempDir tmp("discharges");
+  const fs::path dir = tmp.path() / "case";  // not there yet, as a case without samples
   auto write = [&](const std::string& function, const std::string& start, const std::string& rows) {
     fs::create_directories(dir / "postProcessing" / function / start);
     std::ofstream(dir / "postProcessing" / function / start / "surfaceFieldValue.dat")
@@ -94,5 +93,4 @@ TEST_CASE("patch discharges: window means per unit width, outward fluxes, restar
   // A window without rows, or no thickness: nothing.
   CHECK_FALSE(patch_discharges(dir, 5.0, 6.0, thickness).has_value());
   CHECK_FALSE(patch_discharges(dir, 1.0, 2.0, 0.0).has_value());
-  fs::remove_all(dir);
 }

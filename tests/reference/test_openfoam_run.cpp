@@ -11,29 +11,22 @@
 #include <sstream>
 #include <string>
 
-#include <unistd.h>
-
 #include "cases/spec_reader.hpp"
 #include "reference/case_writer.hpp"
 #include "reference/cli.hpp"
 #include "reference/line_samples.hpp"
 #include "reference/runner.hpp"
 #include "reference_test_specs.hpp"
+#include "tests/temp_dir.hpp"
 
 namespace fs = std::filesystem;
 using namespace hydrojump;
 using reference::testing::basin_spec;
 using reference::testing::dam_break_spec;
 using reference::testing::parse;
+using hydrojump::testing::TempDir;
 
 namespace {
-
-fs::path fresh_dir(const std::string& name) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("hydrojump-openfoam-test-" + name + "-" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  return dir;
-}
 
 void require_openfoam() {
   try {
@@ -43,9 +36,9 @@ void require_openfoam() {
   }
 }
 
-fs::path generate(const std::string& spec_text, const std::string& name) {
+// Writes the case into dir (a directory not there yet, inside a test's TempDir) and returns dir.
+fs::path generate(const std::string& spec_text, const fs::path& dir) {
   const cases::Study study = parse(spec_text);
-  const fs::path dir = fresh_dir(name);
   reference::write_vof_case(study, study.cases.front(), "quick", dir);
   return dir;
 }
@@ -78,11 +71,11 @@ double water_depth(const fs::path& alpha_xy) {
 
 // The numbers of a field file's internalField (a compressed OpenFOAM field; vectors flattened).
 std::vector<double> internal_field(const fs::path& gz_file) {
-  const fs::path plain = fs::temp_directory_path() / ("hydrojump-field-" + std::to_string(::getpid()));
+  const TempDir tmp("field");
+  const fs::path plain = tmp.path() / "field";
   const std::string command = "gzip -dc '" + gz_file.string() + "' > '" + plain.string() + "'";
   REQUIRE(std::system(command.c_str()) == 0);
-  std::string text = read(plain);
-  fs::remove(plain);
+  const std::string text = read(plain);
   const auto begin = text.find("internalField");
   const auto end = text.find("boundaryField", begin);
   REQUIRE(begin != std::string::npos);
@@ -114,14 +107,14 @@ TEST_CASE("every generated dictionary is read by OpenFOAM's foamDictionary", "[r
   require_openfoam();
   for (const std::string& spec : {basin_spec(), dam_break_spec()}) {
     const cases::Study study = parse(spec);
-    const fs::path dir = generate(spec, "parse");
+    const TempDir tmp("openfoam-parse");
+    const fs::path dir = generate(spec, tmp.path() / "case");
     const reference::VofCase vof = reference::build_vof_case(study, study.cases.front(), "quick");
     for (const auto& [path, dict] : vof.files) {
       INFO(path);
       const std::string command = "foamDictionary -keywords '" + (dir / path).string() + "' > /dev/null 2>&1";
       CHECK(std::system(command.c_str()) == 0);
     }
-    fs::remove_all(dir);
   }
 }
 
@@ -130,7 +123,8 @@ TEST_CASE("a tiny corrugated basin meshes, passes checkMesh, runs and resumes", 
   const std::string spec = basin_spec("", 0.02, 0.01);
   const cases::Study study = parse(spec);
   const reference::VofCase vof = reference::build_vof_case(study, study.cases.front(), "quick");
-  const fs::path dir = generate(spec, "basin");
+  const TempDir tmp("openfoam-basin");
+  const fs::path dir = generate(spec, tmp.path() / "case");
   std::ostringstream out;
   reference::run_vof_case(dir, reference::RunOptions{}, out);
   INFO(out.str());
@@ -202,7 +196,6 @@ TEST_CASE("a tiny corrugated basin meshes, passes checkMesh, runs and resumes", 
   CHECK(fs::exists(dir / "0.03"));
   const std::string control = read(dir / "system/controlDict");
   CHECK_THAT(control, Catch::Contains("endTime         0.03;") && Catch::Contains("// endTime = run.end_time_s"));
-  fs::remove_all(dir);
 }
 
 TEST_CASE("a run resumed between two output times first runs to the next one: later outputs stay on the grid",
@@ -210,7 +203,8 @@ TEST_CASE("a run resumed between two output times first runs to the next one: la
   require_openfoam();
   // Output every 0.01 s; the first run ends between two outputs, at 0.015 s (where a stop on Ctrl-C
   // also leaves a run).
-  const fs::path dir = generate(basin_spec("", 0.02, 0.01), "aligned");
+  const TempDir tmp("openfoam-aligned");
+  const fs::path dir = generate(basin_spec("", 0.02, 0.01), tmp.path() / "case");
   reference::RunOptions first;
   first.end_time_s = 0.015;
   std::ostringstream out1;
@@ -254,15 +248,15 @@ TEST_CASE("a run resumed between two output times first runs to the next one: la
   REQUIRE(expected.find(end_entry) != std::string::npos);
   expected.replace(expected.find(end_entry), end_entry.size(), "endTime         0.035;");
   CHECK(read(dir / "system/controlDict") == expected);
-  fs::remove_all(dir);
 }
 
 TEST_CASE("a run started from another run's state (--map-from) takes its fields and starts at t = 0",
           "[reference][openfoam]") {
   require_openfoam();
   const std::string spec = basin_spec("", 0.02, 0.01);
-  const fs::path source = generate(spec, "map-source");
-  const fs::path target = generate(spec, "map-target");
+  const TempDir tmp("openfoam-map");
+  const fs::path source = generate(spec, tmp.path() / "source");
+  const fs::path target = generate(spec, tmp.path() / "target");
   std::ostringstream out;
   reference::RunOptions mapped;
   mapped.map_from = source;
@@ -303,16 +297,15 @@ TEST_CASE("a run started from another run's state (--map-from) takes its fields 
   // Refused: a directory that already holds results, the case itself, another case.
   CHECK_THROWS_WITH(reference::run_vof_case(target, mapped, out),
                     Catch::Contains("--map-from starts a new run") && Catch::Contains("up to t = 0.01 s"));
-  const fs::path fresh = generate(spec, "map-fresh");
+  const fs::path fresh = generate(spec, tmp.path() / "fresh");
   reference::RunOptions self = mapped;
   self.map_from = fresh;
   CHECK_THROWS_WITH(reference::run_vof_case(fresh, self, out), Catch::Contains("that is the case being run"));
-  const fs::path dam = generate(dam_break_spec(), "map-dam");
+  const fs::path dam = generate(dam_break_spec(), tmp.path() / "dam");
   reference::RunOptions other = mapped;
   other.map_from = dam;
   CHECK_THROWS_WITH(reference::run_vof_case(fresh, other, out),
                     Catch::Contains("holds case \"dam\", not \"basin\""));
-  for (const fs::path& d : {source, target, fresh, dam}) fs::remove_all(d);
 }
 
 TEST_CASE("a tiny basin runs with the k-epsilon turbulence model", "[reference][openfoam]") {
@@ -320,7 +313,8 @@ TEST_CASE("a tiny basin runs with the k-epsilon turbulence model", "[reference][
   const std::string spec = basin_spec("turbulence_model = \"kEpsilon\"", 0.01, 0.01);
   const cases::Study study = parse(spec);
   const reference::VofCase vof = reference::build_vof_case(study, study.cases.front(), "quick");
-  const fs::path dir = generate(spec, "kepsilon");
+  const TempDir tmp("openfoam-kepsilon");
+  const fs::path dir = generate(spec, tmp.path() / "case");
   std::ostringstream out;
   reference::run_vof_case(dir, reference::RunOptions{}, out);
   INFO(out.str());
@@ -330,14 +324,14 @@ TEST_CASE("a tiny basin runs with the k-epsilon turbulence model", "[reference][
   const auto inlet = rows_of(dir / "postProcessing/discharge_inlet/0/surfaceFieldValue.dat");
   REQUIRE(!inlet.empty());
   CHECK(std::abs(inlet.back()[1]) / vof.mesh.thickness_m == Approx(0.0254 * 2.0).epsilon(1e-5));
-  fs::remove_all(dir);
 }
 
 TEST_CASE("a tiny basin runs with the multiphase turbulence stabilization", "[reference][openfoam]") {
   require_openfoam();
   const std::string spec =
       basin_spec("turbulence_model = \"RNGkEpsilon\"\nturbulence_stabilization = \"nut_limiter_and_buoyancy\"", 0.01, 0.01);
-  const fs::path dir = generate(spec, "stabilized");
+  const TempDir tmp("openfoam-stabilized");
+  const fs::path dir = generate(spec, tmp.path() / "case");
   std::ostringstream out;
   reference::run_vof_case(dir, reference::RunOptions{}, out);
   INFO(out.str());
@@ -349,14 +343,14 @@ TEST_CASE("a tiny basin runs with the multiphase turbulence stabilization", "[re
   CHECK_THAT(log, Catch::Contains("applying bouyancy production term to k"));  // (sic: OpenFOAM's spelling)
   CHECK_THAT(log, Catch::Contains("correcting nut"));
   CHECK_THAT(log, !Catch::Contains("unexpected class name"));
-  fs::remove_all(dir);
 }
 
 TEST_CASE("an MPI run (--np 2) gives the same result as the serial run", "[reference][openfoam]") {
   require_openfoam();
   const std::string spec = basin_spec("", 0.03, 0.01);
-  const fs::path serial = generate(spec, "serial");
-  const fs::path parallel = generate(spec, "parallel");
+  const TempDir tmp("openfoam-mpi");
+  const fs::path serial = generate(spec, tmp.path() / "serial");
+  const fs::path parallel = generate(spec, tmp.path() / "parallel");
   std::ostringstream out;
   reference::run_vof_case(serial, reference::RunOptions{}, out);
   reference::RunOptions np2;
@@ -383,18 +377,17 @@ TEST_CASE("an MPI run (--np 2) gives the same result as the serial run", "[refer
   CHECK_THAT(out2.str(), Catch::Contains("Resuming from t = 0.02"));
   CHECK_THAT(out2.str(), !Catch::Contains("decomposePar"));
   CHECK(fs::exists(parallel / "0.03/U.gz"));
-  fs::remove_all(serial);
-  fs::remove_all(parallel);
 }
 
 TEST_CASE("body_fitted is refused exactly when the self-test shows the non-orthogonal defect",
           "[reference][openfoam]") {
   require_openfoam();
-  const reference::SelfTestResult st = reference::self_test_non_orthogonal(fs::temp_directory_path());
+  const TempDir tmp("openfoam-body-fitted");
+  const reference::SelfTestResult st = reference::self_test_non_orthogonal(tmp.path());
   INFO(st.summary());
   REQUIRE(st.axis_aligned_ok);
   const std::string spec = basin_spec("mesh_strategy = \"body_fitted\"\nturbulence_model = \"laminar\"", 0.05, 0.01);
-  const fs::path dir = generate(spec, "body-fitted");
+  const fs::path dir = generate(spec, tmp.path() / "case");
   std::ostringstream out;
   if (!st.sheared_ok) {
     CHECK_THROWS_WITH(reference::run_vof_case(dir, reference::RunOptions{}, out),
@@ -418,12 +411,12 @@ TEST_CASE("body_fitted is refused exactly when the self-test shows the non-ortho
     reference::run_vof_case(dir, reference::RunOptions{}, out);
     CHECK(fs::exists(dir / "0.05"));
   }
-  fs::remove_all(dir);
 }
 
 TEST_CASE("a tiny dam break runs and samples its gauges and the floor line", "[reference][openfoam]") {
   require_openfoam();
-  const fs::path dir = generate(dam_break_spec(), "dam");
+  const TempDir tmp("openfoam-dam");
+  const fs::path dir = generate(dam_break_spec(), tmp.path() / "case");
   std::ostringstream out;
   reference::run_vof_case(dir, reference::RunOptions{}, out);
   INFO(out.str());
@@ -431,12 +424,12 @@ TEST_CASE("a tiny dam break runs and samples its gauges and the floor line", "[r
   CHECK(fs::exists(dir / "postProcessing/sections/0.02/floor_alpha.water.xy"));
   // The column is still about 0.2 m deep at gauge H1 (x = 0.05 m) after 0.02 s.
   CHECK(water_depth(dir / "postProcessing/sections/0.02/H1_alpha.water.xy") == Approx(0.2).margin(0.01));
-  fs::remove_all(dir);
 }
 
 TEST_CASE("a failing mesh step stops the run with its log", "[reference][openfoam]") {
   require_openfoam();
-  const fs::path dir = generate(basin_spec(), "bad-mesh");
+  const TempDir tmp("openfoam-bad-mesh");
+  const fs::path dir = generate(basin_spec(), tmp.path() / "case");
   {
     std::ofstream broken(dir / "system/blockMeshDict", std::ios::app);
     broken << "\nblocks ( hex (0 1 2) (1 1 1) simpleGrading (1 1 1) );\n";
@@ -444,7 +437,6 @@ TEST_CASE("a failing mesh step stops the run with its log", "[reference][openfoa
   std::ostringstream out;
   CHECK_THROWS_WITH(reference::run_vof_case(dir, reference::RunOptions{}, out),
                     Catch::Contains("blockMesh failed") && Catch::Contains("log.blockMesh"));
-  fs::remove_all(dir);
 }
 
 TEST_CASE("a missing OpenFOAM installation is reported clearly", "[reference][openfoam]") {
@@ -457,12 +449,12 @@ TEST_CASE("a missing OpenFOAM installation is reported clearly", "[reference][op
 
 TEST_CASE("the generated Allrun runs the case by hand as an OpenFOAM user would", "[reference][openfoam]") {
   require_openfoam();
-  const fs::path dir = generate(basin_spec("", 0.02, 0.01), "allrun");
+  const TempDir tmp("openfoam-allrun");
+  const fs::path dir = generate(basin_spec("", 0.02, 0.01), tmp.path() / "case");
   const std::string command = "sh '" + (dir / "Allrun").string() + "' > '" + (dir / "allrun.out").string() + "' 2>&1";
   CHECK(std::system(command.c_str()) == 0);
   INFO(read(dir / "allrun.out"));
   CHECK(fs::exists(dir / "0.02"));
   CHECK_THAT(read(dir / "log.checkMesh"), Catch::Contains("Mesh OK."));
   CHECK(fs::exists(dir / "log.topoSet.2"));  // the section zones, after the cut
-  fs::remove_all(dir);
 }

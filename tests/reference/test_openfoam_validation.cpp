@@ -11,15 +11,15 @@
 #include <string>
 #include <vector>
 
-#include <unistd.h>
-
 #include "cases/spec_reader.hpp"
 #include "reference/cli.hpp"
 #include "reference/line_samples.hpp"
 #include "reference/runner.hpp"
+#include "tests/temp_dir.hpp"
 
 namespace fs = std::filesystem;
 using namespace hydrojump;
+using hydrojump::testing::TempDir;
 
 namespace {
 
@@ -102,10 +102,9 @@ double mean_discharge(const fs::path& function_dir, double t0, double t1) {
   return mean(values);
 }
 
-fs::path run_smooth_basin(const std::string& name, int np) {
+// Writes the case into dir (a directory not there yet, inside a test's TempDir), runs it and returns dir.
+fs::path run_smooth_basin(const fs::path& dir, int np) {
   const cases::Study study = cases::parse_study(smooth_basin_spec, "<validation>", fs::temp_directory_path());
-  const fs::path dir = fs::temp_directory_path() / ("hydrojump-validation-" + name + "-" + std::to_string(::getpid()));
-  fs::remove_all(dir);
   reference::write_vof_case(study, study.cases.front(), "quick", dir);
   reference::RunOptions options;
   options.np = np;
@@ -123,7 +122,8 @@ TEST_CASE("smooth bed with Fr1 = 4 and the tailwater at Belanger's y2*: the jump
   const double y1 = 0.0254, u1 = 2.0, g = 9.81;
   const double fr1 = u1 / std::sqrt(g * y1);
   const double belanger_ratio = 0.5 * (std::sqrt(1.0 + 8.0 * fr1 * fr1) - 1.0);
-  const fs::path dir = run_smooth_basin("serial", 1);
+  const TempDir tmp("validation-serial");
+  const fs::path dir = run_smooth_basin(tmp.path() / "case", 1);
   const Window w = sample_window(dir, 6.0, 10.0);
   REQUIRE(w.downstream_depth.size() >= 40);
   const double ratio = mean(w.downstream_depth) / y1;
@@ -137,19 +137,17 @@ TEST_CASE("smooth bed with Fr1 = 4 and the tailwater at Belanger's y2*: the jump
   const double q_in = mean_discharge(dir / "postProcessing/discharge_inlet", 6.0, 10.0);
   const double q_out = mean_discharge(dir / "postProcessing/discharge_outlet", 6.0, 10.0);
   CHECK(q_out == Approx(q_in).epsilon(0.03));
-  fs::remove_all(dir);
 }
 
 TEST_CASE("an MPI run (--np 2) gives the same time-averaged y2 as the serial run within 1 %",
           "[reference][openfoam][validation][slow]") {
-  const fs::path serial = run_smooth_basin("np1", 1);
-  const fs::path parallel = run_smooth_basin("np2", 2);
+  const TempDir tmp("validation-mpi");
+  const fs::path serial = run_smooth_basin(tmp.path() / "np1", 1);
+  const fs::path parallel = run_smooth_basin(tmp.path() / "np2", 2);
   const double y2_serial = mean(sample_window(serial, 6.0, 10.0).downstream_depth);
   const double y2_parallel = mean(sample_window(parallel, 6.0, 10.0).downstream_depth);
   WARN("time-averaged y2: serial " << y2_serial << " m, 2 ranks " << y2_parallel << " m");
   CHECK(y2_parallel == Approx(y2_serial).epsilon(0.01));
-  fs::remove_all(serial);
-  fs::remove_all(parallel);
 }
 
 // Koshizuka & Oka (1996) dam break scaled to L = 1 m (column 1 m x 2 m, tank 4 m x 3 m), 2 cm cells,
@@ -194,8 +192,8 @@ height_m = 3.0
 type = "instant"
 )";
   const cases::Study study = cases::parse_study(spec, "<validation>", fs::temp_directory_path());
-  const fs::path dir = fs::temp_directory_path() / ("hydrojump-validation-dam-" + std::to_string(::getpid()));
-  fs::remove_all(dir);
+  const TempDir tmp("validation-dam");
+  const fs::path dir = tmp.path() / "case";  // not there yet: write_vof_case creates it
   reference::write_vof_case(study, study.cases.front(), "quick", dir);
   std::ostringstream out;
   reference::RunOptions options;
@@ -234,5 +232,4 @@ type = "instant"
                                                      << " points (2 cm cells)");
   CHECK(sum / count < 0.10);
   CHECK(worst < 0.20);
-  fs::remove_all(dir);
 }

@@ -14,8 +14,6 @@
 #include <string>
 #include <vector>
 
-#include <unistd.h>
-
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
@@ -35,13 +33,6 @@ namespace fs = std::filesystem;
 using namespace hydrojump::sph;
 
 namespace {
-
-fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("hydrojump_sph_test_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
 
 // Particle positions ordered by id.
 std::vector<std::pair<double, double>> positions_by_id(const ParticleSet& ps) {
@@ -78,12 +69,14 @@ TEST_CASE("a run interrupted and resumed ends as the uninterrupted run", "[sph][
   for (const std::string integrator : {"symplectic", "verlet"}) {
     auto loaded = sph_test::load_case("dam_break.toml", 0.04, [&](hydrojump::cases::Case& c) { c.sph.time_integrator = integrator; });
     // Uninterrupted.
-    const fs::path a = fresh_dir("restart_a_" + integrator);
+    const hydrojump::testing::TempDir tmp_a("restart_a_" + integrator);
+    const fs::path& a = tmp_a.path();
     Solver whole(loaded.settings, loaded.particles);
     REQUIRE(run_case(whole, options_for(a, integrator)) == RunStatus::finished);
     // Interrupted after 57 steps (not at an output time, and not at a Verlet Euler step), then resumed
     // from the checkpoint by a new solver, as `hydrojump sph DIR --resume` does.
-    const fs::path b = fresh_dir("restart_b_" + integrator);
+    const hydrojump::testing::TempDir tmp_b("restart_b_" + integrator);
+    const fs::path& b = tmp_b.path();
     {
       Solver first(loaded.settings, loaded.particles);
       RunOptions o = options_for(b, integrator);
@@ -111,8 +104,6 @@ TEST_CASE("a run interrupted and resumed ends as the uninterrupted run", "[sph][
     sa << la.rdbuf();
     sb << lb.rdbuf();
     CHECK(sa.str() == sb.str());
-    fs::remove_all(a);
-    fs::remove_all(b);
   }
 }
 
@@ -156,7 +147,8 @@ TEST_CASE("a checkpoint whose contents are damaged is refused by name", "[sph][r
 
 TEST_CASE("the pvd series loads back with vtkXMLPolyDataReader", "[sph][output]") {
   auto loaded = sph_test::load_case("dam_break.toml", 0.04);
-  const fs::path dir = fresh_dir("vtk");
+  const hydrojump::testing::TempDir tmp("vtk");
+  const fs::path& dir = tmp.path();
   Solver solver(loaded.settings, loaded.particles);
   RunOptions o = options_for(dir, "vtk");
   REQUIRE(run_case(solver, o) == RunStatus::finished);
@@ -182,12 +174,12 @@ TEST_CASE("the pvd series loads back with vtkXMLPolyDataReader", "[sph][output]"
     CHECK(got[k].first == expected[k].first);
     CHECK(got[k].second == expected[k].second);
   }
-  fs::remove_all(dir);
 }
 
 TEST_CASE("an unstable run stops with a diagnosis and keeps its last checkpoint", "[sph][robustness]") {
   auto loaded = sph_test::load_case("dam_break.toml", 0.04);
-  const fs::path dir = fresh_dir("failure");
+  const hydrojump::testing::TempDir tmp("failure");
+  const fs::path& dir = tmp.path();
   Solver solver(loaded.settings, loaded.particles);
   RunOptions o = options_for(dir, "failure");
   o.max_steps = 5;
@@ -214,7 +206,6 @@ TEST_CASE("an unstable run stops with a diagnosis and keeps its last checkpoint"
   // The checkpoint on disk is still the last good one.
   const auto after = read_checkpoint(checkpoint_path(dir));
   CHECK(after.clock.steps == checkpoint_before.clock.steps);
-  fs::remove_all(dir);
 }
 
 TEST_CASE("a particle leaving the domain and a density blow-up are diagnosed", "[sph][robustness]") {
@@ -248,7 +239,8 @@ TEST_CASE("a particle leaving the domain and a density blow-up are diagnosed", "
 }
 
 TEST_CASE("hydrojump sph runs a generated dam-break directory and resumes it", "[sph][cli]") {
-  const fs::path dir = fresh_dir("cli");
+  const hydrojump::testing::TempDir tmp("cli");
+  const fs::path& dir = tmp.path();
   const auto study = hydrojump::cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/cases/dam_break.toml");
   write_sph_input(study, study.cases.front(), "quick", dir);
   REQUIRE(fs::exists(dir / "case.toml"));
@@ -294,11 +286,11 @@ TEST_CASE("hydrojump sph runs a generated dam-break directory and resumes it", "
   CHECK(run_fingerprint("a = 1\nmax_density_variation = 0.1\n") == run_fingerprint("a = 1\nmax_density_variation = 0.3\n"));
   CHECK(run_fingerprint("a = 1\n") != run_fingerprint("a = 2\n"));
   CHECK(run_fingerprint("# from x.toml\ndescription = \"x\"\na = 1\n") == run_fingerprint("# from y.toml\ndescription = \"y\"\na = 1\n"));
-  fs::remove_all(dir);
 }
 
 TEST_CASE("hydrojump sph refuses to run a piston reservoir past the end it was made for", "[sph][cli][piston]") {
-  const fs::path dir = fresh_dir("cli_piston");
+  const hydrojump::testing::TempDir tmp("cli_piston");
+  const fs::path& dir = tmp.path();
   auto study = hydrojump::cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/cases/ead2002.toml");
   REQUIRE(study.find_case("A_smooth") != nullptr);
   hydrojump::cases::Case c = *study.find_case("A_smooth");
@@ -310,7 +302,6 @@ TEST_CASE("hydrojump sph refuses to run a piston reservoir past the end it was m
   opt.end_time = c.run.end_time_s + 2.0;
   CHECK_THROWS_WITH(run_sph_directory(opt), Catch::Contains("case.run.end_time_s") && Catch::Contains("piston"));
   CHECK_FALSE(fs::exists(dir / "checkpoint.bin"));
-  fs::remove_all(dir);
 }
 
 TEST_CASE("every combination of the SPH options runs the dam break stably", "[sph][options]") {

@@ -24,6 +24,7 @@
 #include "sph/open_boundaries.hpp"
 #include "sph/run.hpp"
 #include "sph_test_support.hpp"
+#include "tests/temp_dir.hpp"
 
 using namespace hydrojump;
 
@@ -149,10 +150,10 @@ TEST_CASE("a stilling-basin run resumed from a checkpoint continues bit for bit"
   ck.fingerprint = "stilling basin resume test";
   ck.clock = whole.clock();
   ck.particles = whole.particles();
-  const auto file = std::filesystem::temp_directory_path() / "hydrojump_stilling_basin_resume.bin";
+  const hydrojump::testing::TempDir tmp("stilling_basin_resume");
+  const auto file = tmp.path() / "checkpoint.bin";
   sph::write_checkpoint(ck, file);
   const sph::Checkpoint back = sph::read_checkpoint(file);
-  std::filesystem::remove(file);
   sph::Solver resumed(b.settings, back.particles, back.clock, open_boundaries_of(b));
   for (int k = 0; k < 150; ++k) {
     whole.step();

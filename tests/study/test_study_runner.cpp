@@ -9,17 +9,17 @@
 #include <string>
 #include <vector>
 
-#include <unistd.h>
-
 #include "cases/directory_lock.hpp"
 #include "cases/fingerprint.hpp"
 #include "cases/spec_reader.hpp"
 #include "compare/generate.hpp"
 #include "compare/study.hpp"
+#include "tests/temp_dir.hpp"
 
 namespace fs = std::filesystem;
 using hydrojump::compare::StudyOptions;
 using hydrojump::compare::run_study;
+using hydrojump::testing::TempDir;
 
 namespace {
 
@@ -84,12 +84,11 @@ std::string with_tailwater(const std::string& value) {
   return s;
 }
 
-// A fresh directory `dir` with the mini study (case A's tailwater `tailwater` in m) and a stand-in for
-// the hydrojump executable running the shell script `script`; options to run that study into dir/out.
+// Into the empty directory `dir` (a test's TempDir): the mini study (case A's tailwater `tailwater` in m)
+// and a stand-in for the hydrojump executable running the shell script `script`; options to run that
+// study into dir/out.
 StudyOptions mini_study_with_stand_in(const fs::path& dir, const std::string& script,
                                       const std::string& tailwater = "0.104") {
-  fs::remove_all(dir);
-  fs::create_directories(dir);
   const fs::path fake = dir / "fake_hydrojump";
   write(fake, "#!/bin/sh\n" + script);
   fs::permissions(fake, fs::perms::owner_all);
@@ -104,7 +103,8 @@ StudyOptions mini_study_with_stand_in(const fs::path& dir, const std::string& sc
 }  // namespace
 
 TEST_CASE("Study runner: failures are isolated, results cached, changes re-run", "[study]") {
-  const fs::path dir = fs::temp_directory_path() / ("hydrojump_test_study_" + std::to_string(::getpid()));
+  const TempDir tmp("study");
+  const fs::path& dir = tmp.path();
   const fs::path calls = dir / "calls.txt";
   // A stand-in for the hydrojump executable: records each call; the SPH run of case B fails, leaving a
   // checkpoint behind as the real solver does.
@@ -166,12 +166,12 @@ TEST_CASE("Study runner: failures are isolated, results cached, changes re-run",
   REQUIRE(a_calls.size() == 1);
   CHECK_THAT(a_calls[0], Catch::StartsWith("compare "));
   CHECK(fs::exists(options.out / "A" / "sph" / "case.toml"));
-  fs::remove_all(dir);
 }
 
 TEST_CASE("Study runner: the report covers cases run earlier into the same directory while they are current",
           "[study]") {
-  const fs::path dir = fs::temp_directory_path() / ("hydrojump_test_study_earlier_" + std::to_string(::getpid()));
+  const TempDir tmp("study_earlier");
+  const fs::path& dir = tmp.path();
   StudyOptions options = mini_study_with_stand_in(dir, "exit 0\n");  // every stage succeeds
   std::ostringstream log;
   const auto report_rows = [&](const std::string& id) {  // the case's rows of the "Runs" table
@@ -202,7 +202,6 @@ TEST_CASE("Study runner: the report covers cases run earlier into the same direc
   REQUIRE(run_study(options, log) == 0);
   CHECK(report_rows("A").empty());
   CHECK(report_rows("B").size() == 3);
-  fs::remove_all(dir);
 }
 
 TEST_CASE("Study runner: a case named twice in --cases runs once, an unknown one is refused by name", "[study]") {
@@ -220,7 +219,8 @@ TEST_CASE("Study runner: what only the solvers' derivations refuse stops the stu
   // A VOF bed cell of 2 cm leaves fewer than 2 cells across y1 = 25.4 mm: the spec's rules pass, the
   // OpenFOAM mesh plan refuses. The study used to find it only when it reached the case, after
   // moving that case's earlier results aside.
-  const fs::path dir = fs::temp_directory_path() / ("hydrojump_test_study_derived_" + std::to_string(::getpid()));
+  const TempDir tmp("study_derived");
+  const fs::path& dir = tmp.path();
   const fs::path calls = dir / "calls.txt";
   const StudyOptions options = mini_study_with_stand_in(dir, "echo \"$*\" >> '" + calls.string() + "'\nexit 0\n");
   std::ostringstream log;
@@ -237,32 +237,32 @@ TEST_CASE("Study runner: what only the solvers' derivations refuse stops the stu
   CHECK_FALSE(fs::exists(calls));
   CHECK(fs::exists(options.out / "A" / "sph" / "result.txt"));
   CHECK_FALSE(fs::exists(options.out / "A.previous"));
-  fs::remove_all(dir);
 }
 
 TEST_CASE("Study runner validates before running anything", "[study]") {
-  const fs::path dir = fs::temp_directory_path() / ("hydrojump_test_study_invalid_" + std::to_string(::getpid()));
+  const TempDir tmp("study_invalid");
+  const fs::path& dir = tmp.path();
   const StudyOptions options = mini_study_with_stand_in(dir, "exit 1\n", "-1");
   std::ostringstream log;
   CHECK_THROWS_WITH(run_study(options, log), Catch::Contains("tailwater.depth_m = -1"));
   CHECK_FALSE(fs::exists(options.out));
-  fs::remove_all(dir);
 }
 
 TEST_CASE("Study runner: a second study on the same output directory stops before running anything", "[study]") {
-  const fs::path dir = fs::temp_directory_path() / ("hydrojump_test_study_busy_" + std::to_string(::getpid()));
+  const TempDir tmp("study_busy");
+  const fs::path& dir = tmp.path();
   const StudyOptions options = mini_study_with_stand_in(dir, "exit 1\n");
   const hydrojump::cases::DirectoryLock first(options.out, "hydrojump study (the first)");
   std::ostringstream log;
   CHECK_THROWS_WITH(run_study(options, log), Catch::Contains(options.out.string() + " is in use by another process "
                                                              "(hydrojump study (the first), pid"));
   CHECK(log.str().empty());  // nothing started
-  fs::remove_all(dir);
 }
 
 TEST_CASE("Study runner: --methods runs only the chosen solvers, --force re-runs cached stages, --jobs runs cases side by side",
           "[study]") {
-  const fs::path dir = fs::temp_directory_path() / ("hydrojump_test_study_options_" + std::to_string(::getpid()));
+  const TempDir tmp("study_options");
+  const fs::path& dir = tmp.path();
   const fs::path calls = dir / "calls.txt";
   // Each call is recorded; a call takes 0.5 s, so that two cases run side by side overlap.
   StudyOptions options = mini_study_with_stand_in(
@@ -298,12 +298,12 @@ TEST_CASE("Study runner: --methods runs only the chosen solvers, --force re-runs
   REQUIRE(lines.size() >= 2);
   CHECK(lines[0].rfind("start ", 0) == 0);
   CHECK(lines[1].rfind("start ", 0) == 0);
-  fs::remove_all(dir);
 }
 
 TEST_CASE("Study runner: a reworded description or a relaxed stability limit keeps the solver results, and hand-made results are kept",
           "[study]") {
-  const fs::path dir = fs::temp_directory_path() / ("hydrojump_test_study_wording_" + std::to_string(::getpid()));
+  const TempDir tmp("study_wording");
+  const fs::path& dir = tmp.path();
   const fs::path calls = dir / "calls.txt";
   // The stand-in fails A's SPH run once (leaving a checkpoint, as a run stopped at the density limit
   // does) while dir/fail_A exists.
@@ -349,5 +349,4 @@ TEST_CASE("Study runner: a reworded description or a relaxed stability limit kee
   options.cases = {"A"};
   CHECK(run_study(options, log) == 0);
   CHECK(hydrojump::cases::read_text_file(by_hand / "A.previous" / "sph" / "summary.json") == "{\"hours\": 3}\n");
-  fs::remove_all(dir);
 }
