@@ -28,6 +28,7 @@
 #include "cases/atomic_file.hpp"
 #include "cases/child_process.hpp"
 #include "cases/directory_lock.hpp"
+#include "cases/fingerprint.hpp"
 #include "cases/results_case.hpp"
 #include "cases/spec_reader.hpp"
 #include "reference/case_writer.hpp"
@@ -157,9 +158,7 @@ bool time_directory_complete(const fs::path& time_dir) {
       const int rc = wait_for(spawn({"gzip", "-t", gz.string()}, time_dir, "/dev/null", true));
       if (rc != 0) return false;
     } else if (fs::exists(plain, ec)) {
-      std::ifstream in(plain);
-      std::string content((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-      if (content.find("// ****") == std::string::npos) return false;
+      if (cases::read_text_file(plain).find("// ****") == std::string::npos) return false;
     } else {
       return false;
     }
@@ -339,12 +338,11 @@ struct EndTimeEntry {
   double value_s = 0.0;
 };
 
-EndTimeEntry read_end_time_entry(const fs::path& dir) {
+// The entry in `text`, the controlDict `file` (named in errors).
+EndTimeEntry parse_end_time_entry(std::string text, const fs::path& file) {
   static const std::regex entry(R"((^|\n)[ \t]*endTime[ \t]+([^;\n]+);)");
-  const fs::path file = dir / "system/controlDict";
-  std::ifstream in(file);
   EndTimeEntry e;
-  e.text.assign((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  e.text = std::move(text);
   std::smatch m;
   if (!std::regex_search(e.text, m, entry)) {
     throw OpenFoamError(file.string() + ": no `endTime` entry (regenerate the case with `hydrojump generate`)");
@@ -360,13 +358,27 @@ EndTimeEntry read_end_time_entry(const fs::path& dir) {
   return e;
 }
 
-// Rewrites that entry's value (the rest of the file, hand edits included, is kept), atomically.
+EndTimeEntry read_end_time_entry(const fs::path& dir) {
+  const fs::path file = dir / "system/controlDict";
+  return parse_end_time_entry(cases::read_text_file(file), file);
+}
+
+// A controlDict value as written by the runner: 12 significant digits.
+std::string control_dict_number(double v) {
+  std::ostringstream s;
+  s << std::setprecision(12) << v;
+  return s.str();
+}
+
+// The text with that entry's value set to `end_time_s` (the rest, hand edits included, kept).
+std::string with_end_time(const EndTimeEntry& e, double end_time_s) {
+  return e.text.substr(0, e.value_begin) + control_dict_number(end_time_s) +
+         e.text.substr(e.value_begin + e.value_length);
+}
+
+// Rewrites that entry's value in the case's controlDict, atomically.
 void set_control_dict_end_time(const fs::path& dir, double end_time_s) {
-  const EndTimeEntry e = read_end_time_entry(dir);
-  std::ostringstream value;
-  value << std::setprecision(12) << end_time_s;
-  cases::write_file_atomically(dir / "system/controlDict", e.text.substr(0, e.value_begin) + value.str() +
-                                                               e.text.substr(e.value_begin + e.value_length));
+  cases::write_file_atomically(dir / "system/controlDict", with_end_time(read_end_time_entry(dir), end_time_s));
 }
 
 }  // namespace
@@ -439,8 +451,7 @@ OpenFoamInstallation check_openfoam(bool need_mpi) {
     fs::remove(log, ec);
     throw;
   }
-  std::ifstream in(log);
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string text = cases::read_text_file(log);
   std::error_code ec;
   fs::remove(log, ec);
   if (rc != 0) {
@@ -538,14 +549,9 @@ std::optional<std::string> top_level_entry(const std::string& text, const std::s
   return m[2].str();
 }
 
-std::string read_text(const fs::path& file) {
-  std::ifstream in(file);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
 // The controlDict's output interval when its writeControl counts simulated time, else nothing.
 std::optional<double> output_grid_interval(const fs::path& dir) {
-  const std::string text = read_text(dir / "system/controlDict");
+  const std::string text = cases::read_text_file(dir / "system/controlDict");
   const auto control = top_level_entry(text, "writeControl");
   const auto interval_text = top_level_entry(text, "writeInterval");
   if (!control || !interval_text) return std::nullopt;
@@ -560,42 +566,32 @@ std::optional<double> output_grid_interval(const fs::path& dir) {
 // The controlDict of one leg: endTime = the leg's end, and when the leg sets its own write interval,
 // every writeInterval equal to the case's (the top-level one and the function objects') set to it; the
 // rest of the text is kept.
-std::string leg_control_dict(const std::string& text, const SolverLeg& leg) {
-  const auto interval_text = top_level_entry(text, "writeInterval");
-  const double interval = interval_text ? std::strtod(interval_text->c_str(), nullptr) : 0.0;
-  auto number = [](double v) {
-    std::ostringstream s;
-    s << std::setprecision(12) << v;
-    return s.str();
-  };
-  static const std::regex entry(R"((^|\n)([ \t]*)(writeInterval|endTime)([ \t]+)([^;\n]+);)");
+std::string leg_control_dict(const std::string& text, const fs::path& file, const SolverLeg& leg) {
   std::string result;
   std::size_t copied = 0;
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), entry); it != std::sregex_iterator(); ++it) {
-    const std::smatch& m = *it;
-    const double value = std::strtod(m[5].str().c_str(), nullptr);
-    std::string replacement;
-    if (m[3] == "endTime") {
-      replacement = number(leg.end_s);
-    } else if (leg.write_interval_s && interval > 0.0 && std::abs(value - interval) <= 1e-9 * interval) {
-      replacement = number(*leg.write_interval_s);
-    } else {
-      continue;
+  const auto interval_text = top_level_entry(text, "writeInterval");
+  const double interval = interval_text ? std::strtod(interval_text->c_str(), nullptr) : 0.0;
+  if (leg.write_interval_s && interval > 0.0) {
+    static const std::regex entry(R"((^|\n)[ \t]*writeInterval[ \t]+([^;\n]+);)");
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), entry); it != std::sregex_iterator(); ++it) {
+      const std::smatch& m = *it;
+      if (std::abs(std::strtod(m[2].str().c_str(), nullptr) - interval) > 1e-9 * interval) continue;
+      const auto value_pos = static_cast<std::size_t>(m.position(2));
+      result += text.substr(copied, value_pos - copied) + control_dict_number(*leg.write_interval_s);
+      copied = value_pos + static_cast<std::size_t>(m.length(2));
     }
-    const auto value_pos = static_cast<std::size_t>(m.position(5));
-    result += text.substr(copied, value_pos - copied) + replacement;
-    copied = value_pos + static_cast<std::size_t>(m.length(5));
   }
-  return result + text.substr(copied);
+  return with_end_time(parse_end_time_entry(result + text.substr(copied), file), leg.end_s);
 }
 
 // A leg's controlDict in place of the case's for its lifetime (see above).
 class ControlDictOverride {
  public:
   ControlDictOverride(const fs::path& dir, const SolverLeg& leg) : dir_(dir) {
-    const std::string original = read_text(dir / "system/controlDict");
+    const fs::path file = dir / "system/controlDict";
+    const std::string original = cases::read_text_file(file);
     cases::write_file_atomically(dir / control_dict_original, original);
-    cases::write_file_atomically(dir / "system/controlDict", leg_control_dict(original, leg));
+    cases::write_file_atomically(file, leg_control_dict(original, file, leg));
   }
   ~ControlDictOverride() {
     try {
@@ -933,8 +929,7 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
     out << "Checking the mesh\n";
     run_step(dir, {"checkMesh"}, "log.checkMesh", out);
     {
-      std::ifstream in(dir / "log.checkMesh");
-      std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      const std::string text = cases::read_text_file(dir / "log.checkMesh");
       if (text.find("Mesh OK.") == std::string::npos) {
         std::string report;
         std::istringstream lines(text);

@@ -79,8 +79,9 @@ std::optional<double> latest_time(const std::filesystem::path& case_dir);
 //
 //   g_first = ceil(t_start / dt_out) dt_out,   g_last = floor(t_end / dt_out) dt_out
 //
-// Usually this is one leg (start and end on the grid); none when the start is not before the end. Without a known interval (writeControl not
-// counting simulated time) it is one leg at the case's settings.
+// Usually this is one leg (start and end on the grid); none when the start is not before the end.
+// Without a known interval (writeControl not counting simulated time) it is one leg at the case's
+// settings.
 struct SolverLeg {
   double end_s = 0.0;
   std::optional<double> write_interval_s;  // this leg's writeInterval; nothing: the case's
