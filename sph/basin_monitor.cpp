@@ -209,8 +209,9 @@ bool BasinMonitor::steady_at(const BalanceSeries& series, std::size_t k) const {
          cases::steady_by_means(b.outflow_minus_inflow_over_q, b.toe_trend_m_per_s, setup_.drift_tolerance_m);
 }
 
-double BasinMonitor::steady_from() const {
-  const BalanceSeries series = balance_series();
+double BasinMonitor::steady_from() const { return steady_from(balance_series()); }
+
+double BasinMonitor::steady_from(const BalanceSeries& series) const {
   double from = nan_value;
   for (std::size_t k = 0; k < samples_.size(); ++k) {
     if (steady_at(series, k)) {
@@ -371,7 +372,7 @@ std::string BasinMonitor::summary_json() const {
   const bool steady_means = jump_state() == "in_basin" &&
                             cases::steady_by_means(window_imbalance, toe_trend, setup_.drift_tolerance_m) &&
                             toe_missing == 0;
-  const double from = steady_from();
+  const double from = steady_from(series);
   const bool window_complete = balance.reaches_window_end;  // an output at or after the window's end
   const bool steady_window = std::isfinite(from) && from <= a + tol && window_complete;
 

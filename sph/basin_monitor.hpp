@@ -146,6 +146,7 @@ class BasinMonitor {
   BalanceSeries balance_series() const;
   // The 1 s test at sample k on the whole series (window_balance keeps the outputs in [t_k - 1 s, t_k]).
   bool steady_at(const BalanceSeries& series, std::size_t k) const;
+  double steady_from(const BalanceSeries& series) const;
   BasinMonitorSetup setup_;
   std::vector<double> stations_;
   std::vector<BasinSample> samples_;
