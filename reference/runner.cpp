@@ -504,22 +504,42 @@ MapSource check_map_source(const fs::path& source_in, const fs::path& target, co
   return MapSource{source, times.back().second.filename().string()};
 }
 
-// Interpolates the source's fields at its latest time onto this mesh (into 0/), then removes what
-// mapFields brings beyond the fields the case starts with (fieldAverage means and the like).
-//   mapFields SRC -sourceTime T -consistent
+// The name of a field file without the ".gz" that compressed output adds.
+std::string field_name(const fs::path& file) {
+  std::string name = file.filename().string();
+  if (name.size() > 3 && name.compare(name.size() - 3, 3, ".gz") == 0) name.resize(name.size() - 3);
+  return name;
+}
+
+// Interpolates the source's fields at its latest time onto this mesh (into 0/).
+//   mapFields SRC' -sourceTime T -consistent
+// SRC' is a view of the source (DIR/.map-source: links to its constant/ and system/, and to those
+// files of its time directory that the case starts with, i.e. those in 0.orig/). mapFields maps every
+// field of the source time; a field the target's 0/ lacks (p, fieldAverage means) it creates, and
+// where the target mesh reaches beyond the source's (a taller air layer, a longer basin) those cells
+// hold no value, so writing the field stops mapFields with a floating-point exception. Restricted to
+// the case's own fields, cells outside the source keep setFields' initial state.
 void map_initial_state(const fs::path& dir, const MapSource& source, std::ostream& out) {
   out << "Initial state from " << source.dir.string() << " at t = " << source.time_name << " s\n";
-  run_step(dir, {"mapFields", source.dir.string(), "-sourceTime", source.time_name, "-consistent"},
-           "log.mapFields", out);
   std::set<std::string> initial;
-  for (const auto& entry : fs::directory_iterator(dir / "0.orig")) initial.insert(entry.path().filename().string());
-  std::vector<fs::path> extra;
-  for (const auto& entry : fs::directory_iterator(dir / "0")) {
-    std::string name = entry.path().filename().string();
-    if (name.size() > 3 && name.compare(name.size() - 3, 3, ".gz") == 0) name.resize(name.size() - 3);
-    if (!initial.count(name)) extra.push_back(entry.path());
+  for (const auto& entry : fs::directory_iterator(dir / "0.orig")) initial.insert(field_name(entry.path()));
+  const fs::path view = fs::absolute(dir / ".map-source");
+  fs::remove_all(view);
+  fs::create_directories(view / source.time_name);
+  fs::create_directory_symlink(source.dir / "constant", view / "constant");
+  fs::create_directory_symlink(source.dir / "system", view / "system");
+  for (const auto& entry : fs::directory_iterator(source.dir / source.time_name)) {
+    if (entry.is_regular_file() && initial.count(field_name(entry.path()))) {
+      fs::create_symlink(entry.path(), view / source.time_name / entry.path().filename());
+    }
   }
-  for (const fs::path& p : extra) fs::remove_all(p);
+  try {
+    run_step(dir, {"mapFields", view.string(), "-sourceTime", source.time_name, "-consistent"}, "log.mapFields", out);
+  } catch (...) {
+    fs::remove_all(view);
+    throw;
+  }
+  fs::remove_all(view);
 }
 
 // ------------------------------------------------------------ legs on the output grid

@@ -14,8 +14,9 @@
 //      output on the case's output times and write the end time (plan_solver_legs below);
 //   6. `--map-from SRC` (a fresh start only) replaces the setFields state by the latest complete time
 //      of another run of the same case, interpolated onto this mesh with OpenFOAM's `mapFields
-//      -consistent` (mesh sequencing: a finer run started from a settled coarser one). The run still
-//      starts at t = 0.
+//      -consistent` (mesh sequencing: a finer run started from a settled coarser one; only the
+//      fields the case starts with are mapped, and cells the source's domain does not cover, as
+//      when the air layer was raised, keep setFields' state). The run still starts at t = 0.
 // Every step logs to DIR/log.<application>.
 #pragma once
 

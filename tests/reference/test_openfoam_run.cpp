@@ -4,10 +4,12 @@
 // refused exactly when the self-test shows the known defect.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <sstream>
 #include <string>
 
@@ -306,6 +308,58 @@ TEST_CASE("a run started from another run's state (--map-from) takes its fields 
   other.map_from = dam;
   CHECK_THROWS_WITH(reference::run_vof_case(fresh, other, out),
                     Catch::Contains("holds case \"dam\", not \"basin\""));
+}
+
+TEST_CASE("a run mapped from a run with a lower air layer keeps setFields' air above the source's lid",
+          "[reference][openfoam]") {
+  require_openfoam();
+  // Raising [case.domain] air_height_m (as when splashes leave through the lid) and starting from the
+  // old run: the cells above the old lid are outside the source. mapFields used to create p there
+  // without values and stop with a floating-point exception while writing it.
+  const TempDir tmp("openfoam-map-taller");
+  const std::string low = basin_spec("", 0.02, 0.01, "sinusoidal", 0.005, 0.01, 0.04);
+  const std::string tall = basin_spec("", 0.02, 0.01, "sinusoidal", 0.005, 0.01, 0.10);
+  const fs::path source = generate(low, tmp.path() / "source");
+  const fs::path target = generate(tall, tmp.path() / "target");
+  std::ostringstream out;
+  reference::run_vof_case(source, reference::RunOptions{}, out);
+  reference::RunOptions mapped;
+  mapped.map_from = source;
+  mapped.end_time_s = 0.01;
+  std::ostringstream run;
+  // With FOAM_SETNAN, OpenFOAM fills newly allocated memory with signalling NaNs, so a cell left
+  // without a value fails every time instead of only when the heap happens to hold garbage there.
+  ::setenv("FOAM_SETNAN", "true", 1);
+  try {
+    reference::run_vof_case(target, mapped, run);
+  } catch (const std::exception& e) {
+    ::unsetenv("FOAM_SETNAN");
+    FAIL(e.what());
+  }
+  ::unsetenv("FOAM_SETNAN");
+  INFO(run.str());
+  CHECK_THAT(run.str(), Catch::Contains("reached t = 0.01"));
+  CHECK_FALSE(fs::exists(target / ".map-source"));
+  // 0/ holds the case's initial fields only (p is made by interFoam, not mapped).
+  std::set<std::string> names;
+  for (const auto& entry : fs::directory_iterator(target / "0")) names.insert(entry.path().filename().string());
+  CHECK(names.count("p.gz") == 0);
+  CHECK(names.count("alpha.water.gz") == 1);
+  // The source's water is carried over and the new air layer is air: the count of water cells
+  // (alpha > 0.5) equals the source's, since both meshes share their cells below the old lid.
+  const std::vector<double> source_alpha = internal_field(source / "0.02/alpha.water.gz");
+  const std::vector<double> target_alpha = internal_field(target / "0/alpha.water.gz");
+  REQUIRE(target_alpha.size() > source_alpha.size());
+  const auto water_cells = [](const std::vector<double>& alpha) {
+    return std::count_if(alpha.begin(), alpha.end(), [](double a) { return a > 0.5; });
+  };
+  CHECK(water_cells(target_alpha) == water_cells(source_alpha));
+  // No cell without a value: the mapped fractions stay within the source's own range (interFoam's
+  // MULES lets alpha overshoot [0, 1] slightly).
+  const auto [source_min, source_max] = std::minmax_element(source_alpha.begin(), source_alpha.end());
+  const auto [target_min, target_max] = std::minmax_element(target_alpha.begin(), target_alpha.end());
+  CHECK(*target_min >= std::min(0.0, *source_min) - 1e-9);
+  CHECK(*target_max <= std::max(1.0, *source_max) + 1e-9);
 }
 
 TEST_CASE("a tiny basin runs with the k-epsilon turbulence model", "[reference][openfoam]") {
