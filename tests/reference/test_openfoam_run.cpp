@@ -13,6 +13,7 @@
 #include <sstream>
 #include <string>
 
+#include "cases/fingerprint.hpp"
 #include "cases/spec_reader.hpp"
 #include "reference/case_writer.hpp"
 #include "reference/cli.hpp"
@@ -45,11 +46,6 @@ fs::path generate(const std::string& spec_text, const fs::path& dir) {
   return dir;
 }
 
-std::string read(const fs::path& file) {
-  std::ifstream in(file);
-  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
 // Rows of a whitespace-separated numeric file (comment lines starting with '#' skipped).
 std::vector<std::vector<double>> rows_of(const fs::path& file) {
   std::vector<std::vector<double>> rows;
@@ -77,7 +73,7 @@ std::vector<double> internal_field(const fs::path& gz_file) {
   const fs::path plain = tmp.path() / "field";
   const std::string command = "gzip -dc '" + gz_file.string() + "' > '" + plain.string() + "'";
   REQUIRE(std::system(command.c_str()) == 0);
-  const std::string text = read(plain);
+  const std::string text = cases::read_text_file(plain);
   const auto begin = text.find("internalField");
   const auto end = text.find("boundaryField", begin);
   REQUIRE(begin != std::string::npos);
@@ -97,7 +93,7 @@ std::vector<double> internal_field(const fs::path& gz_file) {
 }
 
 long checkmesh_cells(const fs::path& dir) {
-  const std::string log = read(dir / "log.checkMesh");
+  const std::string log = cases::read_text_file(dir / "log.checkMesh");
   const auto pos = log.find("    cells:");
   if (pos == std::string::npos) return -1;
   return std::stol(log.substr(pos + 10));
@@ -130,7 +126,7 @@ TEST_CASE("a tiny corrugated basin meshes, passes checkMesh, runs and resumes", 
   std::ostringstream out;
   reference::run_vof_case(dir, reference::RunOptions{}, out);
   INFO(out.str());
-  CHECK_THAT(read(dir / "log.checkMesh"), Catch::Contains("Mesh OK."));
+  CHECK_THAT(cases::read_text_file(dir / "log.checkMesh"), Catch::Contains("Mesh OK."));
   CHECK(checkmesh_cells(dir) == vof.mesh.cell_count());
   CHECK(fs::exists(dir / "0.02"));
   CHECK_THAT(out.str(), Catch::Contains("reached t = 0.02"));
@@ -164,8 +160,8 @@ TEST_CASE("a tiny corrugated basin meshes, passes checkMesh, runs and resumes", 
   // The run recorded its case; a case.toml whose settings were edited since would describe other
   // results than the dictionaries the run uses: resuming is refused, naming the line. (A reworded
   // description is not another run.)
-  const std::string case_text = read(dir / "case.toml");
-  CHECK(read(dir / "results_case.toml") == case_text);
+  const std::string case_text = cases::read_text_file(dir / "case.toml");
+  CHECK(cases::read_text_file(dir / "results_case.toml") == case_text);
   {
     std::string edited = case_text;
     const std::string key = "max_courant = ";
@@ -182,7 +178,7 @@ TEST_CASE("a tiny corrugated basin meshes, passes checkMesh, runs and resumes", 
   CHECK_THAT(out2.str(), Catch::Contains("Resuming from t = 0.01"));
   CHECK(fs::exists(dir / "0.02.incomplete"));
   CHECK(fs::file_size(dir / "0.02/alpha.water.gz") > 100);
-  CHECK_THAT(read(dir / "log.interFoam"), Catch::Contains("resumed by hydrojump"));
+  CHECK_THAT(cases::read_text_file(dir / "log.interFoam"), Catch::Contains("resumed by hydrojump"));
 
   // --end-time extends the finished run (system/controlDict's endTime rewritten, the rest kept); an end
   // time not after the latest time directory is refused.
@@ -196,7 +192,7 @@ TEST_CASE("a tiny corrugated basin meshes, passes checkMesh, runs and resumes", 
   CHECK_THAT(out3.str(), Catch::Contains("End time 0.03 s (was 0.02 s") && Catch::Contains("to t = 0.03 s") &&
                              Catch::Contains("reached t = 0.03"));
   CHECK(fs::exists(dir / "0.03"));
-  const std::string control = read(dir / "system/controlDict");
+  const std::string control = cases::read_text_file(dir / "system/controlDict");
   CHECK_THAT(control, Catch::Contains("endTime         0.03;") && Catch::Contains("// endTime = run.end_time_s"));
 }
 
@@ -217,7 +213,7 @@ TEST_CASE("a run resumed between two output times first runs to the next one: la
   CHECK(fs::exists(dir / "0.01/alpha.water.gz"));
   REQUIRE(fs::exists(dir / "0.015/alpha.water.gz"));
   CHECK(fs::exists(dir / "postProcessing/sections/0.015/up_alpha.water.xy"));
-  const std::string case_control = read(dir / "system/controlDict");
+  const std::string case_control = cases::read_text_file(dir / "system/controlDict");
 
   // A runner killed during an aligning leg leaves the case's controlDict aside: the next run puts it
   // back before reading it.
@@ -249,7 +245,7 @@ TEST_CASE("a run resumed between two output times first runs to the next one: la
   const std::string end_entry = "endTime         0.015;";
   REQUIRE(expected.find(end_entry) != std::string::npos);
   expected.replace(expected.find(end_entry), end_entry.size(), "endTime         0.035;");
-  CHECK(read(dir / "system/controlDict") == expected);
+  CHECK(cases::read_text_file(dir / "system/controlDict") == expected);
 }
 
 TEST_CASE("a run started from another run's state (--map-from) takes its fields and starts at t = 0",
@@ -276,7 +272,7 @@ TEST_CASE("a run started from another run's state (--map-from) takes its fields 
   INFO(run.str());
   CHECK_THAT(run.str(), Catch::Contains("Initial state from " + source.string() + " at t = 0.02 s") &&
                             Catch::Contains("mapFields") && Catch::Contains("reached t = 0.01"));
-  CHECK_THAT(read(target / "log.mapFields"), Catch::Contains("Source time: 0.02"));
+  CHECK_THAT(cases::read_text_file(target / "log.mapFields"), Catch::Contains("Source time: 0.02"));
   for (const char* field : {"alpha.water.gz", "U.gz", "p_rgh.gz"}) {
     INFO(field);
     const std::vector<double> expected = internal_field(source / "0.02" / field);
@@ -373,7 +369,7 @@ TEST_CASE("a tiny basin runs with the k-epsilon turbulence model", "[reference][
   reference::run_vof_case(dir, reference::RunOptions{}, out);
   INFO(out.str());
   CHECK_THAT(out.str(), Catch::Contains("reached t = 0.01"));
-  CHECK_THAT(read(dir / "log.interFoam"), Catch::Contains("Selecting RAS turbulence model kEpsilon"));
+  CHECK_THAT(cases::read_text_file(dir / "log.interFoam"), Catch::Contains("Selecting RAS turbulence model kEpsilon"));
   CHECK(fs::exists(dir / "0.01/epsilon.gz"));
   const auto inlet = rows_of(dir / "postProcessing/discharge_inlet/0/surfaceFieldValue.dat");
   REQUIRE(!inlet.empty());
@@ -392,7 +388,7 @@ TEST_CASE("a tiny basin runs with the multiphase turbulence stabilization", "[re
   CHECK_THAT(out.str(), Catch::Contains("reached t = 0.01"));
   // interFoam read constant/fvOptions (a wrong file class or unknown type would be a warning or an error)
   // and applied both corrections in every step.
-  const std::string log = read(dir / "log.interFoam");
+  const std::string log = cases::read_text_file(dir / "log.interFoam");
   CHECK_THAT(log, Catch::Contains("Selecting finite volume options type multiphaseStabilizedTurbulence"));
   CHECK_THAT(log, Catch::Contains("applying bouyancy production term to k"));  // (sic: OpenFOAM's spelling)
   CHECK_THAT(log, Catch::Contains("correcting nut"));
@@ -456,7 +452,7 @@ TEST_CASE("body_fitted is refused exactly when the self-test shows the non-ortho
     } catch (const reference::OpenFoamError& e) {
       const std::string message = e.what();
       INFO(message);
-      CHECK_THAT(read(dir / "log.checkMesh"), Catch::Contains("Mesh OK."));
+      CHECK_THAT(cases::read_text_file(dir / "log.checkMesh"), Catch::Contains("Mesh OK."));
       CHECK((message.find("blew up") != std::string::npos || message.find("crashed") != std::string::npos ||
              message.find("not a number") != std::string::npos || message.find("collapsed") != std::string::npos));
       CHECK_THAT(message, Catch::Contains("Last lines of log.interFoam"));
@@ -507,8 +503,8 @@ TEST_CASE("the generated Allrun runs the case by hand as an OpenFOAM user would"
   const fs::path dir = generate(basin_spec("", 0.02, 0.01), tmp.path() / "case");
   const std::string command = "sh '" + (dir / "Allrun").string() + "' > '" + (dir / "allrun.out").string() + "' 2>&1";
   CHECK(std::system(command.c_str()) == 0);
-  INFO(read(dir / "allrun.out"));
+  INFO(cases::read_text_file(dir / "allrun.out"));
   CHECK(fs::exists(dir / "0.02"));
-  CHECK_THAT(read(dir / "log.checkMesh"), Catch::Contains("Mesh OK."));
+  CHECK_THAT(cases::read_text_file(dir / "log.checkMesh"), Catch::Contains("Mesh OK."));
   CHECK(fs::exists(dir / "log.topoSet.2"));  // the section zones, after the cut
 }
