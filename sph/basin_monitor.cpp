@@ -211,14 +211,13 @@ bool BasinMonitor::steady_at(const BalanceSeries& series, std::size_t k) const {
 
 double BasinMonitor::steady_from() const { return steady_from(balance_series()); }
 
+// Backwards from the latest output to the first that is not steady: one window per output of the
+// steady tail (one in all while the run is unsteady) instead of one per output of the whole run.
 double BasinMonitor::steady_from(const BalanceSeries& series) const {
   double from = nan_value;
-  for (std::size_t k = 0; k < samples_.size(); ++k) {
-    if (steady_at(series, k)) {
-      if (!std::isfinite(from)) from = samples_[k].t;
-    } else {
-      from = nan_value;
-    }
+  for (std::size_t k = samples_.size(); k-- > 0;) {
+    if (!steady_at(series, k)) break;
+    from = samples_[k].t;
   }
   return from;
 }

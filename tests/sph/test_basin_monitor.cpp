@@ -86,6 +86,21 @@ TEST_CASE("a stationary jump with balanced discharges is steady, a drifting one 
     CHECK(contains(json, "\"inflow_discharge_relative_error\": 0,"));
     CHECK(contains(json, "\"y2_over_y1\": 5.2,"));
   }
+  SECTION("steady, then 30 % short over (1.5, 2] s, then balanced: steady again from the latest steady stretch") {
+    sph::BasinMonitor monitor(setup());
+    const sph::ParticleSet ps = step_particles(0.5);
+    for (int k = 0; k <= 40; ++k) {
+      const double t = k * dt;
+      // mass out = rho0 q (t - 0.3 * (the part of [1.5, 2] before t))
+      const double short_s = std::clamp(t - 1.5, 0.0, 0.5);
+      monitor.record(ps, t, rho0 * q * t, rho0 * q * (t - 0.3 * short_s));
+      if (k == 15) CHECK(monitor.steady_from() == Approx(1.0).margin(1e-9));
+      if (k == 25) CHECK(std::isnan(monitor.steady_from()));  // one short interval in the last second: 3 %
+    }
+    // The last second holds no short interval from t = 3 s on (one output later if the window's start
+    // is closed): not the first steady time, 1 s.
+    CHECK(monitor.steady_from() == Approx(3.0).margin(0.1 + 1e-9));
+  }
   SECTION("drifting downstream at 0.1 m/s") {
     sph::BasinMonitor monitor(setup());
     for (int k = 0; k <= 30; ++k) {
