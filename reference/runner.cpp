@@ -48,6 +48,23 @@ constexpr const char* default_project_dir = "/usr/share/openfoam";
 // (OptimisationSwitches/stopAtWriteNowSignal); SIGUSR2 is forwarded to the ranks by mpirun.
 constexpr int write_and_stop_signal = SIGUSR2;
 
+// A scratch directory removed when the scope ends, also when a step inside it fails (errors while
+// removing are ignored: they must not replace the step's own error).
+class ScratchDirectory {
+ public:
+  explicit ScratchDirectory(fs::path path) : path_(std::move(path)) {}
+  ~ScratchDirectory() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  ScratchDirectory(const ScratchDirectory&) = delete;
+  ScratchDirectory& operator=(const ScratchDirectory&) = delete;
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
 volatile std::sig_atomic_t stop_requested = 0;
 void reference_runner_request_stop(int) { stop_requested = 1; }
 
@@ -393,19 +410,11 @@ std::string SelfTestResult::summary() const {
 }
 
 SelfTestResult self_test_non_orthogonal(const fs::path& work_dir) {
-  const fs::path root = work_dir / (".hydrojump-selftest-" + std::to_string(::getpid()));
+  const ScratchDirectory root(work_dir / (".hydrojump-selftest-" + std::to_string(::getpid())));
   SelfTestResult r;
   const double healthy = 1e-2;  // a resting fluid stays far below this Courant number
-  try {
-    r.axis_aligned_courant = run_self_test_box(root / "aligned", 0.0);
-    r.sheared_courant = run_self_test_box(root / "sheared", 0.1 * std::tan(2.0 * M_PI / 180.0));
-  } catch (...) {
-    std::error_code ec;
-    fs::remove_all(root, ec);
-    throw;
-  }
-  std::error_code ec;
-  fs::remove_all(root, ec);
+  r.axis_aligned_courant = run_self_test_box(root.path() / "aligned", 0.0);
+  r.sheared_courant = run_self_test_box(root.path() / "sheared", 0.1 * std::tan(2.0 * M_PI / 180.0));
   r.axis_aligned_ok = r.axis_aligned_courant < healthy;
   r.sheared_ok = r.sheared_courant < healthy;
   return r;
@@ -523,8 +532,9 @@ void map_initial_state(const fs::path& dir, const MapSource& source, std::ostrea
   out << "Initial state from " << source.dir.string() << " at t = " << source.time_name << " s\n";
   std::set<std::string> initial;
   for (const auto& entry : fs::directory_iterator(dir / "0.orig")) initial.insert(field_name(entry.path()));
-  const fs::path view = fs::absolute(dir / ".map-source");
-  fs::remove_all(view);
+  fs::remove_all(dir / ".map-source");  // left by a killed run
+  const ScratchDirectory scratch(fs::absolute(dir / ".map-source"));
+  const fs::path& view = scratch.path();
   fs::create_directories(view / source.time_name);
   fs::create_directory_symlink(source.dir / "constant", view / "constant");
   fs::create_directory_symlink(source.dir / "system", view / "system");
@@ -533,13 +543,7 @@ void map_initial_state(const fs::path& dir, const MapSource& source, std::ostrea
       fs::create_symlink(entry.path(), view / source.time_name / entry.path().filename());
     }
   }
-  try {
-    run_step(dir, {"mapFields", view.string(), "-sourceTime", source.time_name, "-consistent"}, "log.mapFields", out);
-  } catch (...) {
-    fs::remove_all(view);
-    throw;
-  }
-  fs::remove_all(view);
+  run_step(dir, {"mapFields", view.string(), "-sourceTime", source.time_name, "-consistent"}, "log.mapFields", out);
 }
 
 // ------------------------------------------------------------ legs on the output grid
