@@ -82,6 +82,14 @@ struct VofSettings {
   double max_time_step_s = 1.0e-3;
   std::string mesh_strategy = "cartesian_cut";     // "cartesian_cut" | "body_fitted"
   double surface_refinement_band_m = 0.0;          // 0: derived from y1 and y2 (stilling basins)
+  // Stilling basins: "none" (the outlet lets out q at the tailwater depth y2, so the basin's water volume
+  // is free to drift) | "hold_toe" (a tailgate: between legs of tailwater_control_interval_s the runner
+  // resets the outlet's Umean to hold the water volume, and moves that volume to hold the toe at the
+  // basin start; reference/tailwater_control.hpp)
+  std::string tailwater_control = "none";
+  double tailwater_control_interval_s = 0.5;       // "hold_toe": a whole number of output intervals
+  double volume_hold_time_s = 1.0;                 // "hold_toe": T_V, time to drain a volume error
+  double toe_hold_time_s = 5.0;                    // "hold_toe": T_x, time to bring the toe to the basin start
 };
 
 // [resolution.<name>] — one named resolution level.

@@ -425,6 +425,22 @@ void read_vof(TableReader& t, VofSettings& v) {
   v.max_time_step_s = t.number_or("max_time_step_s", v.max_time_step_s, positive("s", 1.0));
   v.mesh_strategy = t.choice("mesh_strategy", v.mesh_strategy, {"cartesian_cut", "body_fitted"});
   v.surface_refinement_band_m = t.number_or("surface_refinement_band_m", v.surface_refinement_band_m, non_negative("m", 100.0));
+  v.tailwater_control = t.choice("tailwater_control", v.tailwater_control, {"none", "hold_toe"});
+  v.tailwater_control_interval_s = t.number_or("tailwater_control_interval_s", v.tailwater_control_interval_s, positive("s", 100.0));
+  v.volume_hold_time_s = t.number_or("volume_hold_time_s", v.volume_hold_time_s, positive("s", 1000.0));
+  v.toe_hold_time_s = t.number_or("toe_hold_time_s", v.toe_hold_time_s, positive("s", 1000.0));
+  for (const char* key : {"tailwater_control_interval_s", "volume_hold_time_s", "toe_hold_time_s"}) {
+    if (v.tailwater_control != "hold_toe" && t.has(key))
+      t.fail_at(t.raw().get(key), key, "is only used with tailwater_control = \"hold_toe\" (here \"" + v.tailwater_control + "\")");
+  }
+  // The volume error decays by (1 - interval / T_V) per leg: T_V below one interval would overshoot.
+  if (v.tailwater_control == "hold_toe" && v.volume_hold_time_s < v.tailwater_control_interval_s) {
+    const std::string key = t.has("volume_hold_time_s") ? "volume_hold_time_s" : "tailwater_control_interval_s";
+    t.fail_at(t.raw().get(key.c_str()), key,
+              "is out of range: volume_hold_time_s (" + number_text(v.volume_hold_time_s) +
+                  " s) must be >= tailwater_control_interval_s (" + number_text(v.tailwater_control_interval_s) +
+                  " s), or the volume control overshoots");
+  }
   t.reject_unknown_keys();
 }
 
@@ -738,6 +754,24 @@ Case read_case(TableReader& c, const Study& study, const SphSettings& sph,
   auto run = c.required_table("run");
   read_run(run, result.run);
 
+  if (result.vof.tailwater_control == "hold_toe") {
+    // Checked on the merged settings; named where the case sets them, else at the case's kind.
+    auto vof_table = c.table("vof");
+    const auto fail = [&](const char* key, const std::string& what) {
+      if (vof_table && vof_table->has(key)) vof_table->fail_at(vof_table->raw().get(key), key, what);
+      c.fail_at(c.raw().get("kind"), "kind", "= \"" + result.kind + "\" with [vof] " + key + " " + what);
+    };
+    if (result.kind != "stilling_basin") {
+      fail("tailwater_control", "= \"hold_toe\" needs a stilling basin (kind = \"stilling_basin\"): it moves a jump's toe");
+    }
+    const double ratio = result.vof.tailwater_control_interval_s / result.run.output_interval_s;
+    if (std::abs(ratio - std::round(ratio)) > 1e-6 * ratio || std::round(ratio) < 1.0) {
+      fail("tailwater_control_interval_s",
+           "= " + number_text(result.vof.tailwater_control_interval_s) +
+               " is out of range: must be a whole number of run.output_interval_s (" +
+               number_text(result.run.output_interval_s) + " s), since the control reads the outputs of each leg");
+    }
+  }
   const double g = study.fluid.gravity_m_s2;
   if (result.kind == "stilling_basin") {
     result.data = read_stilling_basin(c, g);
@@ -978,6 +1012,12 @@ void write_vof(TomlWriter& w, const VofSettings& v) {
   w.num("max_time_step_s", v.max_time_step_s);
   w.str("mesh_strategy", v.mesh_strategy);
   w.num("surface_refinement_band_m", v.surface_refinement_band_m);
+  w.str("tailwater_control", v.tailwater_control);
+  if (v.tailwater_control == "hold_toe") {
+    w.num("tailwater_control_interval_s", v.tailwater_control_interval_s);
+    w.num("volume_hold_time_s", v.volume_hold_time_s);
+    w.num("toe_hold_time_s", v.toe_hold_time_s);
+  }
 }
 
 }  // namespace

@@ -7,6 +7,8 @@
 
 #include "cases/atomic_file.hpp"
 #include "cases/hydraulics.hpp"
+#include "cases/jump_toe.hpp"
+#include "reference/tailwater_control.hpp"
 
 namespace hydrojump::reference {
 
@@ -678,7 +680,12 @@ VofCase build_vof_case(const cases::Study& study, const cases::Case& c, const st
     cd.set("purgeWrite", 0);
     cd.set("writeFormat", foam::word("ascii"));
     cd.set("writePrecision", 8);
-    cd.set("writeCompression", foam::on_off(true));
+    const bool hold_toe = basin && c.vof.tailwater_control == "hold_toe";
+    if (hold_toe) {
+      cd.directive("// uncompressed: vof.tailwater_control = \"hold_toe\" rewrites the outlet's Umean in the latest U "
+                   "between legs (reference/tailwater_control.hpp)");
+    }
+    cd.set("writeCompression", foam::on_off(!hold_toe));
     cd.set("timeFormat", foam::word("general"));
     cd.set("timePrecision", 8);
     cd.set("runTimeModifiable", foam::yes_no(true));
@@ -714,6 +721,18 @@ VofCase build_vof_case(const cases::Study& study, const cases::Case& c, const st
       floor.set("end", foam::vector(geo.x_max_m - 1e-6, 0.5 * plan.z_bands.front().end_m / plan.z_bands.front().cells, 0));
       floor.set("nPoints", std::max(10, static_cast<int>(std::ceil(2.0 * (geo.x_max_m - geo.x_min_m) / h)) + 1));
       sets.push_back(foam::named_dict("floor", floor));
+    }
+    if (hold_toe) {
+      // alpha.water along x at threshold y1 above the upstream floor: the toe for the tailwater control
+      const double z = std::round(1e9 * (geo.bed.elevation(geo.x_min_m) + cases::ToeCriterion{}.threshold_y1 *
+                                                                           geo.inflows.front().depth_m)) / 1e9;
+      Dictionary toe_line;
+      toe_line.set("type", foam::word("uniform"));
+      toe_line.set("axis", foam::word("x"));
+      toe_line.set("start", foam::vector(geo.x_min_m + 1e-6, z, 0));
+      toe_line.set("end", foam::vector(geo.x_max_m - 1e-6, z, 0));
+      toe_line.set("nPoints", std::max(10, static_cast<int>(std::ceil(2.0 * (geo.x_max_m - geo.x_min_m) / h)) + 1));
+      sets.push_back(foam::named_dict(toe_line_name, toe_line));
     }
     if (!sets.empty()) {
       Dictionary fo;
@@ -753,6 +772,21 @@ VofCase build_vof_case(const cases::Study& study, const cases::Case& c, const st
       functions.set("discharge_outlet", discharge_fo("patch", "outlet"));
       // Water thrown out through the top is lost to the basin: `hydrojump compare` reports it.
       functions.set("discharge_atmosphere", discharge_fo("patch", "atmosphere"));
+    }
+    if (hold_toe) {
+      Dictionary fo;
+      fo.directive("// the water volume (m^3) every time step, / thickness " + n(plan.thickness_m) +
+                   " m = V (m^2) of the tailwater control");
+      fo.set("type", foam::word("volFieldValue"));
+      fo.set("libs", libs("libfieldFunctionObjects.so"));
+      fo.set("writeControl", foam::word("timeStep"));
+      fo.set("writeInterval", 1);
+      fo.set("log", foam::word("false"));
+      fo.set("writeFields", foam::word("false"));
+      fo.set("regionType", foam::word("all"));
+      fo.set("operation", foam::word("volIntegrate"));
+      fo.set("fields", foam::list({foam::word("alpha.water")}));
+      functions.set(water_volume_function, fo);
     }
     {
       Dictionary iso;

@@ -40,6 +40,8 @@ void register_commands(CLI::App& app) {
       "time and stop, ready for --resume. Outputs stay on the case's output times (a run resumed\n"
       "between two of them first runs to the next one; an end time between two is written by a short\n"
       "closing run). Logs: DIR/log.<application>. The case can also be run by hand with DIR/Allrun.\n"
+      "A case with [vof] tailwater_control = \"hold_toe\" runs in legs; after each the outlet's Umean\n"
+      "is reset like a tailgate to hold the jump's toe at the basin start (DIR/tailwater_control.csv).\n"
       "Needs OpenFOAM v1912 (WM_PROJECT_DIR, default /usr/share/openfoam).\n"
       "One process per DIR: a second one started on it stops at once, naming the first.");
   vof->add_option("DIR", options->dir, "case directory (holds case.toml, system/, constant/, 0.orig/)");

@@ -11,10 +11,11 @@ namespace hydrojump::reference {
 
 namespace fs = std::filesystem;
 
-std::vector<std::pair<double, double>> read_surface_field_value(const fs::path& function_dir) {
+std::vector<std::pair<double, double>> read_surface_field_value(const fs::path& function_dir,
+                                                               const std::string& file_name) {
   std::vector<std::pair<double, double>> rows;
   for (const auto& [start, dir] : sample_times(function_dir)) {
-    const fs::path file = dir / "surfaceFieldValue.dat";
+    const fs::path file = dir / file_name;
     if (!fs::exists(file)) continue;
     while (!rows.empty() && rows.back().first >= start - 1e-12) rows.pop_back();
     std::ifstream in(file);

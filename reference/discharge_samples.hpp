@@ -22,6 +22,7 @@
 
 #include <filesystem>
 #include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -31,8 +32,10 @@ namespace hydrojump::reference {
 // first field) of every `<function_dir>/<start time>/surfaceFieldValue.dat`. A resumed run starts a
 // new start-time directory; its rows replace the earlier directory's rows from that start time on.
 // Empty when the directory does not exist (cases written before the function object was added).
-// Throws naming the file and line on a row that is not two or more numbers.
-std::vector<std::pair<double, double>> read_surface_field_value(const std::filesystem::path& function_dir);
+// Throws naming the file and line on a row that is not two or more numbers. A `volFieldValue` function
+// object's rows are read the same way with file_name "volFieldValue.dat".
+std::vector<std::pair<double, double>> read_surface_field_value(const std::filesystem::path& function_dir,
+                                                               const std::string& file_name = "surfaceFieldValue.dat");
 
 // Mean of that column over [t0, t1]; nullopt without a row in the window.
 std::optional<double> surface_field_value_mean(const std::filesystem::path& function_dir, double t0, double t1);

@@ -29,12 +29,15 @@
 #include "cases/child_process.hpp"
 #include "cases/directory_lock.hpp"
 #include "cases/fingerprint.hpp"
+#include "cases/geometry.hpp"
 #include "cases/results_case.hpp"
 #include "cases/spec_reader.hpp"
 #include "reference/case_writer.hpp"
 #include "reference/discharge_samples.hpp"
 #include "reference/foam_dictionary.hpp"
+#include "reference/line_samples.hpp"
 #include "reference/solver_log.hpp"
+#include "reference/tailwater_control.hpp"
 
 namespace hydrojump::reference {
 
@@ -806,6 +809,85 @@ std::vector<SolverLeg> plan_solver_legs(double start_s, double end_s, std::optio
   return legs;
 }
 
+std::vector<SolverLeg> split_legs_for_control(const std::vector<SolverLeg>& legs, double start_s, double interval_s) {
+  if (!(interval_s > 0.0)) return legs;
+  std::vector<SolverLeg> out;
+  double begin = start_s;
+  for (const SolverLeg& leg : legs) {
+    if (!leg.write_interval_s) {
+      const double eps = 1e-6 * interval_s;
+      for (int k = 1; begin + k * interval_s < leg.end_s - eps; ++k) out.push_back(SolverLeg{begin + k * interval_s, std::nullopt});
+    }
+    out.push_back(leg);
+    begin = leg.end_s;
+  }
+  return out;
+}
+
+namespace {
+
+// After a leg that ended at `leg_end_s` (started at leg_start_s): the law's step from the leg's outputs,
+// logged, and the outlet's Umean rewritten in the latest time directory (each processor's when decomposed).
+void tailwater_control_after_leg(const fs::path& dir, const TailwaterControlLaw& law, double thickness_m,
+                                 bool parallel, double leg_start_s, double leg_end_s, std::ostream& out) {
+  const double tol = 1e-6 * std::max(law.interval_s, 1e-3);
+  std::vector<double> toes;
+  for (const auto& [t, time_dir] : sample_times(dir / "postProcessing/sections")) {
+    if (t <= leg_start_s + tol || t > leg_end_s + tol) continue;
+    const fs::path file = time_dir / (std::string(toe_line_name) + "_alpha.water.xy");
+    if (fs::exists(file)) toes.push_back(toe_on_line(read_line_sample(file), law.toe_search_from_m, law.inflow_depth_m));
+  }
+  std::optional<double> volume_m3;
+  for (const auto& [t, v] : read_surface_field_value(dir / "postProcessing" / water_volume_function, "volFieldValue.dat")) {
+    if (t <= leg_end_s + tol) volume_m3 = v;
+  }
+  if (!volume_m3) {
+    throw OpenFoamError("tailwater control: no water volume up to t = " + format_seconds(leg_end_s) + " s in " +
+                        (dir / "postProcessing" / water_volume_function).string() +
+                        " (the case's controlDict lacks the water_volume function object: regenerate the case)");
+  }
+  std::optional<double> previous_target;
+  for (const TailwaterControlStep& s : read_tailwater_control_log(dir)) {
+    if (s.time_s <= leg_start_s + tol) previous_target = s.volume_target_m2;
+  }
+  const TailwaterControlStep step =
+      tailwater_control_step(law, previous_target, leg_end_s, toes, *volume_m3 / thickness_m);
+  std::vector<fs::path> u_files;
+  if (parallel) {
+    for (int r = 0; fs::is_directory(dir / ("processor" + std::to_string(r))); ++r) {
+      const auto times = time_directories(dir / ("processor" + std::to_string(r)));
+      if (!times.empty()) u_files.push_back(times.back().second / "U");
+    }
+  } else {
+    const auto times = time_directories(dir);
+    if (!times.empty()) u_files.push_back(times.back().second / "U");
+  }
+  if (u_files.empty()) throw OpenFoamError("tailwater control: no time directory in " + dir.string());
+  for (const fs::path& f : u_files) {
+    if (!fs::exists(f) && fs::exists(f.string() + ".gz")) {
+      throw OpenFoamError("tailwater control: " + f.string() + ".gz is compressed, but the control rewrites the "
+                          "outlet's Umean in plain field files (a case with tailwater_control = \"hold_toe\" is "
+                          "written with writeCompression off: regenerate it with `hydrojump generate`)");
+    }
+  }
+  const double previous_umean = read_outlet_mean_velocity(u_files.front());
+  for (const fs::path& f : u_files) write_outlet_mean_velocity(f, step.outlet_mean_velocity_m_s);
+  append_tailwater_control_log(dir, step);
+  std::ostringstream line;
+  line << std::setprecision(4) << "  tailwater control at t = " << format_seconds(leg_end_s) << " s: toe ";
+  if (step.toe_outputs > 0) {
+    line << step.toe_x_m << " m (" << step.toe_outputs << " outputs)";
+  } else {
+    line << "none (counted at the outlet)";
+  }
+  line << ", target " << law.target_toe_x_m << " m; water " << step.water_volume_m2 << " m2, target "
+       << step.volume_target_m2 << " m2; outlet Umean " << previous_umean << " -> " << step.outlet_mean_velocity_m_s
+       << " m/s\n";
+  out << line.str() << std::flush;
+}
+
+}  // namespace
+
 void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostream& out) {
   const fs::path dir = fs::absolute(dir_in);
   if (options.np < 1) throw OpenFoamError("--np must be >= 1");
@@ -1004,7 +1086,16 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
   const double t_begin = start.value_or(0.0);
   std::optional<double> leg_start = start;
   double reached = t_begin;
-  for (const SolverLeg& leg : plan_solver_legs(t_begin, end_time_s, output_grid_interval(dir))) {
+  std::vector<SolverLeg> legs = plan_solver_legs(t_begin, end_time_s, output_grid_interval(dir));
+  std::optional<TailwaterControlLaw> control;
+  if (c.vof.tailwater_control == "hold_toe") {
+    control = tailwater_control_law(c, cases::make_geometry(c, study.fluid));
+    legs = split_legs_for_control(legs, t_begin, control->interval_s);
+    out << "Tailwater control (hold_toe): after every " << format_seconds(control->interval_s)
+        << " s the outlet's Umean is reset to hold the water volume, and the volume moved to bring the toe to x = "
+        << format_seconds(control->target_toe_x_m) << " m (log: " << tailwater_control_log << ")\n";
+  }
+  for (const SolverLeg& leg : legs) {
     std::optional<ControlDictOverride> leg_control;
     if (leg.write_interval_s || std::abs(leg.end_s - end_time_s) > 1e-12) {
       if (leg_start && leg.write_interval_s && leg.end_s < end_time_s) {
@@ -1020,6 +1111,7 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
     }
     reached = run_solver(run, leg_start, leg.end_s, out);
     if (leg_control) leg_control->restore();
+    if (control) tailwater_control_after_leg(dir, *control, vof.mesh.thickness_m, parallel, leg_start.value_or(0.0), leg.end_s, out);
     leg_start = leg.end_s;
   }
   if (parallel) {

@@ -16,7 +16,10 @@
 //      of another run of the same case, interpolated onto this mesh with OpenFOAM's `mapFields
 //      -consistent` (mesh sequencing: a finer run started from a settled coarser one; only the
 //      fields the case starts with are mapped, and cells the source's domain does not cover, as
-//      when the air layer was raised, keep setFields' state). The run still starts at t = 0.
+//      when the air layer was raised, keep setFields' state). The run still starts at t = 0;
+//   7. with `[vof] tailwater_control = "hold_toe"` the legs are split every tailwater_control_interval_s
+//      and, after each, the outlet's Umean in the latest time directory is reset by the control law of
+//      tailwater_control.hpp (a tailgate holding the toe at the basin start; log: tailwater_control.csv).
 // Every step logs to DIR/log.<application>.
 #pragma once
 
@@ -88,6 +91,11 @@ struct SolverLeg {
   std::optional<double> write_interval_s;  // this leg's writeInterval; nothing: the case's
 };
 std::vector<SolverLeg> plan_solver_legs(double start_s, double end_s, std::optional<double> output_interval_s);
+
+// The legs of a run with the tailwater control (tailwater_control.hpp): each leg on the output grid
+// (one without its own write interval) split at every `interval_s` from its start, so that the control
+// acts after each piece; aligning and closing legs are kept whole. `interval_s` <= 0: the legs unchanged.
+std::vector<SolverLeg> split_legs_for_control(const std::vector<SolverLeg>& legs, double start_s, double interval_s);
 
 // Meshes and runs the case in `dir` (written by `hydrojump generate`, holding case.toml).
 // Throws OpenFoamError (or cases::SpecError for a bad case.toml).

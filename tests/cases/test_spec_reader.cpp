@@ -622,3 +622,40 @@ TEST_CASE("The viscous wall condition is no_slip, free_slip or wall_function, wi
                              "[case.run]", "[case.sph]\nviscosity = \"artificial\"\n[case.run]");
   CHECK(parse_study(text, "spec.toml", ".").cases[0].sph.viscous_wall_condition == "no_slip");
 }
+
+TEST_CASE("The VOF tailwater control is none or hold_toe, its numbers only with hold_toe, on stilling basins", "[cases][spec]") {
+  const auto with = [](const std::string& lines) { return replaced(valid_spec, "[[case]]", "[vof]\n" + lines + "\n\n[[case]]"); };
+  const Study plain = parse_study(with(""), "spec.toml", ".");
+  CHECK(plain.cases[0].vof.tailwater_control == "none");
+  const Study s = parse_study(with("tailwater_control = \"hold_toe\"\ntailwater_control_interval_s = 1.0\n"
+                                   "volume_hold_time_s = 2.0\ntoe_hold_time_s = 8.0"),
+                              "spec.toml", ".");
+  CHECK(s.cases[0].vof.tailwater_control == "hold_toe");
+  const Study again = resolved_reload(s, "tailwater");
+  CHECK(again.cases[0].vof.tailwater_control == "hold_toe");
+  CHECK(again.cases[0].vof.tailwater_control_interval_s == 1.0);
+  CHECK(again.cases[0].vof.volume_hold_time_s == 2.0);
+  CHECK(again.cases[0].vof.toe_hold_time_s == 8.0);
+  CHECK(resolved_reload(plain, "no_tailwater").cases[0].vof.tailwater_control == "none");
+  CHECK_THAT(rejection(with("tailwater_control = \"tailgate\"")),
+             Catch::Contains("tailwater_control") && Catch::Contains("\"none\"") && Catch::Contains("\"hold_toe\""));
+  CHECK_THAT(rejection(with("toe_hold_time_s = 5")),
+             Catch::Contains("vof.toe_hold_time_s is only used with tailwater_control = \"hold_toe\" (here \"none\")"));
+  CHECK_THAT(rejection(with("tailwater_control = \"hold_toe\"\ntoe_hold_time_s = 0")),
+             Catch::Contains("vof.toe_hold_time_s = 0 is out of range"));
+  CHECK_THAT(rejection(with("tailwater_control = \"hold_toe\"\nvolume_hold_time_s = 0.2")),
+             Catch::Contains("volume_hold_time_s") && Catch::Contains("must be >= tailwater_control_interval_s (0.5 s)"));
+  // The outputs come every 0.05 s (the default): the legs must end on them.
+  const std::string off_grid_text = with("tailwater_control = \"hold_toe\"\ntailwater_control_interval_s = 0.26\n"
+                                         "volume_hold_time_s = 1");
+  const std::string off_grid = rejection(off_grid_text);
+  CHECK_THAT(off_grid, Catch::Contains("tailwater_control_interval_s = 0.26 is out of range: must be a whole number of "
+                                       "run.output_interval_s (0.05 s)"));
+  CHECK_THAT(off_grid, Catch::Contains("spec.toml:" + std::to_string(line_of(off_grid_text, "kind = \"stilling_basin\""))));
+  // Set in [case.vof], the error names that line.
+  const std::string in_case = replaced(valid_spec, "[case.run]",
+                                       "[case.vof]\ntailwater_control = \"hold_toe\"\ntailwater_control_interval_s = 0.07\n[case.run]");
+  CHECK_THAT(rejection(in_case), Catch::Contains("spec.toml:" + std::to_string(line_of(in_case, "tailwater_control_interval_s")) +
+                                                 ": case \"A\": vof.tailwater_control_interval_s = 0.07 is out of range"));
+  CHECK(parse_study(replaced(in_case, "0.07", "0.2"), "spec.toml", ".").cases[0].vof.tailwater_control_interval_s == 0.2);
+}

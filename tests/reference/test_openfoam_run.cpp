@@ -19,6 +19,7 @@
 #include "reference/cli.hpp"
 #include "reference/line_samples.hpp"
 #include "reference/runner.hpp"
+#include "reference/tailwater_control.hpp"
 #include "reference_test_specs.hpp"
 #include "tests/temp_dir.hpp"
 
@@ -358,6 +359,58 @@ TEST_CASE("a run mapped from a run with a lower air layer keeps setFields' air a
   CHECK(*target_max <= std::max(1.0, *source_max) + 1e-9);
 }
 
+TEST_CASE("a tiny basin with the tailwater control resets the outlet's Umean after every leg and resumes with it",
+          "[reference][openfoam][tailwater]") {
+  require_openfoam();
+  const std::string spec = basin_spec("tailwater_control = \"hold_toe\"\ntailwater_control_interval_s = 0.01\n"
+                                      "volume_hold_time_s = 0.02\ntoe_hold_time_s = 5",
+                                      0.02, 0.01, "smooth");
+  const cases::Study study = parse(spec);
+  const reference::VofCase vof = reference::build_vof_case(study, study.cases.front(), "quick");
+  const TempDir tmp("openfoam-tailwater");
+  const fs::path dir = generate(spec, tmp.path() / "case");
+  std::ostringstream out;
+  reference::run_vof_case(dir, reference::RunOptions{}, out);
+  INFO(out.str());
+  CHECK_THAT(out.str(), Catch::Contains("tailwater control at t = 0.01 s: toe ") &&
+                            Catch::Contains("tailwater control at t = 0.02 s: toe ") && Catch::Contains("reached t = 0.02"));
+  auto rows = reference::read_tailwater_control_log(dir);
+  REQUIRE(rows.size() == 2);
+  // The fields are written uncompressed; each leg's end holds the Umean the control set for the next.
+  CHECK(!fs::exists(dir / "0.01/U.gz"));
+  CHECK(reference::read_outlet_mean_velocity(dir / "0.01/U") == Approx(rows[0].outlet_mean_velocity_m_s).epsilon(1e-8));
+  CHECK(reference::read_outlet_mean_velocity(dir / "0.02/U") == Approx(rows[1].outlet_mean_velocity_m_s).epsilon(1e-8));
+  // The water volume per unit width: the sampled integral of alpha over the basin / thickness; between
+  // the volumes of a basin filled to y1 and to the tailwater (0.06 m) over its 0.472 m.
+  const auto check_row = [](const reference::TailwaterControlStep& r) {
+    CHECK(r.water_volume_m2 > 0.0254 * 0.472);
+    CHECK(r.water_volume_m2 < 0.06 * 0.472);
+    // setFields' ramp from y1 at the basin start (0.1 m) to 0.06 m at 0.46 m crosses the line at 1.5 y1 =
+    // 0.0381 m at x = 0.1 + 0.36 (0.0381 - 0.0254) / (0.06 - 0.0254) = 0.232 m; in 0.03 s it barely moves.
+    CHECK(r.toe_outputs == 1);
+    CHECK(r.toe_x_m == Approx(0.232).margin(0.015));
+  };
+  for (const auto& r : rows) check_row(r);
+  // The second step continues from the first's volume target (toe target 0.1 m, the basin start).
+  const auto next_target = [](const reference::TailwaterControlStep& previous, const reference::TailwaterControlStep& r) {
+    return previous.volume_target_m2 + (0.06 - 0.0254) / 5.0 * (r.toe_x_m - 0.1) * 0.01;
+  };
+  CHECK(rows[1].volume_target_m2 == Approx(next_target(rows[0], rows[1])).epsilon(1e-9));
+  // Resumed to 0.03 s: one more step, from the logged target.
+  reference::RunOptions extend;
+  extend.resume = true;
+  extend.end_time_s = 0.03;
+  std::ostringstream out2;
+  reference::run_vof_case(dir, extend, out2);
+  rows = reference::read_tailwater_control_log(dir);
+  REQUIRE(rows.size() == 3);
+  CHECK(rows[2].time_s == Approx(0.03));
+  check_row(rows[2]);
+  CHECK(rows[2].volume_target_m2 == Approx(next_target(rows[1], rows[2])).epsilon(1e-9));
+  CHECK(reference::read_outlet_mean_velocity(dir / "0.03/U") == Approx(rows[2].outlet_mean_velocity_m_s).epsilon(1e-8));
+  CHECK(vof.mesh.thickness_m > 0.0);
+}
+
 TEST_CASE("a tiny basin runs with the k-epsilon turbulence model", "[reference][openfoam]") {
   require_openfoam();
   const std::string spec = basin_spec("turbulence_model = \"kEpsilon\"", 0.01, 0.01);
@@ -427,6 +480,30 @@ TEST_CASE("an MPI run (--np 2) gives the same result as the serial run", "[refer
   CHECK_THAT(out2.str(), Catch::Contains("Resuming from t = 0.02"));
   CHECK_THAT(out2.str(), !Catch::Contains("decomposePar"));
   CHECK(fs::exists(parallel / "0.03/U.gz"));
+}
+
+TEST_CASE("an MPI run (--np 2) with the tailwater control resets Umean in every processor's latest U",
+          "[reference][openfoam][tailwater]") {
+  require_openfoam();
+  const std::string spec = basin_spec("tailwater_control = \"hold_toe\"\ntailwater_control_interval_s = 0.01\n"
+                                      "volume_hold_time_s = 0.02",
+                                      0.02, 0.01, "smooth");
+  const TempDir tmp("openfoam-tailwater-mpi");
+  const fs::path dir = generate(spec, tmp.path() / "case");
+  reference::RunOptions options;
+  options.np = 2;
+  std::ostringstream out;
+  reference::run_vof_case(dir, options, out);
+  INFO(out.str());
+  const auto rows = reference::read_tailwater_control_log(dir);
+  REQUIRE(rows.size() == 2);
+  for (const char* rank : {"processor0", "processor1"}) {
+    CHECK(reference::read_outlet_mean_velocity(dir / rank / "0.01/U") == Approx(rows[0].outlet_mean_velocity_m_s).epsilon(1e-8));
+    CHECK(reference::read_outlet_mean_velocity(dir / rank / "0.02/U") == Approx(rows[1].outlet_mean_velocity_m_s).epsilon(1e-8));
+  }
+  // reconstructPar takes the boundary condition from the processors' files.
+  CHECK(reference::read_outlet_mean_velocity(dir / "0.02/U") == Approx(rows[1].outlet_mean_velocity_m_s).epsilon(1e-8));
+  CHECK(rows[1].toe_outputs == 1);
 }
 
 TEST_CASE("body_fitted is refused exactly when the self-test shows the non-orthogonal defect",

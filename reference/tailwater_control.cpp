@@ -1,0 +1,201 @@
+#include "reference/tailwater_control.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include "cases/atomic_file.hpp"
+#include "cases/csv_table.hpp"
+#include "cases/hydraulics.hpp"
+#include "cases/jump_toe.hpp"
+#include "cases/fingerprint.hpp"
+
+namespace hydrojump::reference {
+
+namespace fs = std::filesystem;
+
+TailwaterControlLaw tailwater_control_law(const cases::Case& c, const cases::CaseGeometry& geo) {
+  if (c.vof.tailwater_control != "hold_toe" || !c.stilling_basin() || geo.inflows.empty() || geo.outflows.empty()) {
+    throw std::invalid_argument("case \"" + c.id + "\": the tailwater control holds the toe of a stilling basin "
+                                "with [vof] tailwater_control = \"hold_toe\"");
+  }
+  TailwaterControlLaw law;
+  const cases::InflowBoundary& in = geo.inflows.front();
+  law.discharge_m2_s = cases::unit_discharge(in.depth_m, in.velocity_m_s);
+  law.inflow_depth_m = in.depth_m;
+  law.tailwater_depth_m = geo.outflows.front().tailwater_depth_m;
+  law.target_toe_x_m = geo.expected_toe_x_m;
+  law.toe_search_from_m = geo.x_min_m;
+  for (const cases::Section& s : geo.sections) {
+    if (s.role == "upstream") law.toe_search_from_m = s.x_m;
+  }
+  law.outlet_x_m = geo.x_max_m;
+  law.interval_s = c.vof.tailwater_control_interval_s;
+  law.volume_hold_time_s = c.vof.volume_hold_time_s;
+  law.toe_hold_time_s = c.vof.toe_hold_time_s;
+  return law;
+}
+
+TailwaterControlStep tailwater_control_step(const TailwaterControlLaw& law, std::optional<double> previous_target,
+                                            double time_s, const std::vector<double>& output_toes_x_m,
+                                            double water_volume_m2) {
+  TailwaterControlStep step;
+  step.time_s = time_s;
+  step.water_volume_m2 = water_volume_m2;
+  double sum = 0.0;
+  for (double x : output_toes_x_m) {
+    if (!std::isfinite(x)) continue;
+    sum += x;
+    ++step.toe_outputs;
+  }
+  step.toe_x_m = step.toe_outputs > 0 ? sum / step.toe_outputs : std::numeric_limits<double>::quiet_NaN();
+  const double toe = step.toe_outputs > 0 ? step.toe_x_m : law.outlet_x_m;
+  // V*(n) = V*(n-1) + (y2* - y1) / T_x * (x_toe - x_target) * dt
+  const double y2 = law.tailwater_depth_m;
+  step.volume_target_m2 = previous_target.value_or(water_volume_m2) +
+                          (y2 - law.inflow_depth_m) / law.toe_hold_time_s * (toe - law.target_toe_x_m) * law.interval_s;
+  // Umean = (q + (V - V*) / T_V) / y2*, within [1/4, 4] q / y2*
+  const double q = law.discharge_m2_s;
+  const double umean = (q + (water_volume_m2 - step.volume_target_m2) / law.volume_hold_time_s) / y2;
+  step.outlet_mean_velocity_m_s = std::clamp(umean, 0.25 * q / y2, 4.0 * q / y2);
+  return step;
+}
+
+double toe_on_line(const LineSample& line, double x_from, double inflow_depth_m) {
+  const cases::ToeCriterion criterion;
+  // zeta = 2 threshold y1 alpha: its running mean exceeds threshold y1 where alpha's exceeds 1/2.
+  std::vector<double> zeta(line.alpha.size());
+  for (std::size_t i = 0; i < zeta.size(); ++i) zeta[i] = 2.0 * criterion.threshold_y1 * inflow_depth_m * line.alpha[i];
+  const std::size_t i = cases::find_jump_toe(line.position_m, zeta, x_from, inflow_depth_m, criterion);
+  return i < line.position_m.size() ? line.position_m[i] : std::numeric_limits<double>::quiet_NaN();
+}
+
+namespace {
+
+// Where the value of Umean stands in the `outlet { ... }` entry of boundaryField: [begin, end).
+struct UmeanEntry {
+  std::size_t value_begin = 0;
+  std::size_t value_end = 0;
+};
+
+bool is_word_char(char ch) { return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '.'; }
+
+// Position of `word` as a whole token in text[from, to), or npos.
+std::size_t find_token(const std::string& text, const std::string& word, std::size_t from, std::size_t to) {
+  for (std::size_t p = text.find(word, from); p != std::string::npos && p < to; p = text.find(word, p + 1)) {
+    const bool before = p == 0 || !is_word_char(text[p - 1]);
+    const bool after = p + word.size() >= text.size() || !is_word_char(text[p + word.size()]);
+    if (before && after) return p;
+  }
+  return std::string::npos;
+}
+
+UmeanEntry find_umean(const std::string& text, const fs::path& file) {
+  const auto fail = [&](const std::string& what) -> UmeanEntry {
+    throw std::runtime_error(file.string() + ": " + what + " (the tailwater control rewrites the outlet's Umean "
+                             "of an outletPhaseMeanVelocity condition in an uncompressed field file)");
+  };
+  const std::size_t boundary = find_token(text, "boundaryField", 0, text.size());
+  if (boundary == std::string::npos) return fail("no boundaryField");
+  // The token `outlet` followed by '{' (not a word in a comment or a value).
+  std::size_t open = std::string::npos;
+  for (std::size_t at = find_token(text, "outlet", boundary, text.size()); at != std::string::npos;
+       at = find_token(text, "outlet", at + 1, text.size())) {
+    const std::size_t next = text.find_first_not_of(" \t\r\n", at + 6);
+    if (next != std::string::npos && text[next] == '{') {
+      open = next;
+      break;
+    }
+  }
+  if (open == std::string::npos) return fail("no outlet entry in boundaryField");
+  // The entry's closing brace (its value list holds parentheses, not braces).
+  int depth = 0;
+  std::size_t close = std::string::npos;
+  for (std::size_t p = open; p < text.size(); ++p) {
+    if (text[p] == '{') ++depth;
+    if (text[p] == '}' && --depth == 0) {
+      close = p;
+      break;
+    }
+  }
+  if (close == std::string::npos) return fail("the outlet entry is not closed");
+  const std::size_t key = find_token(text, "Umean", open, close);
+  if (key == std::string::npos) return fail("the outlet entry has no Umean");
+  const std::size_t value_begin = text.find_first_not_of(" \t", key + 5);
+  const std::size_t value_end = text.find(';', value_begin);
+  if (value_begin == std::string::npos || value_end == std::string::npos || value_end > close) {
+    return fail("the outlet's Umean has no value");
+  }
+  return UmeanEntry{value_begin, value_end};
+}
+
+std::string format_number(double v) {
+  std::ostringstream s;
+  s << std::setprecision(10) << v;
+  return s.str();
+}
+
+}  // namespace
+
+double read_outlet_mean_velocity(const fs::path& u_file) {
+  const std::string text = cases::read_text_file(u_file);
+  const UmeanEntry e = find_umean(text, u_file);
+  const std::string value = text.substr(e.value_begin, e.value_end - e.value_begin);
+  const double v = cases::csv_number(value);
+  if (!std::isfinite(v)) throw std::runtime_error(u_file.string() + ": the outlet's Umean \"" + value + "\" is not a number");
+  return v;
+}
+
+void write_outlet_mean_velocity(const fs::path& u_file, double umean_m_s) {
+  if (!std::isfinite(umean_m_s)) throw std::invalid_argument("outlet Umean must be finite");
+  std::string text = cases::read_text_file(u_file);
+  const UmeanEntry e = find_umean(text, u_file);
+  text.replace(e.value_begin, e.value_end - e.value_begin, format_number(umean_m_s));
+  cases::write_file_atomically(u_file, text);
+}
+
+namespace {
+const char* const log_header = "time_s,toe_x_m,toe_outputs,water_volume_m2,volume_target_m2,outlet_mean_velocity_m_s";
+}
+
+std::vector<TailwaterControlStep> read_tailwater_control_log(const fs::path& case_dir) {
+  std::vector<TailwaterControlStep> steps;
+  const fs::path file = case_dir / tailwater_control_log;
+  if (!fs::exists(file)) return steps;
+  const cases::CsvTable table = cases::read_csv_table(file);
+  const auto col = [&](const char* name) {
+    const auto c = table.column(name);
+    if (!c) throw std::runtime_error(file.string() + ": no column \"" + name + "\" (expected " + log_header + ")");
+    return *c;
+  };
+  const std::size_t t = col("time_s"), x = col("toe_x_m"), n = col("toe_outputs"), v = col("water_volume_m2"),
+                    vt = col("volume_target_m2"), u = col("outlet_mean_velocity_m_s");
+  for (const auto& row : table.rows) {
+    if (row.size() != table.header.size()) continue;  // a torn last line
+    TailwaterControlStep s;
+    s.time_s = cases::csv_number(row[t]);
+    s.toe_x_m = cases::csv_number(row[x]);
+    s.toe_outputs = static_cast<int>(cases::csv_number(row[n]));
+    s.water_volume_m2 = cases::csv_number(row[v]);
+    s.volume_target_m2 = cases::csv_number(row[vt]);
+    s.outlet_mean_velocity_m_s = cases::csv_number(row[u]);
+    if (std::isfinite(s.time_s) && std::isfinite(s.volume_target_m2)) steps.push_back(s);
+  }
+  return steps;
+}
+
+void append_tailwater_control_log(const fs::path& case_dir, const TailwaterControlStep& step) {
+  const fs::path file = case_dir / tailwater_control_log;
+  std::string text = fs::exists(file) ? cases::read_text_file(file) : std::string(log_header) + "\n";
+  if (!text.empty() && text.back() != '\n') text += '\n';
+  std::ostringstream row;
+  row << std::setprecision(10) << step.time_s << ',' << step.toe_x_m << ',' << step.toe_outputs << ','
+      << step.water_volume_m2 << ',' << step.volume_target_m2 << ',' << step.outlet_mean_velocity_m_s << '\n';
+  cases::write_file_atomically(file, text + row.str());
+}
+
+}  // namespace hydrojump::reference

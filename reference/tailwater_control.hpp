@@ -1,0 +1,107 @@
+// Holding a hydraulic jump's toe with the tailwater, as a laboratory tailgate does
+// (`[vof] tailwater_control = "hold_toe"`; Ead & Rajaratnam 2002 set their tailgate so that the toe
+// stood at the start of the corrugated bed).
+//
+// Why. The generated outlet (`outletPhaseMeanVelocity`, Umean = q / y2*) lets out a fixed discharge at
+// the tailwater depth, so the water volume of the basin is free to drift, and on a smooth horizontal bed
+// the jump has no preferred place: a tailwater 1 % off Bélanger's depth moves the toe at about 1 % of U1
+// (3-4 cm/s for runs B and C). In a basin that keeps its water volume the jump is stable: moved
+// downstream by dx, it leaves (y2 - y1) dx of water behind it, which raises the level behind the
+// roller and pushes it back. So the control holds the volume, and moves it slowly to bring the toe to
+// the target, once per leg of `tailwater_control_interval_s` (interFoam runs leg by leg; the outlet's
+// Umean is rewritten in the latest time directory between legs):
+//
+//   V*(n)     = V*(n-1) + (y2* - y1) / T_x * (x_toe(n) - x_target) * dt        (toe: more water when the
+//                                                                               toe lies downstream)
+//   Umean(n)  = ( q + (V(n) - V*(n)) / T_V ) / y2*,   clamped to [1/4, 4] q / y2*   (volume)
+//
+// V(n) the water volume per unit width (m^2: the integral of alpha.water over the domain divided by
+// the mesh's thickness) at the end of leg n, x_toe(n) the mean of the toe over the leg's outputs,
+// dt the leg's length, T_V = `volume_hold_time_s` (a volume error decays by about dt / T_V per leg),
+// T_x = `toe_hold_time_s` ((y2* - y1) / T_x is the volume per second that moves the toe by 1 m,
+// y2* - y1 per metre of basin). V*(0) = V(0) + its toe term: the first leg's volume, so the control
+// starts without a jump. x_target = the basin start (`expected_toe_x_m`). A leg without a toe on any
+// output counts as a toe at the outlet (the jump has left the basin downstream). At steady state the
+// outlet lets out q and the toe stands at x_target: the tailwater y2 then is the depth the jump needs,
+// which the comparator sets beside Bélanger's.
+//
+// The toe of an output is the toe criterion of cases/jump_toe.hpp applied along a horizontal line at
+// threshold_y1 y1 above the upstream floor (the `toe_line` set the case writer adds), with
+// zeta = 2 threshold_y1 y1 alpha.water, so that the running mean of zeta exceeds threshold_y1 y1 where
+// the running mean of alpha exceeds 1/2: water above that height, persisting over persistence_y1 y1,
+// searched from the upstream section on.
+//
+// Usage ([vof] or [case.vof])
+//   | key                           | default | meaning                                               |
+//   |-------------------------------|---------|-------------------------------------------------------|
+//   | tailwater_control             | "none"  | "hold_toe": this control (stilling basins)            |
+//   | tailwater_control_interval_s  | 0.5     | leg length dt, a whole number of output intervals     |
+//   | volume_hold_time_s            | 1.0     | T_V (>= dt)                                           |
+//   | toe_hold_time_s               | 5.0     | T_x                                                   |
+// Example:
+//   [case.vof]
+//   tailwater_control = "hold_toe"
+// Each step is logged in DIR/tailwater_control.csv (time_s, toe_x_m, toe_outputs, water_volume_m2,
+// volume_target_m2, outlet_mean_velocity_m_s); `--resume` continues from its last row.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cases/geometry.hpp"
+#include "cases/spec.hpp"
+#include "reference/line_samples.hpp"
+
+namespace hydrojump::reference {
+
+inline constexpr const char* tailwater_control_log = "tailwater_control.csv";
+inline constexpr const char* toe_line_name = "toe_line";
+inline constexpr const char* water_volume_function = "water_volume";
+
+struct TailwaterControlLaw {
+  double discharge_m2_s = 0.0;        // q
+  double inflow_depth_m = 0.0;        // y1
+  double tailwater_depth_m = 0.0;     // y2*
+  double target_toe_x_m = 0.0;        // x_target
+  double toe_search_from_m = 0.0;     // the upstream section
+  double outlet_x_m = 0.0;            // the toe of a leg without one
+  double interval_s = 0.5;            // dt
+  double volume_hold_time_s = 1.0;    // T_V
+  double toe_hold_time_s = 5.0;       // T_x
+};
+
+// The law of a stilling-basin case with tailwater_control = "hold_toe" and its geometry (throws
+// std::invalid_argument for another case).
+TailwaterControlLaw tailwater_control_law(const cases::Case& c, const cases::CaseGeometry& geo);
+
+struct TailwaterControlStep {
+  double time_s = 0.0;
+  double toe_x_m = 0.0;                  // the leg's mean toe (NaN: none found)
+  int toe_outputs = 0;                   // outputs with a toe
+  double water_volume_m2 = 0.0;          // V(n)
+  double volume_target_m2 = 0.0;         // V*(n)
+  double outlet_mean_velocity_m_s = 0.0; // Umean(n), for the next leg
+};
+
+// One step of the law above. `previous_target`: V*(n-1), nothing at the first step.
+TailwaterControlStep tailwater_control_step(const TailwaterControlLaw& law, std::optional<double> previous_target,
+                                            double time_s, const std::vector<double>& output_toes_x_m,
+                                            double water_volume_m2);
+
+// The toe on one `toe_line` sample (alpha.water along x at threshold_y1 y1 above the floor), searched
+// from x_from; NaN without one.
+double toe_on_line(const LineSample& line, double x_from, double inflow_depth_m);
+
+// The outlet's Umean in an OpenFOAM U field file (the `outlet` entry of boundaryField, uncompressed):
+// read, and replaced (written to a temporary file, then renamed). Throw std::runtime_error naming the
+// file when it has no such entry.
+double read_outlet_mean_velocity(const std::filesystem::path& u_file);
+void write_outlet_mean_velocity(const std::filesystem::path& u_file, double umean_m_s);
+
+// The log: every row, and a row appended (the file rewritten whole, atomically).
+std::vector<TailwaterControlStep> read_tailwater_control_log(const std::filesystem::path& case_dir);
+void append_tailwater_control_log(const std::filesystem::path& case_dir, const TailwaterControlStep& step);
+
+}  // namespace hydrojump::reference
