@@ -736,7 +736,9 @@ VofCase build_vof_case(const cases::Study& study, const cases::Case& c, const st
     }
     if (!sets.empty()) {
       Dictionary fo;
-      fo.directive("// vertical lines at the spec's sections (x_m), bed to top: alpha.water and U");
+      fo.directive(std::string("// vertical lines at the spec's sections (x_m), bed to top: alpha.water and U") +
+                   (dam ? "; the floor line of a dam break" : "") +
+                   (hold_toe ? "; the toe line of the tailwater control" : ""));
       fo.set("type", foam::word("sets"));
       fo.set("libs", libs("libsampling.so"));
       merge(fo, output_control(interval));
@@ -779,8 +781,9 @@ VofCase build_vof_case(const cases::Study& study, const cases::Case& c, const st
                    " m = V (m^2) of the tailwater control");
       fo.set("type", foam::word("volFieldValue"));
       fo.set("libs", libs("libfieldFunctionObjects.so"));
+      // every time step (writeInterval's default, 1: an entry here would be rewritten by a leg's controlDict
+      // when the output interval is 1 s)
       fo.set("writeControl", foam::word("timeStep"));
-      fo.set("writeInterval", 1);
       fo.set("log", foam::word("false"));
       fo.set("writeFields", foam::word("false"));
       fo.set("regionType", foam::word("all"));

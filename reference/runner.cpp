@@ -815,8 +815,11 @@ std::vector<SolverLeg> split_legs_for_control(const std::vector<SolverLeg>& legs
   double begin = start_s;
   for (const SolverLeg& leg : legs) {
     if (!leg.write_interval_s) {
+      // at k interval from t = 0, so that a resumed run acts when an uninterrupted one would
       const double eps = 1e-6 * interval_s;
-      for (int k = 1; begin + k * interval_s < leg.end_s - eps; ++k) out.push_back(SolverLeg{begin + k * interval_s, std::nullopt});
+      for (double k = std::floor((begin + eps) / interval_s) + 1.0; k * interval_s < leg.end_s - eps; k += 1.0) {
+        out.push_back(SolverLeg{k * interval_s, std::nullopt});
+      }
     }
     out.push_back(leg);
     begin = leg.end_s;
@@ -829,29 +832,42 @@ namespace {
 // After a leg that ended at `leg_end_s` (started at leg_start_s): the law's step from the leg's outputs,
 // logged, and the outlet's Umean rewritten in the latest time directory (each processor's when decomposed).
 void tailwater_control_after_leg(const fs::path& dir, const TailwaterControlLaw& law, double thickness_m,
-                                 bool parallel, double leg_start_s, double leg_end_s, std::ostream& out) {
+                                 double max_time_step_s, bool parallel, double leg_start_s, double leg_end_s,
+                                 std::ostream& out) {
   const double tol = 1e-6 * std::max(law.interval_s, 1e-3);
   std::vector<double> toes;
+  int samples = 0;
   for (const auto& [t, time_dir] : sample_times(dir / "postProcessing/sections")) {
     if (t <= leg_start_s + tol || t > leg_end_s + tol) continue;
     const fs::path file = time_dir / (std::string(toe_line_name) + "_alpha.water.xy");
-    if (fs::exists(file)) toes.push_back(toe_on_line(read_line_sample(file), law.toe_search_from_m, law.inflow_depth_m));
+    if (!fs::exists(file)) continue;
+    ++samples;
+    toes.push_back(toe_on_line(read_line_sample(file), law.toe_search_from_m, law.inflow_depth_m));
   }
-  std::optional<double> volume_m3;
-  for (const auto& [t, v] : read_surface_field_value(dir / "postProcessing" / water_volume_function, "volFieldValue.dat")) {
-    if (t <= leg_end_s + tol) volume_m3 = v;
+  if (samples == 0) {
+    throw OpenFoamError("tailwater control: no " + std::string(toe_line_name) + " sample in " +
+                        (dir / "postProcessing/sections").string() + " for (" + format_seconds(leg_start_s) + ", " +
+                        format_seconds(leg_end_s) + "] s (the case's controlDict lacks the toe line: regenerate the case)");
   }
-  if (!volume_m3) {
-    throw OpenFoamError("tailwater control: no water volume up to t = " + format_seconds(leg_end_s) + " s in " +
-                        (dir / "postProcessing" / water_volume_function).string() +
-                        " (the case's controlDict lacks the water_volume function object: regenerate the case)");
+  // The volume at the leg's end: a row of this leg's last time step, not one left by an earlier run.
+  const fs::path volume_dir = dir / "postProcessing" / water_volume_function;
+  std::optional<std::pair<double, double>> volume_m3;
+  for (const auto& row : read_surface_field_value(volume_dir, "volFieldValue.dat")) {
+    if (row.first <= leg_end_s + tol) volume_m3 = row;
+  }
+  if (!volume_m3 || volume_m3->first < leg_end_s - max_time_step_s - tol) {
+    throw OpenFoamError("tailwater control: no water volume at t = " + format_seconds(leg_end_s) + " s in " +
+                        volume_dir.string() + "/*/volFieldValue.dat" +
+                        (volume_m3 ? " (its last row before is at t = " + format_seconds(volume_m3->first) + " s)"
+                                   : std::string(" (the case's controlDict lacks the water_volume function object: "
+                                                 "regenerate the case)")));
   }
   std::optional<double> previous_target;
   for (const TailwaterControlStep& s : read_tailwater_control_log(dir)) {
     if (s.time_s <= leg_start_s + tol) previous_target = s.volume_target_m2;
   }
   const TailwaterControlStep step =
-      tailwater_control_step(law, previous_target, leg_end_s, toes, *volume_m3 / thickness_m);
+      tailwater_control_step(law, previous_target, leg_end_s, leg_end_s - leg_start_s, toes, volume_m3->second / thickness_m);
   std::vector<fs::path> u_files;
   if (parallel) {
     for (int r = 0; fs::is_directory(dir / ("processor" + std::to_string(r))); ++r) {
@@ -1091,9 +1107,13 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
   if (c.vof.tailwater_control == "hold_toe") {
     control = tailwater_control_law(c, cases::make_geometry(c, study.fluid));
     legs = split_legs_for_control(legs, t_begin, control->interval_s);
-    out << "Tailwater control (hold_toe): after every " << format_seconds(control->interval_s)
-        << " s the outlet's Umean is reset to hold the water volume, and the volume moved to bring the toe to x = "
-        << format_seconds(control->target_toe_x_m) << " m (log: " << tailwater_control_log << ")\n";
+    // The log describes this run: rows of an abandoned later part or of an earlier run go.
+    truncate_tailwater_control_log(dir, start);
+    std::ostringstream line;
+    line << "Tailwater control (hold_toe): every " << format_seconds(control->interval_s)
+         << " s the outlet's Umean is reset to hold the water volume, and the volume moved to bring the toe to x = "
+         << control->target_toe_x_m << " m (log: " << tailwater_control_log << ")\n";
+    out << line.str();
   }
   for (const SolverLeg& leg : legs) {
     std::optional<ControlDictOverride> leg_control;
@@ -1111,7 +1131,10 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
     }
     reached = run_solver(run, leg_start, leg.end_s, out);
     if (leg_control) leg_control->restore();
-    if (control) tailwater_control_after_leg(dir, *control, vof.mesh.thickness_m, parallel, leg_start.value_or(0.0), leg.end_s, out);
+    if (control) {
+      tailwater_control_after_leg(dir, *control, vof.mesh.thickness_m, c.vof.max_time_step_s, parallel,
+                                  leg_start.value_or(0.0), leg.end_s, out);
+    }
     leg_start = leg.end_s;
   }
   if (parallel) {

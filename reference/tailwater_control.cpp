@@ -12,6 +12,7 @@
 #include "cases/csv_table.hpp"
 #include "cases/hydraulics.hpp"
 #include "cases/jump_toe.hpp"
+#include "reference/foam_dictionary.hpp"
 #include "cases/fingerprint.hpp"
 
 namespace hydrojump::reference {
@@ -41,7 +42,7 @@ TailwaterControlLaw tailwater_control_law(const cases::Case& c, const cases::Cas
 }
 
 TailwaterControlStep tailwater_control_step(const TailwaterControlLaw& law, std::optional<double> previous_target,
-                                            double time_s, const std::vector<double>& output_toes_x_m,
+                                            double time_s, double leg_s, const std::vector<double>& output_toes_x_m,
                                             double water_volume_m2) {
   TailwaterControlStep step;
   step.time_s = time_s;
@@ -57,7 +58,7 @@ TailwaterControlStep tailwater_control_step(const TailwaterControlLaw& law, std:
   // V*(n) = V*(n-1) + (y2* - y1) / T_x * (x_toe - x_target) * dt
   const double y2 = law.tailwater_depth_m;
   step.volume_target_m2 = previous_target.value_or(water_volume_m2) +
-                          (y2 - law.inflow_depth_m) / law.toe_hold_time_s * (toe - law.target_toe_x_m) * law.interval_s;
+                          (y2 - law.inflow_depth_m) / law.toe_hold_time_s * (toe - law.target_toe_x_m) * leg_s;
   // Umean = (q + (V - V*) / T_V) / y2*, within [1/4, 4] q / y2*
   const double q = law.discharge_m2_s;
   const double umean = (q + (water_volume_m2 - step.volume_target_m2) / law.volume_hold_time_s) / y2;
@@ -133,16 +134,17 @@ UmeanEntry find_umean(const std::string& text, const fs::path& file) {
   return UmeanEntry{value_begin, value_end};
 }
 
-std::string format_number(double v) {
-  std::ostringstream s;
-  s << std::setprecision(10) << v;
-  return s.str();
-}
+}  // namespace
 
+namespace {
+std::string read_field_file(const fs::path& u_file) {
+  if (!fs::is_regular_file(u_file)) throw std::runtime_error(u_file.string() + ": no such field file");
+  return cases::read_text_file(u_file);
+}
 }  // namespace
 
 double read_outlet_mean_velocity(const fs::path& u_file) {
-  const std::string text = cases::read_text_file(u_file);
+  const std::string text = read_field_file(u_file);
   const UmeanEntry e = find_umean(text, u_file);
   const std::string value = text.substr(e.value_begin, e.value_end - e.value_begin);
   const double v = cases::csv_number(value);
@@ -152,9 +154,13 @@ double read_outlet_mean_velocity(const fs::path& u_file) {
 
 void write_outlet_mean_velocity(const fs::path& u_file, double umean_m_s) {
   if (!std::isfinite(umean_m_s)) throw std::invalid_argument("outlet Umean must be finite");
-  std::string text = cases::read_text_file(u_file);
+  std::string text = read_field_file(u_file);
   const UmeanEntry e = find_umean(text, u_file);
-  text.replace(e.value_begin, e.value_end - e.value_begin, format_number(umean_m_s));
+  if (!std::isfinite(cases::csv_number(text.substr(e.value_begin, e.value_end - e.value_begin)))) {
+    throw std::runtime_error(u_file.string() + ": the outlet's Umean \"" +
+                             text.substr(e.value_begin, e.value_end - e.value_begin) + "\" is not a number");
+  }
+  text.replace(e.value_begin, e.value_end - e.value_begin, foam::format_number(umean_m_s));
   cases::write_file_atomically(u_file, text);
 }
 
@@ -179,7 +185,8 @@ std::vector<TailwaterControlStep> read_tailwater_control_log(const fs::path& cas
     TailwaterControlStep s;
     s.time_s = cases::csv_number(row[t]);
     s.toe_x_m = cases::csv_number(row[x]);
-    s.toe_outputs = static_cast<int>(cases::csv_number(row[n]));
+    const double outputs = cases::csv_number(row[n]);
+    s.toe_outputs = std::isfinite(outputs) && outputs >= 0.0 && outputs < 1e9 ? static_cast<int>(outputs) : 0;
     s.water_volume_m2 = cases::csv_number(row[v]);
     s.volume_target_m2 = cases::csv_number(row[vt]);
     s.outlet_mean_velocity_m_s = cases::csv_number(row[u]);
@@ -188,14 +195,39 @@ std::vector<TailwaterControlStep> read_tailwater_control_log(const fs::path& cas
   return steps;
 }
 
-void append_tailwater_control_log(const fs::path& case_dir, const TailwaterControlStep& step) {
-  const fs::path file = case_dir / tailwater_control_log;
-  std::string text = fs::exists(file) ? cases::read_text_file(file) : std::string(log_header) + "\n";
-  if (!text.empty() && text.back() != '\n') text += '\n';
+namespace {
+std::string log_row(const TailwaterControlStep& step) {
   std::ostringstream row;
   row << std::setprecision(10) << step.time_s << ',' << step.toe_x_m << ',' << step.toe_outputs << ','
       << step.water_volume_m2 << ',' << step.volume_target_m2 << ',' << step.outlet_mean_velocity_m_s << '\n';
-  cases::write_file_atomically(file, text + row.str());
+  return row.str();
+}
+
+void write_log(const fs::path& case_dir, const std::vector<TailwaterControlStep>& rows) {
+  std::string text = std::string(log_header) + "\n";
+  for (const TailwaterControlStep& r : rows) text += log_row(r);
+  cases::write_file_atomically(case_dir / tailwater_control_log, text);
+}
+}  // namespace
+
+void append_tailwater_control_log(const fs::path& case_dir, const TailwaterControlStep& step) {
+  std::vector<TailwaterControlStep> rows = read_tailwater_control_log(case_dir);
+  rows.push_back(step);
+  write_log(case_dir, rows);
+}
+
+void truncate_tailwater_control_log(const fs::path& case_dir, std::optional<double> time_s) {
+  const fs::path file = case_dir / tailwater_control_log;
+  if (!fs::exists(file)) return;
+  if (!time_s) {
+    fs::remove(file);
+    return;
+  }
+  std::vector<TailwaterControlStep> rows = read_tailwater_control_log(case_dir);
+  const std::size_t before = rows.size();
+  rows.erase(std::remove_if(rows.begin(), rows.end(), [&](const TailwaterControlStep& r) { return r.time_s > *time_s + 1e-9; }),
+             rows.end());
+  if (rows.size() != before) write_log(case_dir, rows);
 }
 
 }  // namespace hydrojump::reference

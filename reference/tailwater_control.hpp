@@ -17,7 +17,7 @@
 //
 // V(n) the water volume per unit width (m^2: the integral of alpha.water over the domain divided by
 // the mesh's thickness) at the end of leg n, x_toe(n) the mean of the toe over the leg's outputs,
-// dt the leg's length, T_V = `volume_hold_time_s` (a volume error decays by about dt / T_V per leg),
+// dt the leg's length (the interval, less for a leg that aligns with the output times), T_V = `volume_hold_time_s` (a volume error decays by about dt / T_V per leg),
 // T_x = `toe_hold_time_s` ((y2* - y1) / T_x is the volume per second that moves the toe by 1 m,
 // y2* - y1 per metre of basin). V*(0) = V(0) + its toe term: the first leg's volume, so the control
 // starts without a jump. x_target = the basin start (`expected_toe_x_m`). A leg without a toe on any
@@ -67,7 +67,7 @@ struct TailwaterControlLaw {
   double target_toe_x_m = 0.0;        // x_target
   double toe_search_from_m = 0.0;     // the upstream section
   double outlet_x_m = 0.0;            // the toe of a leg without one
-  double interval_s = 0.5;            // dt
+  double interval_s = 0.5;            // the legs' length
   double volume_hold_time_s = 1.0;    // T_V
   double toe_hold_time_s = 5.0;       // T_x
 };
@@ -85,10 +85,15 @@ struct TailwaterControlStep {
   double outlet_mean_velocity_m_s = 0.0; // Umean(n), for the next leg
 };
 
-// One step of the law above. `previous_target`: V*(n-1), nothing at the first step.
+// One step of the law above after a leg of `leg_s` seconds (dt: the interval, or less for an aligning
+// or closing leg). `previous_target`: V*(n-1), nothing at the first step.
 TailwaterControlStep tailwater_control_step(const TailwaterControlLaw& law, std::optional<double> previous_target,
-                                            double time_s, const std::vector<double>& output_toes_x_m,
+                                            double time_s, double leg_s, const std::vector<double>& output_toes_x_m,
                                             double water_volume_m2);
+
+// Drops the log's rows after `time_s` (a run resumed from an earlier time); removes the log when
+// `time_s` is nothing (a fresh start).
+void truncate_tailwater_control_log(const std::filesystem::path& case_dir, std::optional<double> time_s);
 
 // The toe on one `toe_line` sample (alpha.water along x at threshold_y1 y1 above the floor), searched
 // from x_from; NaN without one.

@@ -408,7 +408,24 @@ TEST_CASE("a tiny basin with the tailwater control resets the outlet's Umean aft
   check_row(rows[2]);
   CHECK(rows[2].volume_target_m2 == Approx(next_target(rows[1], rows[2])).epsilon(1e-9));
   CHECK(reference::read_outlet_mean_velocity(dir / "0.03/U") == Approx(rows[2].outlet_mean_velocity_m_s).epsilon(1e-8));
-  CHECK(vof.mesh.thickness_m > 0.0);
+  // interFoam ran the second leg with the Umean the first step set: the outlet's water flux over it is that
+  // Umean times the outlet's wetted area (the condition's definition), sampled at 0.02 s.
+  const auto outlet = rows_of(dir / "postProcessing/discharge_outlet/0.01/surfaceFieldValue.dat");
+  REQUIRE(!outlet.empty());
+  CHECK(outlet.front()[0] == Approx(0.02));
+  const double flux = outlet.front()[1] / vof.mesh.thickness_m;  // m^2/s
+  const double wetted = flux / rows[0].outlet_mean_velocity_m_s;  // the outlet's water depth
+  CHECK(wetted == Approx(0.06).margin(0.006));  // the tailwater setFields put there, 10 %
+  // A fresh start (to the end time 0.03 s now in controlDict) drops the log of the earlier run.
+  fs::remove_all(dir / "0.01");
+  fs::remove_all(dir / "0.02");
+  fs::remove_all(dir / "0.03");
+  std::ostringstream out3;
+  reference::run_vof_case(dir, reference::RunOptions{}, out3);
+  const auto fresh = reference::read_tailwater_control_log(dir);
+  REQUIRE(fresh.size() == 3);
+  CHECK(fresh[0].time_s == Approx(0.01));
+  CHECK(fresh[2].time_s == Approx(0.03));
 }
 
 TEST_CASE("a tiny basin runs with the k-epsilon turbulence model", "[reference][openfoam]") {

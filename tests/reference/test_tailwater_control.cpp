@@ -90,7 +90,7 @@ ModelRun run_model(ModelBasin b, const TailwaterControlLaw& law, bool control, d
     r.toe_min = std::min(r.toe_min, b.x);
     r.toe_max = std::max(r.toe_max, b.x);
     if (control) {
-      const TailwaterControlStep s = reference::tailwater_control_step(law, target, (leg + 1) * law.interval_s, toes, b.volume);
+      const TailwaterControlStep s = reference::tailwater_control_step(law, target, (leg + 1) * law.interval_s, law.interval_s, toes, b.volume);
       target = s.volume_target_m2;
       umean = s.outlet_mean_velocity_m_s;
     }
@@ -105,7 +105,7 @@ ModelRun run_model(ModelBasin b, const TailwaterControlLaw& law, bool control, d
 TEST_CASE("the tailwater control law: volume target and outlet Umean against hand values", "[reference][tailwater]") {
   const TailwaterControlLaw law = law_b();
   // First step: V* = V + (y2* - y1) / T_x (x - x_target) dt = 0.38 + 0.1782 / 5 * 0.1 * 0.5
-  const TailwaterControlStep first = reference::tailwater_control_step(law, std::nullopt, 10.5, {0.25, 0.35, no_toe, 0.30}, 0.38);
+  const TailwaterControlStep first = reference::tailwater_control_step(law, std::nullopt, 10.5, 0.5, {0.25, 0.35, no_toe, 0.30}, 0.38);
   CHECK(first.toe_outputs == 3);
   CHECK(first.toe_x_m == Approx(0.30).epsilon(1e-12));
   CHECK(first.volume_target_m2 == Approx(0.38 + 0.1782 / 5.0 * 0.1 * 0.5).epsilon(1e-12));
@@ -113,18 +113,21 @@ TEST_CASE("the tailwater control law: volume target and outlet Umean against han
   CHECK(first.outlet_mean_velocity_m_s ==
         Approx((0.076 + (0.38 - first.volume_target_m2) / 1.0) / 0.2036).epsilon(1e-12));
   // With a previous target and the toe on target: the target stays, the volume error is drained.
-  const TailwaterControlStep on = reference::tailwater_control_step(law, 0.381, 11.0, {0.2}, 0.383);
+  const TailwaterControlStep on = reference::tailwater_control_step(law, 0.381, 11.0, 0.5, {0.2}, 0.383);
   CHECK(on.volume_target_m2 == Approx(0.381).epsilon(1e-12));
   CHECK(on.outlet_mean_velocity_m_s == Approx((0.076 + 0.002) / 0.2036).epsilon(1e-12));
   // No toe on any output: counted at the outlet (the jump left the basin): more water.
-  const TailwaterControlStep gone = reference::tailwater_control_step(law, 0.38, 11.5, {no_toe, no_toe}, 0.38);
+  const TailwaterControlStep gone = reference::tailwater_control_step(law, 0.38, 11.5, 0.5, {no_toe, no_toe}, 0.38);
   CHECK(gone.toe_outputs == 0);
   CHECK(std::isnan(gone.toe_x_m));
   CHECK(gone.volume_target_m2 == Approx(0.38 + 0.1782 / 5.0 * (2.49 - 0.2) * 0.5).epsilon(1e-12));
+  // A short leg (an aligning leg of 0.05 s after a stop) moves the target by its own length only.
+  const TailwaterControlStep short_leg = reference::tailwater_control_step(law, 0.38, 10.1, 0.05, {0.3}, 0.38);
+  CHECK(short_leg.volume_target_m2 == Approx(0.38 + 0.1782 / 5.0 * 0.1 * 0.05).epsilon(1e-12));
   // Clamped to [1/4, 4] q / y2*.
-  CHECK(reference::tailwater_control_step(law, 0.38, 12.0, {0.2}, 0.0).outlet_mean_velocity_m_s ==
+  CHECK(reference::tailwater_control_step(law, 0.38, 12.0, 0.5, {0.2}, 0.0).outlet_mean_velocity_m_s ==
         Approx(0.25 * 0.076 / 0.2036).epsilon(1e-12));
-  CHECK(reference::tailwater_control_step(law, 0.38, 12.0, {0.2}, 1.38).outlet_mean_velocity_m_s ==
+  CHECK(reference::tailwater_control_step(law, 0.38, 12.0, 0.5, {0.2}, 1.38).outlet_mean_velocity_m_s ==
         Approx(4.0 * 0.076 / 0.2036).epsilon(1e-12));
 }
 
@@ -209,6 +212,12 @@ TEST_CASE("the tailwater control log is appended and read back", "[reference][ta
   CHECK(rows[1].outlet_mean_velocity_m_s == 0.3886);
   CHECK(std::isnan(rows[1].toe_x_m));
   CHECK(rows[1].water_volume_m2 == 0.383);
+  // A run resumed from 10.5 s drops the later row; a fresh start drops the log.
+  reference::truncate_tailwater_control_log(tmp.path(), 10.5);
+  REQUIRE(reference::read_tailwater_control_log(tmp.path()).size() == 1);
+  CHECK(reference::read_tailwater_control_log(tmp.path())[0].outlet_mean_velocity_m_s == 0.365);
+  reference::truncate_tailwater_control_log(tmp.path(), std::nullopt);
+  CHECK(!fs::exists(tmp.path() / reference::tailwater_control_log));
 }
 
 TEST_CASE("the legs of a controlled run end every control interval, aligning and closing legs stay whole",
@@ -221,9 +230,10 @@ TEST_CASE("the legs of a controlled run end every control interval, aligning and
   using Catch::Matchers::Approx;
   CHECK_THAT(ends(reference::split_legs_for_control(reference::plan_solver_legs(10.0, 12.0, 0.1), 10.0, 0.5)),
              Approx(std::vector<double>{10.5, 11.0, 11.5, 12.0}).margin(1e-9));
-  // From 10.05 s: an aligning leg to 10.1 s, then every 0.5 s from there, then a closing leg to 11.23 s.
+  // From 10.05 s (a run stopped there): an aligning leg to 10.1 s, then legs ending at the multiples of
+  // 0.5 s from t = 0, as in an uninterrupted run, the grid's last time 11.2 s, and a closing leg to 11.23 s.
   const auto legs = reference::split_legs_for_control(reference::plan_solver_legs(10.05, 11.23, 0.1), 10.05, 0.5);
-  CHECK_THAT(ends(legs), Approx(std::vector<double>{10.1, 10.6, 11.1, 11.2, 11.23}).margin(1e-9));
+  CHECK_THAT(ends(legs), Approx(std::vector<double>{10.1, 10.5, 11.0, 11.2, 11.23}).margin(1e-9));
   CHECK(legs.front().write_interval_s.has_value());
   CHECK(!legs[1].write_interval_s.has_value());
   CHECK(legs.back().write_interval_s.has_value());
@@ -244,6 +254,9 @@ TEST_CASE("a hold_toe basin's case samples the toe line and the water volume, un
                        Catch::Contains("writeCompression off;"));
   // The line at 1.5 y1 = 0.0381 m above the floor.
   CHECK_THAT(held, Catch::Contains("0.0381 0)"));
+  // The volume every time step, with no writeInterval that a leg's controlDict could rewrite.
+  const std::string volume = held.substr(held.find("water_volume"), held.find("}", held.find("water_volume")) - held.find("water_volume"));
+  CHECK_THAT(volume, Catch::Contains("timeStep") && !Catch::Contains("writeInterval"));
   const std::string plain = control_dict(basin_spec("", 0.02, 0.01, "smooth"));
   CHECK_THAT(plain, !Catch::Contains("toe_line") && !Catch::Contains("water_volume") && Catch::Contains("writeCompression on;"));
   // A dam break cannot hold a toe.
