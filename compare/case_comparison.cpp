@@ -22,6 +22,7 @@
 #include "compare/readers.hpp"
 #include "compare/report.hpp"
 #include "reference/discharge_samples.hpp"
+#include "reference/tailwater_control.hpp"
 #include "sph/kernel.hpp"
 
 namespace fs = std::filesystem;
@@ -177,6 +178,29 @@ std::string vof_top_outflow_note(const fs::path& vof_dir, double t0, double t1, 
     << function_dir.string() << "): " << q_top << " m^2/s over the window, " << 100.0 * q_top / inflow_q_m2_s
     << " % of the inflow q (splashes or the jump's surface jet reach the lid): the basin loses that water, "
        "so its sections' discharge and depths are not those of the flume; raise [case.domain] air_height_m";
+  return o.str();
+}
+
+std::string vof_tailwater_control_note(const fs::path& vof_dir, double t0, double t1) {
+  double u_min = 0.0, u_max = 0.0, u_sum = 0.0, toe_sum = 0.0;
+  int steps = 0, toe_steps = 0;
+  for (const reference::TailwaterControlStep& s : reference::read_tailwater_control_log(vof_dir)) {
+    if (s.time_s < t0 - 1e-9 || s.time_s > t1 + 1e-9) continue;
+    u_min = steps == 0 ? s.outlet_mean_velocity_m_s : std::min(u_min, s.outlet_mean_velocity_m_s);
+    u_max = steps == 0 ? s.outlet_mean_velocity_m_s : std::max(u_max, s.outlet_mean_velocity_m_s);
+    u_sum += s.outlet_mean_velocity_m_s;
+    ++steps;
+    if (std::isfinite(s.toe_x_m)) {
+      toe_sum += s.toe_x_m;
+      ++toe_steps;
+    }
+  }
+  if (steps == 0) return {};
+  std::ostringstream o;
+  o << std::setprecision(4) << "tailwater set by the tailgate control (" << (vof_dir / reference::tailwater_control_log).string()
+    << ", " << steps << " steps in the window): outlet Umean " << u_min << "-" << u_max << " m/s (mean "
+    << u_sum / steps << "), legs' mean toe " << (toe_steps > 0 ? toe_sum / toe_steps : std::nan(""))
+    << " m; y2 is the depth the held jump needed, not a prescribed tailwater";
   return o.str();
 }
 
@@ -411,6 +435,8 @@ CaseComparison compare_case(const cases::Study& study, const fs::path& run_dir, 
            r.vof_cell_size_m, r.vof.metrics.toe_trend_m_per_s,
            cases::toe_drift_tolerance_m(basin->bed.profile, basin->bed.wavelength_m, r.inflow_depth_m)});
       if (!balance.empty()) r.vof.metrics.notes.push_back(balance);
+      const std::string control = vof_tailwater_control_note(run_dir / "vof", r.window_start_s, r.window_end_s);
+      if (!control.empty()) r.vof.metrics.notes.push_back(control);
     } catch (const std::exception& e) {
       r.vof.metrics.notes.push_back(std::string("water balance unavailable: ") + e.what());
     }

@@ -87,6 +87,13 @@ inline constexpr double top_outflow_note_fraction = 0.01;
 std::string vof_top_outflow_note(const std::filesystem::path& vof_dir, double t0, double t1,
                                  double inflow_q_m2_s, double thickness_m);
 
+// A note when the VOF run's tailwater was set by the tailgate control (`tailwater_control = "hold_toe"`,
+// reference/tailwater_control.hpp): from the control steps in [t0, t1] of vof_dir/tailwater_control.csv,
+// the range and mean of the outlet's Umean and the mean of the legs' toes, and what that means for y2
+// (the depth the held jump needed, not the prescribed y2*). Empty without a log or without a step in the
+// window.
+std::string vof_tailwater_control_note(const std::filesystem::path& vof_dir, double t0, double t1);
+
 // One line on the VOF run's water balance and steadiness over the window [t0, t1], the counterpart of
 // the SPH run monitor's verdict (sph_run_note) with the same rule (cases/jump_toe.hpp):
 //   q_in  = -<sum alphaPhi0.water on the inlet> / thickness     (function object discharge_inlet;

@@ -10,6 +10,7 @@
 #include "compare/case_comparison.hpp"
 #include "compare/readers.hpp"
 #include "reference/discharge_samples.hpp"
+#include "reference/tailwater_control.hpp"
 #include "foam_case_writer.hpp"
 #include "synthetic_fields.hpp"
 #include "tests/temp_dir.hpp"
@@ -212,4 +213,23 @@ TEST_CASE("the VOF water balance over the window: filling, draining and steady, 
   in.toe_trend_m_per_s = 0.0;
   write_patch("discharge_outlet", 1.02 * flux);
   CHECK_THAT(vof_run_note(in), Catch::Contains("= 3 % of q (draining)") && Catch::Contains("NOT steady"));
+}
+
+TEST_CASE("a VOF run whose tailwater was set by the tailgate control says so, with the window's Umean and toe",
+          "[compare][readers][vof]") {
+  TempDir tmp("tailwater-note");
+  CHECK(vof_tailwater_control_note(tmp.path(), 0.0, 10.0).empty());  // no log: a fixed tailwater
+  using hydrojump::reference::TailwaterControlStep;
+  for (const TailwaterControlStep& s : {TailwaterControlStep{0.5, 0.3, 5, 0.38, 0.381, 0.36},
+                                        TailwaterControlStep{1.0, 0.2, 5, 0.38, 0.381, 0.40},
+                                        TailwaterControlStep{1.5, std::nan(""), 0, 0.38, 0.381, 0.38},
+                                        TailwaterControlStep{2.0, 0.1, 5, 0.38, 0.381, 0.30}}) {
+    hydrojump::reference::append_tailwater_control_log(tmp.path(), s);
+  }
+  // Over 1-1.5 s: Umean 0.38-0.4 (mean 0.39), the one toe 0.2 m.
+  CHECK_THAT(vof_tailwater_control_note(tmp.path(), 1.0, 1.5),
+             Catch::Contains("2 steps in the window") && Catch::Contains("outlet Umean 0.38-0.4 m/s (mean 0.39)") &&
+                 Catch::Contains("legs' mean toe 0.2 m") && Catch::Contains("the depth the held jump needed"));
+  CHECK_THAT(vof_tailwater_control_note(tmp.path(), 0.0, 10.0), Catch::Contains("mean 0.36)") && Catch::Contains("toe 0.2 m"));
+  CHECK(vof_tailwater_control_note(tmp.path(), 2.5, 3.0).empty());
 }
