@@ -696,6 +696,18 @@ VofCase build_vof_case(const cases::Study& study, const cases::Case& c, const st
     cd.set("maxDeltaT", c.vof.max_time_step_s);
 
     Dictionary functions;
+    // A straight sampling line from (x0, z0) to (x1, z1) along `axis`, two points per cell of size h
+    // over its length (at least 10).
+    const auto uniform_line = [&](const std::string& name, const char* axis, double x0, double z0, double x1,
+                                  double z1, double length_m) {
+      Dictionary line;
+      line.set("type", foam::word("uniform"));
+      line.set("axis", foam::word(axis));
+      line.set("start", foam::vector(x0, z0, 0));
+      line.set("end", foam::vector(x1, z1, 0));
+      line.set("nPoints", std::max(10, static_cast<int>(std::ceil(2.0 * length_m / h)) + 1));
+      return foam::named_dict(name, line);
+    };
     // Vertical lines at the sections, from the bed to the top of the domain.
     std::vector<Value> sets;
     for (const cases::Section& s : geo.sections) {
@@ -705,34 +717,18 @@ VofCase build_vof_case(const cases::Study& study, const cases::Case& c, const st
       }
       zb += 0.01 * h;  // inside the lowest fluid cell of the staircase
       const double top = geo.z_max_m - 0.01 * h;
-      Dictionary line;
-      line.set("type", foam::word("uniform"));
-      line.set("axis", foam::word("y"));
-      line.set("start", foam::vector(s.x_m, zb, 0));
-      line.set("end", foam::vector(s.x_m, top, 0));
-      line.set("nPoints", std::max(10, static_cast<int>(std::ceil(2.0 * (top - zb) / h)) + 1));
-      sets.push_back(foam::named_dict(s.name, line));
+      sets.push_back(uniform_line(s.name, "y", s.x_m, zb, s.x_m, top, top - zb));
     }
-    if (dam) {
-      Dictionary floor;
-      floor.set("type", foam::word("uniform"));
-      floor.set("axis", foam::word("x"));
-      floor.set("start", foam::vector(geo.x_min_m + 1e-6, 0.5 * plan.z_bands.front().end_m / plan.z_bands.front().cells, 0));
-      floor.set("end", foam::vector(geo.x_max_m - 1e-6, 0.5 * plan.z_bands.front().end_m / plan.z_bands.front().cells, 0));
-      floor.set("nPoints", std::max(10, static_cast<int>(std::ceil(2.0 * (geo.x_max_m - geo.x_min_m) / h)) + 1));
-      sets.push_back(foam::named_dict("floor", floor));
-    }
+    // Lines along x through the whole domain at height z: two samples per cell of size h.
+    const auto horizontal_line = [&](const std::string& name, double z) {
+      return uniform_line(name, "x", geo.x_min_m + 1e-6, z, geo.x_max_m - 1e-6, z, geo.x_max_m - geo.x_min_m);
+    };
+    if (dam) sets.push_back(horizontal_line("floor", 0.5 * plan.z_bands.front().end_m / plan.z_bands.front().cells));
     if (hold_toe) {
       // alpha.water along x at threshold y1 above the upstream floor: the toe for the tailwater control
       const double z = std::round(1e9 * (geo.bed.elevation(geo.x_min_m) + cases::ToeCriterion{}.threshold_y1 *
                                                                            geo.inflows.front().depth_m)) / 1e9;
-      Dictionary toe_line;
-      toe_line.set("type", foam::word("uniform"));
-      toe_line.set("axis", foam::word("x"));
-      toe_line.set("start", foam::vector(geo.x_min_m + 1e-6, z, 0));
-      toe_line.set("end", foam::vector(geo.x_max_m - 1e-6, z, 0));
-      toe_line.set("nPoints", std::max(10, static_cast<int>(std::ceil(2.0 * (geo.x_max_m - geo.x_min_m) / h)) + 1));
-      sets.push_back(foam::named_dict(toe_line_name, toe_line));
+      sets.push_back(horizontal_line(toe_line_name, z));
     }
     if (!sets.empty()) {
       Dictionary fo;
