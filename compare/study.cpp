@@ -166,6 +166,10 @@ class StudyRunner {
     bool any_solver_ok = false, any_solver_ran = false;
     for (const auto& method : options_.methods) {
       std::vector<std::string> args = {self_.string(), method, (dir / method).string()};
+      if (method == "sph" && options_.sph_threads > 0) {
+        args.push_back("--threads");
+        args.push_back(std::to_string(options_.sph_threads));
+      }
       if (method == "vof" && options_.mpi_ranks > 1) {
         args.push_back("--np");
         args.push_back(std::to_string(options_.mpi_ranks));
@@ -335,9 +339,19 @@ void write_study_report(const StudyOptions& options, const cases::Study& study,
 
 }  // namespace
 
-int run_study(const StudyOptions& options, std::ostream& log) {
-  const cases::Study study = load_spec_argument(options.spec);
-  const auto selected = select_cases(study, options.cases);
+int sph_threads_per_job(int requested, int jobs, int cores) {
+  if (requested > 0) return requested;
+  if (jobs <= 1) return 0;
+  return std::max(1, cores / jobs);
+}
+
+int run_study(const StudyOptions& given, std::ostream& log) {
+  const cases::Study study = load_spec_argument(given.spec);
+  const auto selected = select_cases(study, given.cases);
+  StudyOptions options = given;
+  options.jobs = std::max(1, std::min<int>(options.jobs, static_cast<int>(selected.size())));
+  options.sph_threads = sph_threads_per_job(options.sph_threads, options.jobs,
+                                            static_cast<int>(std::max(1u, std::thread::hardware_concurrency())));
   // Validate every selected case first, with what only the solvers' derivations find: nothing runs
   // (and no earlier results are moved aside) while one is invalid.
   check_cases(study, selected, options.resolution);
@@ -345,8 +359,9 @@ int run_study(const StudyOptions& options, std::ostream& log) {
   // One study per output directory (its case runs lock their own directories too).
   const cases::DirectoryLock lock(options.out, "hydrojump study " + options.spec);
   log << "study \"" << study.name << "\": " << selected.size() << " case(s) at resolution \""
-      << options.resolution << "\" into " << options.out.string() << " (" << options.jobs
-      << " at a time)" << std::endl;
+      << options.resolution << "\" into " << options.out.string() << " (" << options.jobs << " at a time"
+      << (options.sph_threads > 0 ? ", " + std::to_string(options.sph_threads) + " SPH thread(s) each" : std::string())
+      << ")" << std::endl;
 
   StudyRunner runner(options, study, log);
   std::vector<CaseResult> results(selected.size());
@@ -355,8 +370,7 @@ int run_study(const StudyOptions& options, std::ostream& log) {
     for (std::size_t i = next++; i < selected.size(); i = next++) results[i] = runner.run_case(*selected[i]);
   };
   std::vector<std::thread> pool;
-  const int jobs = std::max(1, std::min<int>(options.jobs, static_cast<int>(selected.size())));
-  for (int j = 0; j < jobs; ++j) pool.emplace_back(worker);
+  for (int j = 0; j < options.jobs; ++j) pool.emplace_back(worker);
   for (auto& t : pool) t.join();
 
   write_study_report(options, study, with_earlier_runs(options, study, results), log);
@@ -386,6 +400,10 @@ void register_study_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--np", options->mpi_ranks, "MPI ranks for each OpenFOAM run")->check(CLI::Range(1, 256))
       ->capture_default_str();
+  cmd->add_option("--threads", options->sph_threads,
+                  "OpenMP threads for each SPH run (default: all cores with --jobs 1, else the cores shared "
+                  "out among the jobs)")
+      ->check(CLI::Range(1, 1024));
   cmd->add_option("--methods", options->methods, "solvers to run: sph,vof")
       ->delimiter(',')
       ->check(CLI::IsMember({"sph", "vof"}));

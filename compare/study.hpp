@@ -30,11 +30,18 @@ struct StudyOptions {
   std::filesystem::path out = "study";
   int jobs = 1;                              // cases run at the same time
   int mpi_ranks = 1;                         // --np for the OpenFOAM runs
+  int sph_threads = 0;                       // --threads for the SPH runs; 0: all cores with one job, the
+                                             // cores shared out with several (sph_threads_per_job)
   std::vector<std::string> methods = {"sph", "vof"};  // which solvers to run
   bool force = false;                        // ignore the stamps and run everything again
   std::filesystem::path executable;          // the hydrojump binary run for each stage
                                              // (empty: this process's own executable)
 };
+
+// The OpenMP threads each SPH run gets: `requested` if > 0; else, with several jobs, the `cores` shared
+// out among them (at least one each), so that two cases side by side do not put four spinning threads
+// on two cores; else 0 (the solver's own default: OMP_NUM_THREADS or all cores).
+int sph_threads_per_job(int requested, int jobs, int cores);
 
 // Runs the study; returns the number of cases with a failed stage (0: all good).
 int run_study(const StudyOptions& options, std::ostream& log);

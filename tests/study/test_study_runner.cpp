@@ -2,11 +2,13 @@
 // stages are cached by the resolved case's fingerprint, and a changed case runs again.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "cases/directory_lock.hpp"
@@ -280,6 +282,8 @@ TEST_CASE("Study runner: --methods runs only the chosen solvers, --force re-runs
   REQUIRE(run_study(options, log) == 0);
   auto run = starts();
   CHECK(run.size() == 4);  // sph and compare for A and B
+  // One job: the SPH runs keep their own thread default (OMP_NUM_THREADS or all cores).
+  CHECK(std::none_of(run.begin(), run.end(), [](const std::string& l) { return l.find("--threads") != std::string::npos; }));
   CHECK(std::none_of(run.begin(), run.end(), [](const std::string& l) { return l.rfind("vof ", 0) == 0; }));
 
   // Cached: nothing runs; --force runs every stage again.
@@ -298,6 +302,30 @@ TEST_CASE("Study runner: --methods runs only the chosen solvers, --force re-runs
   REQUIRE(lines.size() >= 2);
   CHECK(lines[0].rfind("start ", 0) == 0);
   CHECK(lines[1].rfind("start ", 0) == 0);
+  // ... and the cores are shared out: each SPH run gets cores / 2 threads (at least one).
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const std::string shared = "--threads " + std::to_string(std::max(1, cores / 2));
+  run = starts();
+  CHECK(std::count_if(run.begin(), run.end(), [&](const std::string& l) {
+          return l.rfind("sph ", 0) == 0 && l.find(shared) != std::string::npos;
+        }) == 2);
+  // --threads sets them.
+  fs::remove(calls);
+  options.sph_threads = 3;
+  REQUIRE(run_study(options, log) == 0);
+  run = starts();
+  CHECK(std::count_if(run.begin(), run.end(), [](const std::string& l) {
+          return l.rfind("sph ", 0) == 0 && l.find("--threads 3") != std::string::npos;
+        }) == 2);
+}
+
+TEST_CASE("Study runner: the SPH threads of each job", "[study]") {
+  using hydrojump::compare::sph_threads_per_job;
+  CHECK(sph_threads_per_job(3, 2, 2) == 3);  // asked for
+  CHECK(sph_threads_per_job(0, 1, 2) == 0);  // one job: the solver's default
+  CHECK(sph_threads_per_job(0, 2, 2) == 1);
+  CHECK(sph_threads_per_job(0, 2, 8) == 4);
+  CHECK(sph_threads_per_job(0, 3, 2) == 1);  // more jobs than cores: one each
 }
 
 TEST_CASE("Study runner: a reworded description or a relaxed stability limit keeps the solver results, and hand-made results are kept",
