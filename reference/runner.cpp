@@ -590,9 +590,52 @@ std::optional<double> output_grid_interval(const fs::path& dir) {
 }
 
 
+// The dictionary block around `pos` in a controlDict's text: [begin, end) between its braces, or the
+// whole text at the top level.
+std::pair<std::size_t, std::size_t> enclosing_block(const std::string& text, std::size_t pos) {
+  std::size_t begin = 0, end = text.size();
+  int depth = 0;
+  for (std::size_t i = pos; i-- > 0;) {
+    if (text[i] == '}') ++depth;
+    if (text[i] == '{' && depth-- == 0) {
+      begin = i + 1;
+      break;
+    }
+  }
+  depth = 0;
+  for (std::size_t i = pos; i < text.size(); ++i) {
+    if (text[i] == '{') ++depth;
+    if (text[i] == '}' && depth-- == 0) {
+      end = i;
+      break;
+    }
+  }
+  return {begin, end};
+}
+
+// The writeControl of the block [begin, end) itself (not of a block nested in it), or nothing.
+std::optional<std::string> block_write_control(const std::string& text, std::size_t begin, std::size_t end) {
+  static const std::regex entry(R"((^|[\n{;])[ \t]*writeControl[ \t]+([^;\n]+);)");
+  const std::string block = text.substr(begin, end - begin);
+  for (auto it = std::sregex_iterator(block.begin(), block.end(), entry); it != std::sregex_iterator(); ++it) {
+    int depth = 0;
+    const auto keyword = static_cast<std::size_t>(it->position(0) + (*it)[1].length());  // past the '{' or ';' before it
+    for (std::size_t i = 0; i < keyword; ++i) {
+      if (block[i] == '{') ++depth;
+      if (block[i] == '}') --depth;
+    }
+    if (depth == 0) return (*it)[2].str();
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
 // The controlDict of one leg: endTime = the leg's end, and when the leg sets its own write interval,
-// every writeInterval equal to the case's (the top-level one and the function objects') set to it; the
-// rest of the text is kept.
+// every writeInterval equal to the case's (the top-level one and the function objects') set to it where
+// it counts simulated time (writeControl adjustable, adjustableRunTime or runTime in the same block; a
+// function object's writeInterval under timeStep, its default, counts time steps and is kept); the rest
+// of the text is kept.
 std::string leg_control_dict(const std::string& text, const fs::path& file, const SolverLeg& leg) {
   std::string result;
   std::size_t copied = 0;
@@ -604,12 +647,17 @@ std::string leg_control_dict(const std::string& text, const fs::path& file, cons
       const std::smatch& m = *it;
       if (std::abs(std::strtod(m[2].str().c_str(), nullptr) - interval) > 1e-9 * interval) continue;
       const auto value_pos = static_cast<std::size_t>(m.position(2));
+      const auto [begin, end] = enclosing_block(text, value_pos);
+      const auto control = block_write_control(text, begin, end);
+      if (!control || (*control != "adjustable" && *control != "adjustableRunTime" && *control != "runTime")) continue;
       result += text.substr(copied, value_pos - copied) + control_dict_number(*leg.write_interval_s);
       copied = value_pos + static_cast<std::size_t>(m.length(2));
     }
   }
   return with_end_time(parse_end_time_entry(result + text.substr(copied), file), leg.end_s);
 }
+
+namespace {
 
 // A leg's controlDict in place of the case's for its lifetime (see above).
 class ControlDictOverride {

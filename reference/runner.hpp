@@ -97,6 +97,11 @@ std::vector<SolverLeg> plan_solver_legs(double start_s, double end_s, std::optio
 // acts after each piece; aligning and closing legs are kept whole. `interval_s` <= 0: the legs unchanged.
 std::vector<SolverLeg> split_legs_for_control(const std::vector<SolverLeg>& legs, double start_s, double interval_s);
 
+// The controlDict text `text` (read from `file`, named in errors) for one leg: endTime = leg.end_s and,
+// when the leg has its own write interval, each writeInterval equal to the case's that counts simulated
+// time (its block's writeControl adjustable, adjustableRunTime or runTime) set to it.
+std::string leg_control_dict(const std::string& text, const std::filesystem::path& file, const SolverLeg& leg);
+
 // Meshes and runs the case in `dir` (written by `hydrojump generate`, holding case.toml).
 // Throws OpenFoamError (or cases::SpecError for a bad case.toml).
 void run_vof_case(const std::filesystem::path& dir, const RunOptions& options, std::ostream& out);

@@ -89,3 +89,41 @@ TEST_CASE("legs cover the run without gaps and every leg boundary is an output t
     }
   }
 }
+
+TEST_CASE("a leg's controlDict sets its own write interval only where the interval counts simulated time",
+          "[reference][legs]") {
+  // A hand-edited case whose output interval is 1 s, with function objects that also write every 1 s
+  // of simulated time and one that writes every time step (writeInterval 1 under timeStep, also when
+  // timeStep is the unstated default). The leg writes every 0.5 s, to t = 3 s.
+  const std::string text = "FoamFile { version 2.0; format ascii; class dictionary; object controlDict; }\n"
+                           "endTime         10;\n"
+                           "writeControl    adjustable;\n"
+                           "writeInterval   1;\n"
+                           "functions\n{\n"
+                           "    sampled\n    {\n        type sets;\n        writeControl adjustableRunTime;\n"
+                           "        writeInterval 1;\n        sets ( line { type lineUniform; nPoints 10; } );\n    }\n"
+                           "    stepwise\n    {\n        type volFieldValue;\n        writeControl timeStep;\n"
+                           "        writeInterval 1;\n    }\n"
+                           "    by_default\n    {\n        type surfaceFieldValue;\n        writeInterval 1;\n"
+                           "        nested { writeControl runTime; }\n    }\n"
+                           "}\n";
+  hydrojump::reference::SolverLeg leg;
+  leg.end_s = 3.0;
+  leg.write_interval_s = 0.5;
+  const std::string got = hydrojump::reference::leg_control_dict(text, "system/controlDict", leg);
+  std::string expected = text;
+  const auto replace = [&](const std::string& from, const std::string& to) {
+    const auto pos = expected.find(from);
+    REQUIRE(pos != std::string::npos);
+    expected.replace(pos, from.size(), to);
+  };
+  replace("endTime         10;", "endTime         3;");
+  replace("writeInterval   1;", "writeInterval   0.5;");
+  replace("adjustableRunTime;\n        writeInterval 1;", "adjustableRunTime;\n        writeInterval 0.5;");
+  CHECK(got == expected);
+  // A leg at the case's interval changes only the end time.
+  leg.write_interval_s.reset();
+  std::string end_only = text;
+  end_only.replace(end_only.find("endTime         10;"), 19, "endTime         3;");
+  CHECK(hydrojump::reference::leg_control_dict(text, "system/controlDict", leg) == end_only);
+}
