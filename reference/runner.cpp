@@ -950,6 +950,27 @@ void tailwater_control_after_leg(const fs::path& dir, const TailwaterControlLaw&
   out << line.str() << std::flush;
 }
 
+// After a parallel run stopped early (interrupted, diverged, or stopped by the tailwater control): the
+// complete times the processors wrote reconstructed into `dir` (reconstructPar -newTimes), so that
+// `compare`, ParaView and a serial resume see them; processor*/ stay for `--resume --np N`. Returns a
+// sentence for the error message (empty when there was nothing to reconstruct).
+std::string reconstruct_written_times(const fs::path& dir, int np, std::ostream& out) {
+  auto times = time_directories(dir / "processor0");
+  while (!times.empty() && !time_directory_complete(times.back().second)) times.pop_back();
+  const auto reconstructed = latest_time(dir);
+  if (times.empty() || (reconstructed && *reconstructed >= times.back().first - 1e-12)) return "";
+  const std::string last = times.back().second.filename().string();
+  try {
+    run_step(dir, {"reconstructPar", "-newTimes", "-time", ":" + last}, "log.reconstructPar", out);
+  } catch (const OpenFoamError& e) {
+    const std::string why = e.what();
+    return "\nThe times written so far are only in processor*/: reconstructPar failed (" +
+           why.substr(0, why.find('\n')) + ").";
+  }
+  return "\nThe times written up to t = " + last + " s were reconstructed into " + dir.string() +
+         " (for `hydrojump compare` and ParaView); processor*/ are kept for `--resume --np " + std::to_string(np) + "`.";
+}
+
 }  // namespace
 
 void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostream& out) {
@@ -1163,27 +1184,33 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
          << control->target_toe_x_m << " m (log: " << tailwater_control_log << ")\n";
     out << line.str();
   }
-  for (const SolverLeg& leg : legs) {
-    std::optional<ControlDictOverride> leg_control;
-    if (leg.write_interval_s || std::abs(leg.end_s - end_time_s) > 1e-12) {
-      if (leg_start && leg.write_interval_s && leg.end_s < end_time_s) {
-        out << "Aligning with the output times: t = " << format_seconds(*leg_start)
-            << " s lies between two of them, so interFoam first runs to t = " << format_seconds(leg.end_s)
-            << " s (it counts its write times from where it starts)\n";
-      } else if (leg.write_interval_s) {
-        out << "The end time " << format_seconds(end_time_s)
-            << " s lies between two output times: interFoam runs to the last one, then to the end time "
-               "in a closing leg that writes it\n";
+  // A parallel run that stops early leaves its written times where compare and ParaView look.
+  try {
+    for (const SolverLeg& leg : legs) {
+      std::optional<ControlDictOverride> leg_control;
+      if (leg.write_interval_s || std::abs(leg.end_s - end_time_s) > 1e-12) {
+        if (leg_start && leg.write_interval_s && leg.end_s < end_time_s) {
+          out << "Aligning with the output times: t = " << format_seconds(*leg_start)
+              << " s lies between two of them, so interFoam first runs to t = " << format_seconds(leg.end_s)
+              << " s (it counts its write times from where it starts)\n";
+        } else if (leg.write_interval_s) {
+          out << "The end time " << format_seconds(end_time_s)
+              << " s lies between two output times: interFoam runs to the last one, then to the end time "
+                 "in a closing leg that writes it\n";
+        }
+        leg_control.emplace(dir, leg);
       }
-      leg_control.emplace(dir, leg);
+      reached = run_solver(run, leg_start, leg.end_s, out);
+      if (leg_control) leg_control->restore();
+      if (control) {
+        tailwater_control_after_leg(dir, *control, vof.mesh.thickness_m, c.vof.max_time_step_s, parallel,
+                                    leg_start.value_or(0.0), leg.end_s, out);
+      }
+      leg_start = leg.end_s;
     }
-    reached = run_solver(run, leg_start, leg.end_s, out);
-    if (leg_control) leg_control->restore();
-    if (control) {
-      tailwater_control_after_leg(dir, *control, vof.mesh.thickness_m, c.vof.max_time_step_s, parallel,
-                                  leg_start.value_or(0.0), leg.end_s, out);
-    }
-    leg_start = leg.end_s;
+  } catch (const OpenFoamError& e) {
+    if (!parallel) throw;
+    throw OpenFoamError(e.what() + reconstruct_written_times(dir, options.np, out));
   }
   if (parallel) {
     std::vector<std::string> argv = {"reconstructPar"};

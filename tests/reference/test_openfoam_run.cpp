@@ -523,6 +523,37 @@ TEST_CASE("an MPI run (--np 2) with the tailwater control resets Umean in every 
   CHECK(rows[1].toe_outputs == 1);
 }
 
+TEST_CASE("an MPI run that stops early has the times written so far reconstructed for compare and ParaView",
+          "[reference][openfoam][tailwater]") {
+  require_openfoam();
+  // The tailwater control stops the run after its first leg: the case's controlDict, edited by hand,
+  // compresses the fields it has to rewrite.
+  const std::string spec = basin_spec("tailwater_control = \"hold_toe\"\ntailwater_control_interval_s = 0.01\n"
+                                      "volume_hold_time_s = 0.02",
+                                      0.02, 0.01, "smooth");
+  const TempDir tmp("openfoam-mpi-stopped");
+  const fs::path dir = generate(spec, tmp.path() / "case");
+  std::string control = cases::read_text_file(dir / "system/controlDict");
+  const std::string plain = "writeCompression off;";
+  REQUIRE(control.find(plain) != std::string::npos);
+  control.replace(control.find(plain), plain.size(), "writeCompression on;");
+  { std::ofstream(dir / "system/controlDict") << control; }
+  reference::RunOptions options;
+  options.np = 2;
+  std::ostringstream out;
+  CHECK_THROWS_WITH(reference::run_vof_case(dir, options, out),
+                    Catch::Contains("is compressed") &&
+                        Catch::Contains("The times written up to t = 0.01 s were reconstructed into " + dir.string()) &&
+                        Catch::Contains("--resume --np 2"));
+  INFO(out.str());
+  // The first leg's fields are in the case directory, the processors' kept; nothing after it.
+  CHECK(fs::exists(dir / "0.01/alpha.water.gz"));
+  CHECK(fs::exists(dir / "processor0/0.01/alpha.water.gz"));
+  CHECK(fs::exists(dir / "processor1/0.01/alpha.water.gz"));
+  CHECK_FALSE(fs::exists(dir / "0.02"));
+  CHECK_THAT(cases::read_text_file(dir / "log.reconstructPar"), Catch::Contains("Time = 0.01"));
+}
+
 TEST_CASE("body_fitted is refused exactly when the self-test shows the non-orthogonal defect",
           "[reference][openfoam]") {
   require_openfoam();
