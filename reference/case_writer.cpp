@@ -724,17 +724,10 @@ VofCase build_vof_case(const cases::Study& study, const cases::Case& c, const st
       return uniform_line(name, "x", geo.x_min_m + 1e-6, z, geo.x_max_m - 1e-6, z, geo.x_max_m - geo.x_min_m);
     };
     if (dam) sets.push_back(horizontal_line("floor", 0.5 * plan.z_bands.front().end_m / plan.z_bands.front().cells));
-    if (hold_toe) {
-      // alpha.water along x at threshold y1 above the upstream floor: the toe for the tailwater control
-      const double z = std::round(1e9 * (geo.bed.elevation(geo.x_min_m) + cases::ToeCriterion{}.threshold_y1 *
-                                                                           geo.inflows.front().depth_m)) / 1e9;
-      sets.push_back(horizontal_line(toe_line_name, z));
-    }
     if (!sets.empty()) {
       Dictionary fo;
       fo.directive(std::string("// vertical lines at the spec's sections (x_m), bed to top: alpha.water and U") +
-                   (dam ? "; the floor line of a dam break" : "") +
-                   (hold_toe ? "; the toe line of the tailwater control" : ""));
+                   (dam ? "; the floor line of a dam break" : ""));
       fo.set("type", foam::word("sets"));
       fo.set("libs", libs("libsampling.so"));
       merge(fo, output_control(interval));
@@ -801,7 +794,7 @@ VofCase build_vof_case(const cases::Study& study, const cases::Case& c, const st
       fo.set("interpolationScheme", foam::word("cellPoint"));
       fo.set("fields", foam::list({foam::word("U")}));
       fo.set("surfaces", foam::list({foam::named_dict("alpha_0.5", iso)}));
-      functions.set("freeSurface", fo);
+      functions.set(free_surface_function, fo);  // also the tailwater control's toe
     }
     if (basin) {
       Dictionary fo;

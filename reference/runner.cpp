@@ -885,17 +885,24 @@ void tailwater_control_after_leg(const fs::path& dir, const TailwaterControlLaw&
   const double tol = 1e-6 * std::max(law.interval_s, 1e-3);
   std::vector<double> toes;
   int samples = 0;
-  for (const auto& [t, time_dir] : sample_times(dir / "postProcessing/sections")) {
+  const fs::path surfaces = dir / "postProcessing" / free_surface_function;
+  std::vector<double> x, z;
+  for (const auto& [t, time_dir] : sample_times(surfaces)) {
     if (t <= leg_start_s + tol || t > leg_end_s + tol) continue;
-    const fs::path file = time_dir / (std::string(toe_line_name) + "_alpha.water.xy");
+    const fs::path file = time_dir / free_surface_file;
     if (!fs::exists(file)) continue;
     ++samples;
-    toes.push_back(toe_on_line(read_line_sample(file), law.toe_search_from_m, law.inflow_depth_m));
+    try {
+      read_surface_points(file, x, z);
+    } catch (const std::exception& e) {
+      throw OpenFoamError(std::string("tailwater control: ") + e.what());
+    }
+    toes.push_back(toe_on_surface(x, z, law.toe_search_from_m, law.outlet_x_m, law.inflow_depth_m));
   }
   if (samples == 0) {
-    throw OpenFoamError("tailwater control: no " + std::string(toe_line_name) + " sample in " +
-                        (dir / "postProcessing/sections").string() + " for (" + format_seconds(leg_start_s) + ", " +
-                        format_seconds(leg_end_s) + "] s (the case's controlDict lacks the toe line: regenerate the case)");
+    throw OpenFoamError("tailwater control: no free surface (" + std::string(free_surface_file) + ") in " +
+                        surfaces.string() + " for (" + format_seconds(leg_start_s) + ", " + format_seconds(leg_end_s) +
+                        "] s (the case's controlDict lacks the freeSurface function object: regenerate the case)");
   }
   // The volume at the leg's end: a row of this leg's last time step, not one left by an earlier run.
   const fs::path volume_dir = dir / "postProcessing" / water_volume_function;

@@ -1,5 +1,10 @@
 #include "reference/tailwater_control.hpp"
 
+#include <vtkNew.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkXMLPolyDataReader.h>
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -66,13 +71,43 @@ TailwaterControlStep tailwater_control_step(const TailwaterControlLaw& law, std:
   return step;
 }
 
-double toe_on_line(const LineSample& line, double x_from, double inflow_depth_m) {
-  const cases::ToeCriterion criterion;
-  // zeta = 2 threshold y1 alpha: its running mean exceeds threshold y1 where alpha's exceeds 1/2.
-  std::vector<double> zeta(line.alpha.size());
-  for (std::size_t i = 0; i < zeta.size(); ++i) zeta[i] = 2.0 * criterion.threshold_y1 * inflow_depth_m * line.alpha[i];
-  const std::size_t i = cases::find_jump_toe(line.position_m, zeta, x_from, inflow_depth_m, criterion);
-  return i < line.position_m.size() ? line.position_m[i] : std::numeric_limits<double>::quiet_NaN();
+double toe_on_surface(const std::vector<double>& x_m, const std::vector<double>& z_m, double x_from, double x_to,
+                      double inflow_depth_m) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double spacing = 0.25 * inflow_depth_m;
+  if (!(x_to > x_from) || !(spacing > 0.0)) return nan;
+  const auto stations = static_cast<std::size_t>(std::floor((x_to - x_from) / spacing)) + 1;
+  std::vector<double> x(stations), zeta(stations, nan);
+  for (std::size_t k = 0; k < stations; ++k) x[k] = x_from + static_cast<double>(k) * spacing;
+  for (std::size_t i = 0; i < x_m.size() && i < z_m.size(); ++i) {
+    const double k = std::round((x_m[i] - x_from) / spacing);
+    if (!(k >= 0.0) || k >= static_cast<double>(stations) || !std::isfinite(z_m[i])) continue;
+    double& z = zeta[static_cast<std::size_t>(k)];
+    if (std::isnan(z) || z_m[i] > z) z = z_m[i];
+  }
+  const std::size_t i = cases::find_jump_toe(x, zeta, x_from, inflow_depth_m, cases::ToeCriterion{});
+  return i < x.size() ? x[i] : nan;
+}
+
+void read_surface_points(const std::filesystem::path& vtp, std::vector<double>& x_m, std::vector<double>& z_m) {
+  x_m.clear();
+  z_m.clear();
+  if (!std::filesystem::exists(vtp)) throw std::runtime_error(vtp.string() + ": no such file");
+  vtkNew<vtkXMLPolyDataReader> reader;
+  reader->SetFileName(vtp.string().c_str());
+  reader->Update();
+  vtkPolyData* surface = reader->GetOutput();
+  if (reader->GetErrorCode() != 0 || surface == nullptr) throw std::runtime_error(vtp.string() + ": not a readable VTK PolyData file");
+  vtkPoints* points = surface->GetPoints();
+  const vtkIdType n = points ? points->GetNumberOfPoints() : 0;
+  x_m.reserve(static_cast<std::size_t>(n));
+  z_m.reserve(static_cast<std::size_t>(n));
+  for (vtkIdType i = 0; i < n; ++i) {
+    double p[3];
+    points->GetPoint(i, p);
+    x_m.push_back(p[0]);
+    z_m.push_back(p[1]);  // OpenFOAM's y is the vertical
+  }
 }
 
 namespace {

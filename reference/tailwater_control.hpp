@@ -25,11 +25,12 @@
 // outlet lets out q and the toe stands at x_target: the tailwater y2 then is the depth the jump needs,
 // which the comparator sets beside Bélanger's.
 //
-// The toe of an output is the toe criterion of cases/jump_toe.hpp applied along a horizontal line at
-// threshold_y1 y1 above the upstream floor (the `toe_line` set the case writer adds), with
-// zeta = 2 threshold_y1 y1 alpha.water, so that the running mean of zeta exceeds threshold_y1 y1 where
-// the running mean of alpha exceeds 1/2: water above that height, persisting over persistence_y1 y1,
-// searched from the upstream section on.
+// The toe of an output is the toe criterion of cases/jump_toe.hpp applied to the free surface as
+// `compare` finds it: zeta(x) = the highest point of the alpha.water = 0.5 iso-surface (the
+// `freeSurface` function object's alpha_0.5.vtp) within each station of width y1/4, from the upstream
+// section to the outlet. (Until session 37 the control read alpha along a line at 1.5 y1 above the
+// floor; at the `default` resolution that line crosses air pockets under the roller, which put the
+// control's toe 0.23 m downstream of `compare`'s on C_smooth.)
 //
 // Usage ([vof] or [case.vof])
 //   | key                           | default | meaning                                               |
@@ -52,12 +53,12 @@
 
 #include "cases/geometry.hpp"
 #include "cases/spec.hpp"
-#include "reference/line_samples.hpp"
 
 namespace hydrojump::reference {
 
 inline constexpr const char* tailwater_control_log = "tailwater_control.csv";
-inline constexpr const char* toe_line_name = "toe_line";
+inline constexpr const char* free_surface_function = "freeSurface";  // the case writer's isoSurface
+inline constexpr const char* free_surface_file = "alpha_0.5.vtp";
 inline constexpr const char* water_volume_function = "water_volume";
 
 struct TailwaterControlLaw {
@@ -95,9 +96,15 @@ TailwaterControlStep tailwater_control_step(const TailwaterControlLaw& law, std:
 // `time_s` is nothing (a fresh start).
 void truncate_tailwater_control_log(const std::filesystem::path& case_dir, std::optional<double> time_s);
 
-// The toe on one `toe_line` sample (alpha.water along x at threshold_y1 y1 above the floor), searched
-// from x_from; NaN without one.
-double toe_on_line(const LineSample& line, double x_from, double inflow_depth_m);
+// The toe of a free surface given as points (x_m[i], z_m[i]) (z above the upstream floor): zeta at
+// stations x_from + k y1/4 up to x_to = the highest point within half a station, then the criterion of
+// cases/jump_toe.hpp; NaN without one.
+double toe_on_surface(const std::vector<double>& x_m, const std::vector<double>& z_m, double x_from, double x_to,
+                      double inflow_depth_m);
+
+// The points (x, z) of an iso-surface written by OpenFOAM's `surfaces` function object as VTK XML
+// PolyData (.vtp). Throws std::runtime_error naming the file when it cannot be read.
+void read_surface_points(const std::filesystem::path& vtp, std::vector<double>& x_m, std::vector<double>& z_m);
 
 // The outlet's Umean in an OpenFOAM U field file (the `outlet` entry of boundaryField, uncompressed):
 // read, and replaced (written to a temporary file, then renamed). Throw std::runtime_error naming the

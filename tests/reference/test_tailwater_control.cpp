@@ -154,19 +154,54 @@ TEST_CASE("the tailwater control holds a model basin's toe at the target and fin
   CHECK(from_upstream.level_end == Approx(0.199).margin(1e-4));
 }
 
-TEST_CASE("the toe on a sampled line: the first persistent water at the line's height", "[reference][tailwater]") {
-  reference::LineSample line;
-  for (int i = 0; i <= 400; ++i) {
-    const double x = 0.005 * i;  // 0 to 2 m
-    line.position_m.push_back(x);
-    // a splash at 0.30-0.32 m (shorter than the persistence 2 y1 = 5 cm), the roller from 0.6 m
-    line.alpha.push_back((x >= 0.6 - 1e-9 || (x > 0.30 - 1e-9 && x < 0.32 + 1e-9)) ? 1.0 : 0.0);
-  }
+TEST_CASE("the toe on a free surface: the first persistent rise of its highest points", "[reference][tailwater]") {
+  // Iso-surface points every 2 mm from 0 to 2 m: the supercritical stream at y1, a splash at 0.30-0.31 m
+  // (with the running mean's 2 cm still shorter than the persistence 2 y1 = 5 cm), the roller's surface at 0.1 m from 0.6 m on, with an air
+  // pocket's underside at 0.01 m below it (the highest point counts) and the jet's points at y1 below
+  // the roller.
+  std::vector<double> x, z;
   const double y1 = 0.0254;
-  CHECK(reference::toe_on_line(line, 0.1, y1) == Approx(0.6).margin(0.011));  // within the running mean's half width
-  CHECK(reference::toe_on_line(line, 0.7, y1) == Approx(0.7).margin(1e-12));  // searched from x_from
-  for (double& a : line.alpha) a = 0.0;
-  CHECK(std::isnan(reference::toe_on_line(line, 0.1, y1)));
+  for (int i = 0; i <= 1000; ++i) {
+    const double xi = 0.002 * i;
+    const bool roller = xi >= 0.6 - 1e-9, splash = xi > 0.30 - 1e-9 && xi < 0.31 + 1e-9;
+    x.push_back(xi);
+    z.push_back(roller || splash ? 0.1 : y1);
+    if (roller) {
+      x.push_back(xi);
+      z.push_back(0.01);
+      x.push_back(xi);
+      z.push_back(y1);
+    }
+  }
+  // within the running mean's half width plus a station (y1/4)
+  CHECK(reference::toe_on_surface(x, z, 0.1, 2.0, y1) == Approx(0.6).margin(0.011 + 0.25 * y1));
+  CHECK(reference::toe_on_surface(x, z, 0.7, 2.0, y1) == Approx(0.7).margin(1e-12));  // searched from x_from
+  // Searched only up to x_to: no toe before 0.5 m.
+  CHECK(std::isnan(reference::toe_on_surface(x, z, 0.1, 0.5, y1)));
+  // No rise, no points: no toe.
+  std::vector<double> flat(z.size(), y1);
+  CHECK(std::isnan(reference::toe_on_surface(x, flat, 0.1, 2.0, y1)));
+  CHECK(std::isnan(reference::toe_on_surface({}, {}, 0.1, 2.0, y1)));
+}
+
+TEST_CASE("the free surface's points are read from an OpenFOAM .vtp file, and an unreadable one is named",
+          "[reference][tailwater]") {
+  const hydrojump::testing::TempDir tmp("tailwater-vtp");
+  const fs::path file = tmp.path() / "alpha_0.5.vtp";
+  // What OpenFOAM's surfaces function object writes, in ASCII: two points (x, y = vertical, z = span).
+  cases::write_file_atomically(file,
+      "<?xml version='1.0'?>\n<VTKFile type='PolyData' version='0.1' byte_order='LittleEndian'>\n<PolyData>\n"
+      "<Piece NumberOfPoints='2' NumberOfPolys='0'>\n<Points>\n"
+      "<DataArray type='Float32' Name='Points' NumberOfComponents='3' format='ascii'>\n"
+      "0.25 0.0381 0 0.5 0.2 0.001\n</DataArray>\n</Points>\n</Piece>\n</PolyData>\n</VTKFile>\n");
+  std::vector<double> x, z;
+  reference::read_surface_points(file, x, z);
+  REQUIRE(x.size() == 2);
+  CHECK(x[0] == Approx(0.25));
+  CHECK(z[0] == Approx(0.0381));
+  CHECK(x[1] == Approx(0.5));
+  CHECK(z[1] == Approx(0.2));
+  CHECK_THROWS_WITH(reference::read_surface_points(tmp.path() / "missing.vtp", x, z), Catch::Contains("missing.vtp"));
 }
 
 TEST_CASE("the outlet's Umean is read and rewritten in a field file, nothing else changed", "[reference][tailwater]") {
@@ -241,7 +276,7 @@ TEST_CASE("the legs of a controlled run end every control interval, aligning and
         std::vector<double>{1.0});
 }
 
-TEST_CASE("a hold_toe basin's case samples the toe line and the water volume, uncompressed, and other cases do not",
+TEST_CASE("a hold_toe basin's case samples the free surface and the water volume, uncompressed, and other cases do not",
           "[reference][tailwater]") {
   const auto control_dict = [](const std::string& spec) {
     const cases::Study study = parse(spec);
@@ -250,15 +285,13 @@ TEST_CASE("a hold_toe basin's case samples the toe line and the water volume, un
   };
   const std::string held = control_dict(basin_spec("tailwater_control = \"hold_toe\"\ntailwater_control_interval_s = 0.01\n"
                                                    "volume_hold_time_s = 0.02", 0.02, 0.01, "smooth"));
-  CHECK_THAT(held, Catch::Contains("toe_line") && Catch::Contains("water_volume") && Catch::Contains("volIntegrate") &&
-                       Catch::Contains("writeCompression off;"));
-  // The line at 1.5 y1 = 0.0381 m above the floor.
-  CHECK_THAT(held, Catch::Contains("0.0381 0)"));
+  CHECK_THAT(held, Catch::Contains("freeSurface") && Catch::Contains("alpha_0.5") && Catch::Contains("water_volume") &&
+                       Catch::Contains("volIntegrate") && Catch::Contains("writeCompression off;"));
   // The volume every time step, with no writeInterval that a leg's controlDict could rewrite.
   const std::string volume = held.substr(held.find("water_volume"), held.find("}", held.find("water_volume")) - held.find("water_volume"));
   CHECK_THAT(volume, Catch::Contains("timeStep") && !Catch::Contains("writeInterval"));
   const std::string plain = control_dict(basin_spec("", 0.02, 0.01, "smooth"));
-  CHECK_THAT(plain, !Catch::Contains("toe_line") && !Catch::Contains("water_volume") && Catch::Contains("writeCompression on;"));
+  CHECK_THAT(plain, !Catch::Contains("water_volume") && Catch::Contains("writeCompression on;"));
   // A dam break cannot hold a toe.
   std::string dam = reference::testing::dam_break_spec();
   dam.replace(dam.find("[vof]\n"), 6, "[vof]\ntailwater_control = \"hold_toe\"\n");
