@@ -576,13 +576,18 @@ std::optional<std::string> top_level_entry(const std::string& text, const std::s
   return m[2].str();
 }
 
+// Whether a writeControl counts simulated time (so that its writeInterval is in seconds).
+bool counts_simulated_time(const std::string& write_control) {
+  return write_control == "adjustable" || write_control == "adjustableRunTime" || write_control == "runTime";
+}
+
 // The controlDict's output interval when its writeControl counts simulated time, else nothing.
 std::optional<double> output_grid_interval(const fs::path& dir) {
   const std::string text = cases::read_text_file(dir / "system/controlDict");
   const auto control = top_level_entry(text, "writeControl");
   const auto interval_text = top_level_entry(text, "writeInterval");
   if (!control || !interval_text) return std::nullopt;
-  if (*control != "adjustable" && *control != "adjustableRunTime" && *control != "runTime") return std::nullopt;
+  if (!counts_simulated_time(*control)) return std::nullopt;
   char* end = nullptr;
   const double interval = std::strtod(interval_text->c_str(), &end);
   if (end == interval_text->c_str() || !(interval > 0.0)) return std::nullopt;
@@ -649,7 +654,7 @@ std::string leg_control_dict(const std::string& text, const fs::path& file, cons
       const auto value_pos = static_cast<std::size_t>(m.position(2));
       const auto [begin, end] = enclosing_block(text, value_pos);
       const auto control = block_write_control(text, begin, end);
-      if (!control || (*control != "adjustable" && *control != "adjustableRunTime" && *control != "runTime")) continue;
+      if (!control || !counts_simulated_time(*control)) continue;
       result += text.substr(copied, value_pos - copied) + control_dict_number(*leg.write_interval_s);
       copied = value_pos + static_cast<std::size_t>(m.length(2));
     }
