@@ -94,6 +94,8 @@ void read_surface_points(const std::filesystem::path& vtp, std::vector<double>& 
   z_m.clear();
   if (!std::filesystem::exists(vtp)) throw std::runtime_error(vtp.string() + ": no such file");
   vtkNew<vtkXMLPolyDataReader> reader;
+  if (!reader->CanReadFile(vtp.string().c_str()))  // checked quietly, before VTK prints its own parse errors
+    throw std::runtime_error(vtp.string() + ": not a VTK XML PolyData (.vtp) file");
   reader->SetFileName(vtp.string().c_str());
   reader->Update();
   vtkPolyData* surface = reader->GetOutput();

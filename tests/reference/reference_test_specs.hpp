@@ -36,6 +36,15 @@ inline std::string basin_spec(const std::string& extra_vof = "", double end_time
          "[[case.sections]]\nname = \"down\"\nx_m = 0.42\nrole = \"downstream\"\n";
 }
 
+// basin_spec on a smooth bed, to 0.02 s with outputs every 0.01 s, under the "hold_toe" tailwater
+// control with a leg per output and the volume held over 0.02 s; `extra_vof` adds [vof] keys
+// (e.g. toe_hold_time_s).
+inline std::string tiny_hold_toe_spec(const std::string& extra_vof = "") {
+  return basin_spec("tailwater_control = \"hold_toe\"\ntailwater_control_interval_s = 0.01\n"
+                    "volume_hold_time_s = 0.02\n" + extra_vof,
+                    0.02, 0.01, "smooth");
+}
+
 // A small dam break: column 0.1 m x 0.2 m in a tank 0.4 m x 0.3 m, cells of 1 cm, two gauges.
 inline std::string dam_break_spec(const std::string& gate = "type = \"instant\"") {
   return "[study]\nname = \"reference_dam\"\ndescription = \"test\"\n"

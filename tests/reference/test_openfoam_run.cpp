@@ -27,6 +27,7 @@ namespace fs = std::filesystem;
 using namespace hydrojump;
 using reference::testing::basin_spec;
 using reference::testing::dam_break_spec;
+using reference::testing::tiny_hold_toe_spec;
 using reference::testing::parse;
 using hydrojump::testing::TempDir;
 
@@ -362,9 +363,7 @@ TEST_CASE("a run mapped from a run with a lower air layer keeps setFields' air a
 TEST_CASE("a tiny basin with the tailwater control resets the outlet's Umean after every leg and resumes with it",
           "[reference][openfoam][tailwater]") {
   require_openfoam();
-  const std::string spec = basin_spec("tailwater_control = \"hold_toe\"\ntailwater_control_interval_s = 0.01\n"
-                                      "volume_hold_time_s = 0.02\ntoe_hold_time_s = 5",
-                                      0.02, 0.01, "smooth");
+  const std::string spec = tiny_hold_toe_spec("toe_hold_time_s = 5");
   const cases::Study study = parse(spec);
   const reference::VofCase vof = reference::build_vof_case(study, study.cases.front(), "quick");
   const TempDir tmp("openfoam-tailwater");
@@ -502,9 +501,7 @@ TEST_CASE("an MPI run (--np 2) gives the same result as the serial run", "[refer
 TEST_CASE("an MPI run (--np 2) with the tailwater control resets Umean in every processor's latest U",
           "[reference][openfoam][tailwater]") {
   require_openfoam();
-  const std::string spec = basin_spec("tailwater_control = \"hold_toe\"\ntailwater_control_interval_s = 0.01\n"
-                                      "volume_hold_time_s = 0.02",
-                                      0.02, 0.01, "smooth");
+  const std::string spec = tiny_hold_toe_spec();
   const TempDir tmp("openfoam-tailwater-mpi");
   const fs::path dir = generate(spec, tmp.path() / "case");
   reference::RunOptions options;
@@ -528,9 +525,7 @@ TEST_CASE("an MPI run that stops early has the times written so far reconstructe
   require_openfoam();
   // The tailwater control stops the run after its first leg: the case's controlDict, edited by hand,
   // compresses the fields it has to rewrite.
-  const std::string spec = basin_spec("tailwater_control = \"hold_toe\"\ntailwater_control_interval_s = 0.01\n"
-                                      "volume_hold_time_s = 0.02",
-                                      0.02, 0.01, "smooth");
+  const std::string spec = tiny_hold_toe_spec();
   const TempDir tmp("openfoam-mpi-stopped");
   const fs::path dir = generate(spec, tmp.path() / "case");
   std::string control = cases::read_text_file(dir / "system/controlDict");

@@ -26,6 +26,7 @@ using reference::TailwaterControlLaw;
 using reference::TailwaterControlStep;
 using reference::testing::basin_spec;
 using reference::testing::parse;
+using reference::testing::tiny_hold_toe_spec;
 
 namespace {
 
@@ -202,6 +203,11 @@ TEST_CASE("the free surface's points are read from an OpenFOAM .vtp file, and an
   CHECK(x[1] == Approx(0.5));
   CHECK(z[1] == Approx(0.2));
   CHECK_THROWS_WITH(reference::read_surface_points(tmp.path() / "missing.vtp", x, z), Catch::Contains("missing.vtp"));
+  // A file that is not VTK XML (here a half-written one) is named, not parsed.
+  const fs::path broken = tmp.path() / "broken.vtp";
+  cases::write_file_atomically(broken, "<?xml version='1.0'?>\n<VTKF");
+  CHECK_THROWS_WITH(reference::read_surface_points(broken, x, z),
+                    Catch::Contains("broken.vtp") && Catch::Contains("not a VTK XML PolyData"));
 }
 
 TEST_CASE("the outlet's Umean is read and rewritten in a field file, nothing else changed", "[reference][tailwater]") {
@@ -283,8 +289,7 @@ TEST_CASE("a hold_toe basin's case samples the free surface and the water volume
     const reference::VofCase vof = reference::build_vof_case(study, study.cases.front(), "quick");
     return reference::foam::format_file(vof.headers.at("system/controlDict"), vof.files.at("system/controlDict"));
   };
-  const std::string held = control_dict(basin_spec("tailwater_control = \"hold_toe\"\ntailwater_control_interval_s = 0.01\n"
-                                                   "volume_hold_time_s = 0.02", 0.02, 0.01, "smooth"));
+  const std::string held = control_dict(tiny_hold_toe_spec());
   CHECK_THAT(held, Catch::Contains("freeSurface") && Catch::Contains("alpha_0.5") && Catch::Contains("water_volume") &&
                        Catch::Contains("volIntegrate") && Catch::Contains("writeCompression off;"));
   // The volume every time step, with no writeInterval that a leg's controlDict could rewrite.
