@@ -650,6 +650,20 @@ std::vector<Section> read_sections(TableReader& c, const toml::array& array, dou
     if (!names.insert(s.name).second) t.fail_at(t.raw().get("name"), "name", "= \"" + s.name + "\" is used by two sections: names must be unique");
     s.x_m = t.number("x_m", Range{x_min, x_max, false, false, "m, inside the domain"});
     s.role = t.choice("role", "interior", {"upstream", "toe", "interior", "downstream", "gauge"});
+    // E1 and the toe search start at the one upstream section, y2 and E2 come from the one downstream
+    // section: a second one of either would be ignored, and a downstream section upstream of the
+    // upstream one would turn eta and the jump length inside out.
+    for (const Section& earlier : sections) {
+      if ((s.role == "upstream" || s.role == "downstream") && earlier.role == s.role)
+        t.fail_at(t.raw().get("role"), "role", "= \"" + s.role + "\" is also the role of section \"" + earlier.name +
+                                                   "\": at most one section may have it");
+      const Section* up = s.role == "upstream" ? &s : (earlier.role == "upstream" ? &earlier : nullptr);
+      const Section* down = s.role == "downstream" ? &s : (earlier.role == "downstream" ? &earlier : nullptr);
+      if (up && down && up != down && down->x_m <= up->x_m)
+        t.fail_at(t.raw().get("x_m"), "x_m", "= " + number_text(s.x_m) + " puts the downstream section \"" + down->name +
+                                                 "\" (x_m = " + number_text(down->x_m) + ") at or upstream of the upstream section \"" +
+                                                 up->name + "\" (x_m = " + number_text(up->x_m) + "): it must lie downstream");
+    }
     t.reject_unknown_keys();
     sections.push_back(s);
   }

@@ -239,6 +239,18 @@ TEST_CASE("Non-physical values are rejected with the allowed range", "[cases][sp
     CHECK_THAT(msg, Catch::Contains("spec.toml:" + std::to_string(line_of(text, "x_m = 9.0"))));
     CHECK_THAT(msg, Catch::Contains("sections[0].x_m = 9 is out of range: must be >= 0 and <= 1.76"));
   }
+  SECTION("two upstream sections, or a downstream section upstream of the upstream one") {
+    const std::string up = "[[case.sections]]\nname = \"u\"\nx_m = 0.1\nrole = \"upstream\"\n";
+    const auto twice = valid_spec + up + "[[case.sections]]\nname = \"u2\"\nx_m = 0.15\nrole = \"upstream\"\n";
+    const auto msg = rejection(twice);
+    CHECK_THAT(msg, Catch::Contains("spec.toml:" + std::to_string(line_of(twice, "x_m = 0.15") + 1)));
+    CHECK_THAT(msg, Catch::Contains("sections[1].role = \"upstream\" is also the role of section \"u\": at most one"));
+    const auto reversed = valid_spec + "[[case.sections]]\nname = \"d\"\nx_m = 0.05\nrole = \"downstream\"\n" + up;
+    CHECK_THAT(rejection(reversed), Catch::Contains("sections[1].x_m = 0.1 puts the downstream section \"d\" (x_m = 0.05) at or upstream of "
+                                                    "the upstream section \"u\" (x_m = 0.1): it must lie downstream"));
+    CHECK_NOTHROW(parse_study(valid_spec + up + "[[case.sections]]\nname = \"d\"\nx_m = 1.5\nrole = \"downstream\"\n" +
+                                  "[[case.sections]]\nname = \"m\"\nx_m = 0.05\n", "spec.toml", "."));
+  }
   SECTION("corrugated reach not a whole number of wavelengths") {
     const auto msg = rejection(replaced(valid_spec, "height_m = 0.013", "height_m = 0.013\nreach_end_m = 1.0"));
     CHECK_THAT(msg, Catch::Contains("bed.reach_end_m = 1"));
