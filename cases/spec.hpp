@@ -114,6 +114,18 @@ struct RunSettings {
 // A named x position where both results are compared (a vertical line from the bed to the top).
 // role: "upstream" (section 1-1 reference, supercritical), "toe", "interior", "downstream"
 // (section 3-3, tailwater), or "gauge" for verification cases.
+// [[case.sections]]: a vertical line where both results are sampled.
+//   | key  | default    | meaning                                                              |
+//   |------|------------|----------------------------------------------------------------------|
+//   | name | (required) | unique within the case                                               |
+//   | x_m  | (required) | station, inside the domain                                           |
+//   | role | "interior" | "upstream" (y1, E1; at most one), "downstream" (y2, E2; at most one,  |
+//   |      |            | downstream of the upstream one), "toe", "interior" or "gauge"        |
+// Example:
+//   [[case.sections]]
+//   name = "up"
+//   x_m = 0.05
+//   role = "upstream"
 struct Section {
   std::string name;
   double x_m = 0.0;
