@@ -166,6 +166,14 @@ std::vector<std::pair<double, fs::path>> time_directories(const fs::path& dir) {
   return out;
 }
 
+// processor0/, processor1/, ... of a decomposed case, up to the first missing rank.
+std::vector<fs::path> processor_directories(const fs::path& dir) {
+  std::vector<fs::path> out;
+  for (fs::path p = dir / "processor0"; fs::is_directory(p); p = dir / ("processor" + std::to_string(out.size())))
+    out.push_back(p);
+  return out;
+}
+
 // A time directory is complete when its main fields are present and readable to the end
 // (compressed files are tested with `gzip -t`, plain ones must end with OpenFOAM's closing rule).
 bool time_directory_complete(const fs::path& time_dir) {
@@ -930,8 +938,8 @@ void tailwater_control_after_leg(const fs::path& dir, const TailwaterControlLaw&
       tailwater_control_step(law, previous_target, leg_end_s, leg_end_s - leg_start_s, toes, volume_m3->second / thickness_m);
   std::vector<fs::path> u_files;
   if (parallel) {
-    for (int r = 0; fs::is_directory(dir / ("processor" + std::to_string(r))); ++r) {
-      const auto times = time_directories(dir / ("processor" + std::to_string(r)));
+    for (const fs::path& rank : processor_directories(dir)) {
+      const auto times = time_directories(rank);
       if (!times.empty()) u_files.push_back(times.back().second / "U");
     }
   } else {
@@ -1040,8 +1048,7 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
   }
 
   // Processor directories from an earlier parallel run.
-  int existing_ranks = 0;
-  while (fs::is_directory(dir / ("processor" + std::to_string(existing_ranks)))) ++existing_ranks;
+  const int existing_ranks = static_cast<int>(processor_directories(dir).size());
   const bool parallel = options.np > 1;
 
   // Where to start: the decomposed results when continuing in parallel and they are the newest,
