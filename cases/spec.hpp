@@ -111,16 +111,15 @@ struct RunSettings {
   double average_end_s = 0.0;     // defaults to end_time_s
 };
 
-// A named x position where both results are compared (a vertical line from the bed to the top).
-// role: "upstream" (section 1-1 reference, supercritical), "toe", "interior", "downstream"
-// (section 3-3, tailwater), or "gauge" for verification cases.
-// [[case.sections]]: a vertical line where both results are sampled.
+// [[case.sections]]: a named x position where both results are compared (a vertical line from the
+// bed to the top).
 //   | key  | default    | meaning                                                              |
 //   |------|------------|----------------------------------------------------------------------|
 //   | name | (required) | unique within the case                                               |
 //   | x_m  | (required) | station, inside the domain                                           |
-//   | role | "interior" | "upstream" (y1, E1; at most one), "downstream" (y2, E2; at most one,  |
-//   |      |            | downstream of the upstream one), "toe", "interior" or "gauge"        |
+//   | role | "interior" | "upstream" (section 1-1, supercritical: y1, E1; at most one),        |
+//   |      |            | "downstream" (section 3-3, tailwater: y2, E2; at most one, downstream |
+//   |      |            | of the upstream one), "toe", "interior", or "gauge" (verification)   |
 // Example:
 //   [[case.sections]]
 //   name = "up"
