@@ -209,7 +209,8 @@ std::string vof_run_note(const VofRunNoteInputs& in) {
   if (!q || !(in.inflow_q_m2_s > 0.0)) return {};
   const double imbalance = (q->outflow_m2_s + q->top_outflow_m2_s - q->inflow_m2_s) / in.inflow_q_m2_s;
   const bool trend_known = std::isfinite(in.toe_trend_m_per_s);
-  const bool steady = cases::steady_by_means(imbalance, in.toe_trend_m_per_s, in.toe_drift_tolerance_m);
+  const bool steady = in.frames_without_toe == 0 && in.reaches_window_end &&
+                      cases::steady_by_means(imbalance, in.toe_trend_m_per_s, in.toe_drift_tolerance_m);
   std::ostringstream o;
   o << std::setprecision(4) << "water balance over the window (postProcessing/discharge_inlet, _outlet"
     << (q->top_sampled ? ", _atmosphere" : "") << "): in " << q->inflow_m2_s << ", out " << q->outflow_m2_s;
@@ -220,6 +221,8 @@ std::string vof_run_note(const VofRunNoteInputs& in) {
     o << in.toe_trend_m_per_s << " m/s";
   else
     o << "unknown (fewer than 3 frames with a toe)";
+  if (in.frames_without_toe > 0) o << ", no toe in " << in.frames_without_toe << " of " << in.frames << " frames";
+  if (!in.reaches_window_end) o << "; the run has not reached " << in.window_end_s << " s";
   o << (steady ? " (steady by the window means: " : " (NOT steady by the window means: ") << "|outflow - inflow| < "
     << 100.0 * cases::steady_discharge_tolerance << " % of q and |toe trend| x " << cases::steady_span_s << " s < "
     << in.toe_drift_tolerance_m << " m)";
@@ -430,10 +433,16 @@ CaseComparison compare_case(const cases::Study& study, const fs::path& run_dir, 
       const std::string note = vof_top_outflow_note(run_dir / "vof", r.window_start_s, r.window_end_s,
                                                     r.inflow_depth_m * r.inflow_velocity_m_s, r.vof_cell_size_m);
       if (!note.empty()) r.vof.metrics.notes.push_back(note);
-      const std::string balance = vof_run_note(
-          {run_dir / "vof", r.window_start_s, r.window_end_s, r.inflow_depth_m * r.inflow_velocity_m_s,
-           r.vof_cell_size_m, r.vof.metrics.toe_trend_m_per_s,
-           cases::toe_drift_tolerance_m(basin->bed.profile, basin->bed.wavelength_m, r.inflow_depth_m)});
+      VofRunNoteInputs balance_inputs{run_dir / "vof", r.window_start_s, r.window_end_s, r.inflow_depth_m * r.inflow_velocity_m_s,
+                                      r.vof_cell_size_m, r.vof.metrics.toe_trend_m_per_s,
+                                      cases::toe_drift_tolerance_m(basin->bed.profile, basin->bed.wavelength_m, r.inflow_depth_m)};
+      const std::vector<double>& frame_toes = r.vof.metrics.toe_frames_x_m;
+      balance_inputs.frames = static_cast<int>(frame_toes.size());
+      balance_inputs.frames_without_toe =
+          static_cast<int>(std::count_if(frame_toes.begin(), frame_toes.end(), [](double x) { return !std::isfinite(x); }));
+      balance_inputs.reaches_window_end =
+          !r.vof.stats.times.empty() && r.vof.stats.times.back() >= r.window_end_s - time_tolerance_s;
+      const std::string balance = vof_run_note(balance_inputs);
       if (!balance.empty()) r.vof.metrics.notes.push_back(balance);
       const std::string control = vof_tailwater_control_note(run_dir / "vof", r.window_start_s, r.window_end_s);
       if (!control.empty()) r.vof.metrics.notes.push_back(control);

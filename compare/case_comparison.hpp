@@ -111,6 +111,11 @@ struct VofRunNoteInputs {
   double thickness_m = 0.0;            // the one-cell span of the 2D mesh
   double toe_trend_m_per_s = 0.0;      // NaN: no trend (too few frames with a toe)
   double toe_drift_tolerance_m = 0.0;  // cases::toe_drift_tolerance_m
+  // As the SPH monitor's rule (cases::window_balance): not steady with a frame without a toe, or
+  // when the run has not reached the window's end.
+  int frames = 0;                      // frames in the window
+  int frames_without_toe = 0;
+  bool reaches_window_end = true;
 };
 std::string vof_run_note(const VofRunNoteInputs& in);
 

@@ -43,6 +43,21 @@ static std::size_t start_of_settled_tail(std::size_t from, std::size_t last, Pre
   return k;
 }
 
+// What the downstream section gives (y2, E2, eta, M2, the bed force) when it does not lie behind a
+// jump: not available.
+static void drop_downstream_values(JumpMetrics& r) {
+  r.sequent_depth_m = r.sequent_depth_std_m = r.e2_m = not_a_number;
+  r.eta = r.eta_alpha1 = r.eta_crest_depth = not_a_number;
+  r.specific_force_downstream_m2 = r.bed_force_fraction = not_a_number;
+}
+
+// What the upstream section gives (E1, eta, M1, the bed force) when the jump reaches it: not available.
+static void drop_upstream_values(JumpMetrics& r) {
+  r.e1_m = not_a_number;
+  r.eta = r.eta_alpha1 = r.eta_crest_depth = not_a_number;
+  r.specific_force_upstream_m2 = r.bed_force_fraction = not_a_number;
+}
+
 static const ColumnStatistics* find_role(const MethodStatistics& m, const std::string& role) {
   for (const auto& s : m.sections)
     if (s.spec.role == role) return &s;
@@ -115,6 +130,10 @@ JumpMetrics compute_jump_metrics(const MethodStatistics& m, const JumpInputs& in
   const double x_down = down ? down->spec.x_m : st.back().spec.x_m;
   const double x_up = up ? up->spec.x_m : st.front().spec.x_m;
   const std::size_t toe = find_toe(xs, zeta, x_up, in);
+  // The first station the search looks at: a toe there means the surface already stands above the
+  // threshold at the search start, so the jump reaches the upstream section (or lies upstream of it).
+  std::size_t search_start = 0;
+  while (search_start < xs.size() && xs[search_start] < x_up) ++search_start;
   // The same criterion on each frame's instantaneous surface: how much the toe moves.
   if (!m.station_surface_series.empty()) {
     std::vector<double> toes;  // one per frame (NaN without a toe), aligned with m.times
@@ -127,31 +146,56 @@ JumpMetrics compute_jump_metrics(const MethodStatistics& m, const JumpInputs& in
       for (std::size_t i = 0; i < frame.size(); ++i) z[i] = frame[i] - in.floor_z_m;
       const std::size_t k = find_toe(xs, z, x_up, in);
       toes.push_back(k < xs.size() ? xs[k] : not_a_number);
+      if (k == search_start) ++r.toe_frames_at_search_start;
     }
     const ScalarStats ts = stats_of(toes);
     r.toe_mean_of_frames_x_m = ts.mean;
     r.toe_std_m = ts.std;
     r.toe_frames_found = ts.count;
     if (m.times.size() == toes.size()) r.toe_trend_m_per_s = cases::least_squares_slope(m.times, toes);
+    if (r.toe_frames_at_search_start > 0) {
+      std::ostringstream s;
+      s << "in " << r.toe_frames_at_search_start << " of " << toes.size() << " frames the toe is at the search start (x = "
+        << xs[std::min(search_start, xs.size() - 1)]
+        << " m, the \"upstream\" section): the roller reaches that section or lies upstream of it, so those frames' toes"
+           " are downstream bounds and the frames' toe mean and standard deviation are biased";
+      r.notes.push_back(s.str());
+    }
     r.toe_frames_x_m = std::move(toes);
   }
   if (toe == st.size()) {
+    // No jump in the reach (swept out downstream, or never formed): the downstream section samples
+    // the incoming stream, not a sequent depth, so its values would be silently wrong.
     std::ostringstream s;
     s << "no jump toe: the mean surface never stays above " << in.options.toe_threshold_y1 << " y1 = "
-      << in.options.toe_threshold_y1 * y1 << " m above the floor";
+      << in.options.toe_threshold_y1 * y1 << " m above the floor, so y2, E2, eta, the bed force, Lr and Lj are unavailable";
     r.notes.push_back(s.str());
+    drop_downstream_values(r);
     return r;
   }
   r.toe_x_m = st[toe].spec.x_m;
   // A jump swept past the downstream section: that section samples the incoming stream (or the
-  // jump itself), not the sequent depth, so y2, E2 and eta would be silently wrong.
+  // jump itself), not the sequent depth, so y2, E2 and eta would be silently wrong; the roller and
+  // the settling lie beyond the sections.
   if (down && r.toe_x_m >= x_down) {
     std::ostringstream s;
     s << "the toe (x = " << r.toe_x_m << " m) lies downstream of the \"downstream\" section (x = " << x_down
-      << " m): the jump was swept past it, so y2, E2, eta and Lj are unavailable";
+      << " m): the jump was swept past it, so y2, E2, eta, the bed force, Lr and Lj are unavailable";
     r.notes.push_back(s.str());
-    r.sequent_depth_m = r.sequent_depth_std_m = r.e2_m = not_a_number;
-    r.eta = r.eta_alpha1 = r.eta_crest_depth = not_a_number;
+    drop_downstream_values(r);
+    return r;
+  }
+  // A mean toe at the search start: the mean surface already stands above the threshold at the
+  // upstream section, so E1 there is sampled in the roller (not the incoming stream) and the true toe
+  // lies at or upstream of it; Lr and Lj measured from it would be too short.
+  if (toe == search_start) {
+    std::ostringstream s;
+    s << "the mean surface already stands above " << in.options.toe_threshold_y1 << " y1 at the \"upstream\" section (x = "
+      << r.toe_x_m << " m, where the toe search starts): the jump reaches it, so the toe lies at or upstream of it,"
+         " and E1, eta, the bed force, Lr and Lj are unavailable";
+    r.notes.push_back(s.str());
+    drop_upstream_values(r);
+    return r;
   }
   std::size_t last = toe;  // last station up to the downstream section
   while (last + 1 < st.size() && st[last + 1].spec.x_m <= x_down + 1e-12) ++last;

@@ -13,7 +13,11 @@
 //                trend (least-squares slope of the frames' toes against time, m/s; > 0 downstream).
 //   y2           sequent depth: time-mean surface at the "downstream" section minus z_floor (depth above
 //                the corrugation crests, as measured in the flume). When the toe lies downstream of that
-//                section (a jump swept downstream), y2, E2, eta and Lj are NaN with a note.
+//                section (a jump swept downstream), or no toe is found at all, y2, E2, eta, M2, the bed
+//                force, Lr and Lj are NaN with a note. When the toe is at the search start (the "upstream"
+//                section: the mean surface already stands above the threshold there, the jump reaches
+//                it), E1, eta, M1, the bed force, Lr and Lj are NaN with a note; frames whose toe is at
+//                the search start are counted (toe_frames_at_search_start) and named in a note.
 //   roller end   the last x in (x_t, x_down] where the time-mean near-surface velocity u(eta - 0.1 h) is
 //                negative ("end of the reverse surface flow"); Lr = x_roller - x_t. NaN (with a note)
 //                when no reverse surface flow is found.
@@ -67,7 +71,8 @@ struct JumpMetrics {
   double toe_x_m = not_a_number;
   double toe_mean_of_frames_x_m = not_a_number;  // the toe criterion on each frame's surface: mean,
   double toe_std_m = not_a_number;              // standard deviation (steadiness of the jump)
-  int toe_frames_found = 0;                     // and the number of frames with a toe
+  int toe_frames_found = 0;                     // and the number of frames with a toe,
+  int toe_frames_at_search_start = 0;           // of which at the upstream section (the roller reaches it)
   double toe_trend_m_per_s = not_a_number;      // least-squares slope of the frames' toes over time
   std::vector<double> toe_frames_x_m;           // each frame's toe (NaN: none), aligned with the frames' times
   double sequent_depth_m = not_a_number;       // y2

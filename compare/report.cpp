@@ -101,6 +101,7 @@ void metrics_json(Json& j, const JumpMetrics& m) {
       .field("toe_mean_of_frames_x_m", m.toe_mean_of_frames_x_m)
       .field("toe_std_m", m.toe_std_m)
       .field("toe_frames_found", m.toe_frames_found)
+      .field("toe_frames_at_search_start", m.toe_frames_at_search_start)
       .field("toe_trend_m_per_s", m.toe_trend_m_per_s)
       .field("sequent_depth_m", m.sequent_depth_m)
       .field("sequent_depth_std_m", m.sequent_depth_std_m)

@@ -16,7 +16,8 @@ ScalarStats stats_of(const std::vector<double>& values) {
   double ss = 0.0;
   for (double v : values)
     if (std::isfinite(v)) ss += (v - s.mean) * (v - s.mean);
-  s.std = s.count > 1 ? std::sqrt(ss / (s.count - 1)) : 0.0;
+  // One value says nothing about the spread: NaN (printed as "—"), not a perfectly steady 0.
+  s.std = s.count > 1 ? std::sqrt(ss / (s.count - 1)) : not_a_number;
   return s;
 }
 

@@ -19,7 +19,7 @@ struct ColumnSpec {
   int n_points = 41;           // odd
 };
 
-// Mean and sample standard deviation (n - 1) of the finite values; std = 0 for a single value.
+// Mean and sample standard deviation (n - 1) of the finite values; std = NaN for a single value.
 struct ScalarStats {
   double mean = not_a_number;
   double std = not_a_number;

@@ -284,6 +284,90 @@ TEST_CASE("Missing sections and no jump are reported as notes and are not crashe
   CHECK(found);
 }
 
+TEST_CASE("No toe in the reach: the downstream section's values are not reported as a jump's", "[compare][metrics]") {
+  // A jump swept out of the domain: the downstream section at 1.6 m samples the incoming stream
+  // (y1, U1), which would read as y2 = y1, eta = 0 and a balanced momentum.
+  const double y1 = 0.0254, u1 = 2.0;
+  MethodStatistics m;
+  m.sections.push_back(as_statistics("upstream", "upstream", uniform_column(0.3, 0.0, y1, u1)));
+  m.sections.push_back(as_statistics("downstream", "downstream", uniform_column(1.6, 0.0, y1, u1)));
+  for (int i = 0; i <= 500; ++i) {
+    ColumnStatistics s;
+    s.spec = {"", "station", i * 0.004, 0.0, 21};
+    s.surface.mean = y1;
+    m.stations.push_back(s);
+  }
+  const JumpMetrics r = compute_jump_metrics(m, JumpInputs{y1, u1, 0.0, g, {}});
+  CHECK(std::isnan(r.toe_x_m));
+  CHECK(std::isnan(r.sequent_depth_m));
+  CHECK(std::isnan(r.e2_m));
+  CHECK(std::isnan(r.eta));
+  CHECK(std::isnan(r.eta_alpha1));
+  CHECK(std::isnan(r.eta_crest_depth));
+  CHECK(std::isnan(r.specific_force_downstream_m2));
+  CHECK(std::isnan(r.bed_force_fraction));
+  // The incoming stream itself is still measured.
+  CHECK(r.e1_m == Approx(y1 + u1 * u1 / (2 * g)).epsilon(1e-9));
+  bool found = false;
+  for (const auto& n : r.notes) found = found || n.find("no jump toe") != std::string::npos;
+  CHECK(found);
+}
+
+TEST_CASE("A jump reaching the upstream section gives no E1 or eta, and its pinned frames are counted", "[compare][metrics]") {
+  // The whole reach subcritical: the mean surface 0.10 m from x = 0 on, with q = 0.0508 m^2/s, and the
+  // upstream section at 0.3 m inside it. Without the check the toe would be the search start (0.3 m)
+  // and eta = (E1 - E2)/E1 of two subcritical sections, -2.7 %, with no note.
+  const double y1 = 0.0254, u1 = 2.0, q = y1 * u1;
+  MethodStatistics m;
+  m.sections.push_back(as_statistics("upstream", "upstream", uniform_column(0.3, 0.0, 0.10, q / 0.10)));
+  m.sections.push_back(as_statistics("downstream", "downstream", uniform_column(1.6, 0.0, 0.104, q / 0.104)));
+  for (int i = 0; i <= 500; ++i) {
+    ColumnStatistics s;
+    s.spec = {"", "station", i * 0.004, 0.0, 21};
+    s.surface.mean = 0.10;
+    m.stations.push_back(s);
+  }
+  // Two frames: one like the mean, one with the jump at 0.8 m (supercritical y1 upstream of it).
+  m.times = {1.0, 2.0};
+  std::vector<double> pinned, held;
+  for (const auto& st : m.stations) {
+    pinned.push_back(0.10);
+    held.push_back(st.spec.x_m < 0.8 ? y1 : 0.10);
+  }
+  m.station_surface_series = {pinned, held};
+  const JumpMetrics r = compute_jump_metrics(m, JumpInputs{y1, u1, 0.0, g, {}});
+  CHECK(r.toe_x_m == Approx(0.3).margin(0.004));
+  CHECK(std::isnan(r.e1_m));
+  CHECK(std::isnan(r.eta));
+  CHECK(std::isnan(r.eta_alpha1));
+  CHECK(std::isnan(r.eta_crest_depth));
+  CHECK(std::isnan(r.specific_force_upstream_m2));
+  CHECK(std::isnan(r.bed_force_fraction));
+  CHECK(std::isnan(r.roller_length_m));
+  CHECK(std::isnan(r.jump_length_m));
+  // The downstream section still gives the depth behind the jump.
+  CHECK(r.sequent_depth_m == Approx(0.104).margin(1e-9));
+  CHECK(r.toe_frames_found == 2);
+  CHECK(r.toe_frames_at_search_start == 1);
+  bool section_note = false, frames_note = false;
+  for (const auto& n : r.notes) {
+    section_note = section_note || n.find("the jump reaches it") != std::string::npos;
+    frames_note = frames_note || n.find("in 1 of 2 frames the toe is at the search start") != std::string::npos;
+  }
+  CHECK(section_note);
+  CHECK(frames_note);
+}
+
+TEST_CASE("A single frame in the window has no standard deviation", "[compare][metrics]") {
+  const ScalarStats one = stats_of({0.2});
+  CHECK(one.mean == 0.2);
+  CHECK(one.count == 1);
+  CHECK(std::isnan(one.std));
+  const ScalarStats two = stats_of({0.2, 0.4, std::nan("")});
+  CHECK(two.count == 2);
+  CHECK(two.std == Approx(std::sqrt(0.02)).epsilon(1e-12));
+}
+
 TEST_CASE("A toe downstream of the downstream section gives no y2 or eta, with a note", "[compare][metrics]") {
   // The synthetic ramp jump of the test above (toe near 0.87 m) with the downstream section at 0.6 m,
   // where the time-mean surface is still the incoming supercritical layer.
@@ -305,6 +389,12 @@ TEST_CASE("A toe downstream of the downstream section gives no y2 or eta, with a
   CHECK(std::isnan(r.eta));
   CHECK(std::isnan(r.eta_crest_depth));
   CHECK(std::isnan(r.jump_length_m));
+  // The downstream section samples the incoming stream here, so M1 = M2 would read as Belanger's
+  // balance: not reported, nor what lies beyond the sections.
+  CHECK(std::isnan(r.specific_force_downstream_m2));
+  CHECK(std::isnan(r.bed_force_fraction));
+  CHECK(std::isnan(r.roller_length_m));
+  CHECK(std::isnan(r.velocity_settling_distance_m));
   bool found = false;
   for (const auto& n : r.notes) found = found || n.find("swept past") != std::string::npos;
   CHECK(found);

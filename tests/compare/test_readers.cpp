@@ -213,6 +213,16 @@ TEST_CASE("the VOF water balance over the window: filling, draining and steady, 
   in.toe_trend_m_per_s = 0.0;
   write_patch("discharge_outlet", 1.02 * flux);
   CHECK_THAT(vof_run_note(in), Catch::Contains("= 3 % of q (draining)") && Catch::Contains("NOT steady"));
+  // The SPH monitor's two further conditions: a balanced window is not steady when frames lost their
+  // toe (the jump left the reach in them), or when the run stopped before the window's end.
+  write_patch("discharge_outlet", 0.99 * flux);
+  REQUIRE_THAT(vof_run_note(in), Catch::Contains("(steady by the window means"));
+  in.frames = 40;
+  in.frames_without_toe = 20;
+  CHECK_THAT(vof_run_note(in), Catch::Contains("no toe in 20 of 40 frames") && Catch::Contains("NOT steady"));
+  in.frames_without_toe = 0;
+  in.reaches_window_end = false;
+  CHECK_THAT(vof_run_note(in), Catch::Contains("the run has not reached 6 s") && Catch::Contains("NOT steady"));
 }
 
 TEST_CASE("a VOF run whose tailwater was set by the tailgate control says so, with the window's Umean and toe",
