@@ -115,11 +115,14 @@ struct RunSettings {
 // bed to the top).
 //   | key  | default    | meaning                                                              |
 //   |------|------------|----------------------------------------------------------------------|
-//   | name | (required) | unique within the case                                               |
+//   | name | (required) | unique within the case; 1-64 letters, digits, '_', '-' (OpenFOAM     |
+//   |      |            | set and file names)                                                  |
 //   | x_m  | (required) | station, inside the domain                                           |
-//   | role | "interior" | "upstream" (section 1-1, supercritical: y1, E1; at most one),        |
-//   |      |            | "downstream" (section 3-3, tailwater: y2, E2; at most one, downstream |
-//   |      |            | of the upstream one), "toe", "interior", or "gauge" (verification)   |
+//   | role | "interior" | "upstream" (section 1-1, supercritical: y1, E1; at most one; in a    |
+//   |      |            | stilling basin upstream of the basin start), "downstream" (section   |
+//   |      |            | 3-3, tailwater: y2, E2; at most one, downstream of the upstream one, |
+//   |      |            | in a stilling basin downstream of the basin start), "toe",           |
+//   |      |            | "interior", or "gauge" (verification)                                |
 // Example:
 //   [[case.sections]]
 //   name = "up"

@@ -441,6 +441,15 @@ void read_vof(TableReader& t, VofSettings& v) {
                   " s) must be >= tailwater_control_interval_s (" + number_text(v.tailwater_control_interval_s) +
                   " s), or the volume control overshoots");
   }
+  // The toe term moves the volume target by (y2* - y1)/T_x * (toe error) per second: with T_x below one
+  // leg it overshoots in a single leg, and the outlet just flips between its clamps.
+  if (v.tailwater_control == "hold_toe" && v.toe_hold_time_s < v.tailwater_control_interval_s) {
+    const std::string key = t.has("toe_hold_time_s") ? "toe_hold_time_s" : "tailwater_control_interval_s";
+    t.fail_at(t.raw().get(key.c_str()), key,
+              "is out of range: toe_hold_time_s (" + number_text(v.toe_hold_time_s) +
+                  " s) must be >= tailwater_control_interval_s (" + number_text(v.tailwater_control_interval_s) +
+                  " s), or the toe control overshoots");
+  }
   t.reject_unknown_keys();
 }
 
@@ -639,7 +648,11 @@ PoiseuilleCase read_poiseuille(TableReader& c) {
   return p;
 }
 
-std::vector<Section> read_sections(TableReader& c, const toml::array& array, double x_min, double x_max) {
+// `basin_start`: a stilling basin's start (the expected toe), which the upstream section must lie
+// upstream of (E1 and the toe search start there) and the downstream section downstream of (y2, E2);
+// NaN for other kinds.
+std::vector<Section> read_sections(TableReader& c, const toml::array& array, double x_min, double x_max,
+                                   double basin_start) {
   std::vector<Section> sections;
   std::set<std::string> names;
   std::size_t index = 0;
@@ -647,9 +660,21 @@ std::vector<Section> read_sections(TableReader& c, const toml::array& array, dou
     auto t = c.element(node, "sections", index++);
     Section s;
     s.name = t.string("name");
+    // Names become OpenFOAM set names and file names.
+    if (!is_plain_name(s.name))
+      t.fail_at(t.raw().get("name"), "name", "= \"" + s.name + "\" is not usable as a section name (it names OpenFOAM sets and files): " +
+                                                 plain_name_rule);
     if (!names.insert(s.name).second) t.fail_at(t.raw().get("name"), "name", "= \"" + s.name + "\" is used by two sections: names must be unique");
     s.x_m = t.number("x_m", Range{x_min, x_max, false, false, "m, inside the domain"});
     s.role = t.choice("role", "interior", {"upstream", "toe", "interior", "downstream", "gauge"});
+    if (std::isfinite(basin_start) && s.role == "upstream" && !(s.x_m < basin_start))
+      t.fail_at(t.raw().get("x_m"), "x_m", "= " + number_text(s.x_m) + " is out of range for the upstream section \"" + s.name +
+                                               "\": must be < " + number_text(basin_start) +
+                                               " m, the basin start (E1 and the toe search are taken upstream of the jump)");
+    if (std::isfinite(basin_start) && s.role == "downstream" && !(s.x_m > basin_start))
+      t.fail_at(t.raw().get("x_m"), "x_m", "= " + number_text(s.x_m) + " is out of range for the downstream section \"" + s.name +
+                                               "\": must be > " + number_text(basin_start) +
+                                               " m, the basin start (y2 and E2 are taken behind the jump)");
     // E1 and the toe search start at the one upstream section, y2 and E2 come from the one downstream
     // section: a second one of either would be ignored, and a downstream section upstream of the
     // upstream one would turn eta and the jump length inside out.
@@ -785,6 +810,11 @@ Case read_case(TableReader& c, const Study& study, const SphSettings& sph,
                " is out of range: must be a whole number of run.output_interval_s (" +
                number_text(result.run.output_interval_s) + " s), since the control reads the outputs of each leg");
     }
+    if (result.vof.tailwater_control_interval_s > result.run.end_time_s) {
+      fail("tailwater_control_interval_s",
+           "= " + number_text(result.vof.tailwater_control_interval_s) + " is out of range: must be <= run.end_time_s (" +
+               number_text(result.run.end_time_s) + " s), or the control never acts during the run");
+    }
   }
   const double g = study.fluid.gravity_m_s2;
   if (result.kind == "stilling_basin") {
@@ -799,7 +829,8 @@ Case read_case(TableReader& c, const Study& study, const SphSettings& sph,
   // Sections need the domain, which make_geometry derives; use it (sections are not read yet).
   const CaseGeometry geo = make_geometry(result, study.fluid);
   if (const toml::array* array = c.array_of_tables("sections")) {
-    result.sections = read_sections(c, *array, geo.x_min_m, geo.x_max_m);
+    const double basin_start = result.stilling_basin() ? geo.expected_toe_x_m : std::nan("");
+    result.sections = read_sections(c, *array, geo.x_min_m, geo.x_max_m, basin_start);
     result.sections_given = true;
   } else if (const auto* b = result.stilling_basin()) {
     result.sections = default_stilling_basin_sections(*b);

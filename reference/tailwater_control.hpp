@@ -36,9 +36,10 @@
 //   | key                           | default | meaning                                               |
 //   |-------------------------------|---------|-------------------------------------------------------|
 //   | tailwater_control             | "none"  | "hold_toe": this control (stilling basins)            |
-//   | tailwater_control_interval_s  | 0.5     | leg length dt, a whole number of output intervals     |
+//   | tailwater_control_interval_s  | 0.5     | leg length dt, a whole number of output intervals,    |
+//   |                               |         | at most run.end_time_s                                |
 //   | volume_hold_time_s            | 1.0     | T_V (>= dt)                                           |
-//   | toe_hold_time_s               | 5.0     | T_x                                                   |
+//   | toe_hold_time_s               | 5.0     | T_x (>= dt)                                           |
 // Example:
 //   [case.vof]
 //   tailwater_control = "hold_toe"

@@ -245,11 +245,24 @@ TEST_CASE("Non-physical values are rejected with the allowed range", "[cases][sp
     const auto msg = rejection(twice);
     CHECK_THAT(msg, Catch::Contains("spec.toml:" + std::to_string(line_of(twice, "x_m = 0.15") + 1)));
     CHECK_THAT(msg, Catch::Contains("sections[1].role = \"upstream\" is also the role of section \"u\": at most one"));
+    // In a stilling basin the pair must straddle the basin start (0.2 m here), which also orders them.
     const auto reversed = valid_spec + "[[case.sections]]\nname = \"d\"\nx_m = 0.05\nrole = \"downstream\"\n" + up;
-    CHECK_THAT(rejection(reversed), Catch::Contains("sections[1].x_m = 0.1 puts the downstream section \"d\" (x_m = 0.05) at or upstream of "
-                                                    "the upstream section \"u\" (x_m = 0.1): it must lie downstream"));
+    CHECK_THAT(rejection(reversed), Catch::Contains("sections[0].x_m = 0.05 is out of range for the downstream section \"d\": must be > 0.2 m, "
+                                                    "the basin start"));
+    const auto up_in_basin = valid_spec + "[[case.sections]]\nname = \"u\"\nx_m = 1.0\nrole = \"upstream\"\n";
+    CHECK_THAT(rejection(up_in_basin), Catch::Contains("spec.toml:" + std::to_string(line_of(up_in_basin, "x_m = 1.0"))) &&
+                                           Catch::Contains("sections[0].x_m = 1 is out of range for the upstream section \"u\": must be < 0.2 m"));
     CHECK_NOTHROW(parse_study(valid_spec + up + "[[case.sections]]\nname = \"d\"\nx_m = 1.5\nrole = \"downstream\"\n" +
                                   "[[case.sections]]\nname = \"m\"\nx_m = 0.05\n", "spec.toml", "."));
+  }
+  SECTION("a section name that is not a plain name") {
+    for (const std::string bad : {"a/b", "a b", "../x", "a;b{", ""}) {
+      const auto text = valid_spec + "[[case.sections]]\nname = \"" + bad + "\"\nx_m = 0.5\n";
+      const auto msg = rejection(text);
+      CHECK_THAT(msg, Catch::Contains("spec.toml:" + std::to_string(line_of(text, "name = \"" + bad + "\""))) &&
+                          Catch::Contains("sections[0].name = \"" + bad + "\" is not usable as a section name") &&
+                          Catch::Contains("use 1 to 64 letters, digits, '_' or '-'"));
+    }
   }
   SECTION("corrugated reach not a whole number of wavelengths") {
     const auto msg = rejection(replaced(valid_spec, "height_m = 0.013", "height_m = 0.013\nreach_end_m = 1.0"));
@@ -657,6 +670,14 @@ TEST_CASE("The VOF tailwater control is none or hold_toe, its numbers only with 
              Catch::Contains("vof.toe_hold_time_s = 0 is out of range"));
   CHECK_THAT(rejection(with("tailwater_control = \"hold_toe\"\nvolume_hold_time_s = 0.2")),
              Catch::Contains("volume_hold_time_s") && Catch::Contains("must be >= tailwater_control_interval_s (0.5 s)"));
+  // A toe term faster than one leg (1e-300 s made a gain of 1e299: the outlet flipped between its clamps).
+  CHECK_THAT(rejection(with("tailwater_control = \"hold_toe\"\ntoe_hold_time_s = 1e-300")),
+             Catch::Contains("vof.toe_hold_time_s is out of range: toe_hold_time_s (1e-300 s) must be >= "
+                             "tailwater_control_interval_s (0.5 s)"));
+  // Legs longer than the run: the control would never act.
+  CHECK_THAT(rejection(with("tailwater_control = \"hold_toe\"\ntailwater_control_interval_s = 20\n"
+                            "volume_hold_time_s = 20\ntoe_hold_time_s = 20")),
+             Catch::Contains("tailwater_control_interval_s = 20 is out of range: must be <= run.end_time_s"));
   // The outputs come every 0.05 s (the default): the legs must end on them.
   const std::string off_grid_text = with("tailwater_control = \"hold_toe\"\ntailwater_control_interval_s = 0.26\n"
                                          "volume_hold_time_s = 1");
