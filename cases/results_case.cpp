@@ -82,7 +82,12 @@ void require_results_of(const fs::path& solver_dir, const fs::path& case_toml) {
     throw std::runtime_error(solver_dir.string() + " holds the results of a run but no case.toml: they cannot be "
                              "told apart from another case's (move the directory away, or generate the case again "
                              "and rerun it)");
-  const auto d = first_setting_difference(read_text_file(recorded), read_text_file(case_toml));
+  std::error_code ec;
+  const std::string recorded_text = fs::is_regular_file(recorded, ec) ? read_text_file(recorded) : std::string();
+  if (recorded_text.empty())
+    throw std::runtime_error(recorded.string() + " is empty or not a readable file, so the results in " + solver_dir.string() +
+                             " cannot be told apart from another case's (restore it, or generate the case again and rerun it)");
+  const auto d = first_setting_difference(recorded_text, read_text_file(case_toml));
   if (!d.any()) return;
   throw std::runtime_error(solver_dir.string() + " holds results made with other settings than " + case_toml.string() +
                            ": " + recorded.filename().string() + " has '" + d.a + "' where " + case_toml.string() +

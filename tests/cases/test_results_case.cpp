@@ -90,6 +90,10 @@ TEST_CASE("results_case: results are refused under a case.toml other than the on
   relaxed.replace(relaxed.find("0.3"), 3, "0.45");
   write(sph / "case.toml", relaxed);
   CHECK_NOTHROW(require_results_of(sph, sph / "case.toml"));
+  // An emptied record says so (it used to read as "has '(end)' where ... has '[sph]'").
+  write(sph / results_case_file_name, "");
+  CHECK_THROWS_WITH(require_results_of(sph, sph / "case.toml"),
+                    Catch::Contains(results_case_file_name) && Catch::Contains("is empty or not a readable file"));
   // Results of an earlier version (no record): their own case.toml is what made them.
   fs::remove(sph / results_case_file_name);
   CHECK_NOTHROW(require_results_of(sph, sph / "case.toml"));
