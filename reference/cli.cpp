@@ -78,6 +78,9 @@ void register_commands(CLI::App& app) {
       return;
     }
     if (options->dir.empty()) throw CLI::RequiredError("DIR");
+    // On a fresh directory --resume --map-from silently started a mapped run.
+    if (options->resume && !options->map_from.empty())
+      throw CLI::ValidationError("--map-from", "starts a new run, and --resume continues one: give one of them");
     RunOptions run;
     run.np = options->np;
     run.resume = options->resume;

@@ -524,6 +524,31 @@ MapSource check_map_source(const fs::path& source_in, const fs::path& target, co
   return MapSource{source, times.back().second.filename().string()};
 }
 
+// The setting lines (cases::setting_lines) of one resolved case that the other lacks, each as
+// "source: LINE" or "this case: LINE", leaving out the resolution's own lines (its table header and
+// sizes), which a mapped run changes on purpose.
+std::vector<std::string> settings_beyond_resolution(const std::string& source_text, const std::string& target_text) {
+  const auto resolution_line = [](const std::string& line) {
+    const auto start = line.find_first_not_of(" \t");
+    if (start == std::string::npos) return true;
+    const std::string body = line.substr(start);
+    for (const char* key : {"[resolution.", "particle_spacing_m", "vof_cell_size_bed_m", "vof_cell_size_bulk_m"})
+      if (body.rfind(key, 0) == 0) return true;
+    return false;
+  };
+  std::multiset<std::string> source, target;
+  for (const auto& line : cases::setting_lines(source_text))
+    if (!resolution_line(line)) source.insert(line);
+  for (const auto& line : cases::setting_lines(target_text))
+    if (!resolution_line(line)) target.insert(line);
+  std::vector<std::string> out;
+  for (const auto& line : source)
+    if (source.count(line) > target.count(line) && (out.empty() || out.back() != "source: " + line)) out.push_back("source: " + line);
+  for (const auto& line : target)
+    if (target.count(line) > source.count(line) && (out.empty() || out.back() != "this case: " + line)) out.push_back("this case: " + line);
+  return out;
+}
+
 // The name of a field file without the ".gz" that compressed output adds.
 std::string field_name(const fs::path& file) {
   std::string name = file.filename().string();
@@ -541,6 +566,15 @@ std::string field_name(const fs::path& file) {
 // the case's own fields, cells outside the source keep setFields' initial state.
 void map_initial_state(const fs::path& dir, const MapSource& source, std::ostream& out) {
   out << "Initial state from " << source.dir.string() << " at t = " << source.time_name << " s\n";
+  // Mapping across resolutions is the purpose; across other settings (a longer basin, a taller air
+  // layer) it is allowed, but said, so that a wrong source is not taken silently.
+  const auto differences = settings_beyond_resolution(cases::read_text_file(source.dir / "case.toml"),
+                                                      cases::read_text_file(dir / "case.toml"));
+  if (!differences.empty()) {
+    out << "  note: the source's settings differ from this case's beyond the resolution ("
+        << differences.size() << " line(s); cells outside the source's domain keep setFields' initial state):\n";
+    for (std::size_t k = 0; k < differences.size() && k < 8; ++k) out << "    " << differences[k] << "\n";
+  }
   std::set<std::string> initial;
   for (const auto& entry : fs::directory_iterator(dir / "0.orig")) initial.insert(field_name(entry.path()));
   fs::remove_all(dir / ".map-source");  // left by a killed run

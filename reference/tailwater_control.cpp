@@ -217,8 +217,17 @@ std::vector<TailwaterControlStep> read_tailwater_control_log(const fs::path& cas
   };
   const std::size_t t = col("time_s"), x = col("toe_x_m"), n = col("toe_outputs"), v = col("water_volume_m2"),
                     vt = col("volume_target_m2"), u = col("outlet_mean_velocity_m_s");
+  // The log is only ever rewritten whole (append_tailwater_control_log), so a row of another width or
+  // without its numbers is damage, not a torn last line: named, not skipped.
+  std::size_t line = 1;
   for (const auto& row : table.rows) {
-    if (row.size() != table.header.size()) continue;  // a torn last line
+    ++line;
+    const auto damaged = [&](const std::string& what) {
+      return std::runtime_error(file.string() + ":" + std::to_string(line) + ": " + what + " (expected " + log_header +
+                                ", the numbers finite except toe_x_m, which is nan for a leg without a toe)");
+    };
+    if (row.size() != table.header.size())
+      throw damaged(std::to_string(row.size()) + " columns where the header has " + std::to_string(table.header.size()));
     TailwaterControlStep s;
     s.time_s = cases::csv_number(row[t]);
     s.toe_x_m = cases::csv_number(row[x]);
@@ -227,7 +236,12 @@ std::vector<TailwaterControlStep> read_tailwater_control_log(const fs::path& cas
     s.water_volume_m2 = cases::csv_number(row[v]);
     s.volume_target_m2 = cases::csv_number(row[vt]);
     s.outlet_mean_velocity_m_s = cases::csv_number(row[u]);
-    if (std::isfinite(s.time_s) && std::isfinite(s.volume_target_m2)) steps.push_back(s);
+    if (!std::isfinite(s.time_s) || !std::isfinite(s.water_volume_m2) || !std::isfinite(s.volume_target_m2) ||
+        !std::isfinite(s.outlet_mean_velocity_m_s) || !std::isfinite(outputs))
+      throw damaged("a row with a value that is not a finite number");
+    if (!steps.empty() && !(s.time_s > steps.back().time_s))
+      throw damaged("time_s = " + row[t] + " does not follow the previous row's " + foam::format_number(steps.back().time_s));
+    steps.push_back(s);
   }
   return steps;
 }

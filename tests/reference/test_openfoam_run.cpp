@@ -274,6 +274,8 @@ TEST_CASE("a run started from another run's state (--map-from) takes its fields 
   INFO(run.str());
   CHECK_THAT(run.str(), Catch::Contains("Initial state from " + source.string() + " at t = 0.02 s") &&
                             Catch::Contains("mapFields") && Catch::Contains("reached t = 0.01"));
+  // The same settings: nothing to say about them.
+  CHECK_THAT(run.str(), !Catch::Contains("settings differ"));
   CHECK_THAT(cases::read_text_file(target / "log.mapFields"), Catch::Contains("Source time: 0.02"));
   for (const char* field : {"alpha.water.gz", "U.gz", "p_rgh.gz"}) {
     INFO(field);
@@ -337,6 +339,9 @@ TEST_CASE("a run mapped from a run with a lower air layer keeps setFields' air a
   ::unsetenv("FOAM_SETNAN");
   INFO(run.str());
   CHECK_THAT(run.str(), Catch::Contains("reached t = 0.01"));
+  // Allowed, but said: the one setting that differs, from both sides.
+  CHECK_THAT(run.str(), Catch::Contains("note: the source's settings differ from this case's beyond the resolution (2 line(s)") &&
+                            Catch::Contains("source: air_height_m = 0.04") && Catch::Contains("this case: air_height_m = 0.1"));
   CHECK_FALSE(fs::exists(target / ".map-source"));
   // 0/ holds the case's initial fields only (p is made by interFoam, not mapped).
   std::set<std::string> names;

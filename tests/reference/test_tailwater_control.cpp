@@ -261,6 +261,29 @@ TEST_CASE("the tailwater control log is appended and read back", "[reference][ta
   CHECK(!fs::exists(tmp.path() / reference::tailwater_control_log));
 }
 
+TEST_CASE("a damaged tailwater control log is named with its line, not read past", "[reference][tailwater]") {
+  const hydrojump::testing::TempDir tmp("tailwater-log-damaged");
+  const fs::path file = tmp.path() / reference::tailwater_control_log;
+  const std::string header = "time_s,toe_x_m,toe_outputs,water_volume_m2,volume_target_m2,outlet_mean_velocity_m_s\n";
+  const std::string good = "0.5,0.3,5,0.378,0.3797,0.365\n";
+  const auto error_of = [&](const std::string& text) {
+    cases::write_file_atomically(file, text);
+    try {
+      reference::read_tailwater_control_log(tmp.path());
+    } catch (const std::exception& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  };
+  CHECK_THAT(error_of(header + "garbage\n" + good), Catch::Contains(file.string() + ":2: 1 columns where the header has 6"));
+  CHECK_THAT(error_of(header + good + "1.0,0.3,5,0.378,0.3797,nan\n"),
+             Catch::Contains(file.string() + ":3: a row with a value that is not a finite number"));
+  CHECK_THAT(error_of(header + good + "1.0,0.3,5,0.378,0.3797,abc\n"), Catch::Contains(":3: a row with a value"));
+  CHECK_THAT(error_of(header + good + good), Catch::Contains(":3: time_s = 0.5 does not follow the previous row's 0.5"));
+  // A leg without a toe (nan) is a valid row.
+  CHECK(error_of(header + good + "1.0,nan,0,0.378,0.3797,0.37\n") == "(no error)");
+}
+
 TEST_CASE("the legs of a controlled run end every control interval, aligning and closing legs stay whole",
           "[reference][tailwater][legs]") {
   const auto ends = [](const std::vector<reference::SolverLeg>& legs) {
