@@ -444,10 +444,18 @@ CaseComparison compare_case(const cases::Study& study, const fs::path& run_dir, 
           !r.vof.stats.times.empty() && r.vof.stats.times.back() >= r.window_end_s - time_tolerance_s;
       const std::string balance = vof_run_note(balance_inputs);
       if (!balance.empty()) r.vof.metrics.notes.push_back(balance);
-      const std::string control = vof_tailwater_control_note(run_dir / "vof", r.window_start_s, r.window_end_s);
-      if (!control.empty()) r.vof.metrics.notes.push_back(control);
     } catch (const std::exception& e) {
       r.vof.metrics.notes.push_back(std::string("water balance unavailable: ") + e.what());
+    }
+    // The tailgate's log, read only for a case run with the control (a file left from another run is
+    // not this run's).
+    if (c.vof.tailwater_control == "hold_toe") {
+      try {
+        const std::string control = vof_tailwater_control_note(run_dir / "vof", r.window_start_s, r.window_end_s);
+        if (!control.empty()) r.vof.metrics.notes.push_back(control);
+      } catch (const std::exception& e) {
+        r.vof.metrics.notes.push_back(std::string("tailgate control log unreadable: ") + e.what());
+      }
     }
   }
   // The SPH run's own verdict (summary.json of sph/basin_monitor.hpp), when it wrote one.

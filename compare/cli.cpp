@@ -1,6 +1,8 @@
 #include "compare/cli.hpp"
 
+#include <cmath>
 #include <iostream>
+#include <string>
 #include <memory>
 
 #include "cases/cli_checks.hpp"
@@ -50,6 +52,9 @@ void register_commands(CLI::App& app) {
     options.out_dir = o->out_dir;
     options.scheme = parse_interpolation_scheme(o->interpolation);
     if (o->window.size() == 2) {
+      for (const double t : o->window)
+        if (!std::isfinite(t) || t < 0.0)
+          throw CLI::ValidationError("--window", "T0 and T1 must be finite times >= 0 s, got " + std::to_string(t));
       if (!(o->window[1] >= o->window[0])) throw CLI::ValidationError("--window", "T1 must be >= T0");
       options.window_start_s = o->window[0];
       options.window_end_s = o->window[1];

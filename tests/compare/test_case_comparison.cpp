@@ -336,4 +336,11 @@ TEST_CASE("The VOF water balance is noted from the discharge samples, and a dama
   CHECK(std::isfinite(row(c, "eta").vof));
   CHECK_THAT(balance_note(c), Catch::StartsWith("water balance unavailable") &&
                                   Catch::Contains("discharge_outlet/0/surfaceFieldValue.dat:5"));
+  // A tailgate log left in a case run without the control (tailwater_control = "none") is not this
+  // run's: no tailgate note, whatever it holds.
+  REQUIRE(fx.c->vof.tailwater_control == "none");
+  std::ofstream(fx.run() / "vof" / "tailwater_control.csv")
+      << "time_s,toe_x_m,toe_outputs,water_volume_m2,volume_target_m2,outlet_mean_velocity_m_s\n8,0.3,5,0.3,0.3,0.4\n";
+  c = compare_case_directory(fx.run(), options, log);
+  for (const auto& n : c.vof.metrics.notes) CHECK_THAT(n, !Catch::Contains("tailgate"));
 }

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <string>
 #include <thread>
+#include <utility>
 #include <sstream>
 #include <vector>
 
@@ -288,6 +289,13 @@ TEST_CASE("options refuse nan, inf, non-positive numbers, empty paths and the wr
   CHECK_FALSE(fs::exists(vof_dir / "run_log.csv"));
   CHECK(run({"bench", "--steps", "0"}, tmp.path() / "bench.log") != 0);
   CHECK_THAT(read_text(tmp.path() / "bench.log"), Catch::Contains("--steps: Value 0 not in range 1 to 1000000000"));
+  // compare --window: "nan" was refused as "T1 must be >= T0", and "inf" accepted.
+  for (const auto& window : {std::pair<std::string, std::string>{"nan", "10"}, {"6", "nan"}, {"0", "inf"}}) {
+    INFO("--window " << window.first << " " << window.second);
+    CHECK(run({"compare", (tmp.path() / "runs" / "poiseuille").string(), "--no-plots", "--window", window.first, window.second},
+              tmp.path() / "window.log") != 0);
+    CHECK_THAT(read_text(tmp.path() / "window.log"), Catch::Contains("--window") && Catch::Contains("must be finite times >= 0 s"));
+  }
 }
 
 TEST_CASE("hydrojump bench --json prints particles, steps, threads, speed and memory", "[compare][integration][cli]") {
