@@ -10,6 +10,7 @@
 
 #include "cases/atomic_file.hpp"
 #include "sph/kernel.hpp"
+#include "sph/particle_health.hpp"
 #include "sph/vtk_output.hpp"
 
 namespace hydrojump::sph {
@@ -207,26 +208,32 @@ std::string diagnose(const Solver& solver) {
     if (reported < 5) out << "  " << what << ": " << describe(ps, i) << "\n";
     ++reported;
   };
-  const double m = s.domain_margin;
-  // Fluid first (where an instability starts), then the walls it spread to.
+  // Fluid first (where an instability starts), then the walls it spread to (sph/particle_health.hpp).
   for (Eigen::Index i = 0; i < ps.size(); ++i) {
     if (!ps.is_fluid(i)) continue;
-    if (!std::isfinite(ps.x[i]) || !std::isfinite(ps.z[i]) || !std::isfinite(ps.u[i]) || !std::isfinite(ps.w[i]) ||
-        !std::isfinite(ps.rho[i])) {
-      report("non-finite state (NaN/Inf)", i);
-    } else if (ps.z[i] < s.z_min - m) {
-      // Below every wall: it went through the boundary particles, not over them.
-      report("left the domain through the bottom (it passed through the bed's boundary particles: look for a gap in "
-             "the wall near this x in initial_particles.vtp, or a wall too soft for the impact: a larger "
-             "sph.sound_speed_coefficient or sph.boundary_layers)",
-             i);
-    } else if (ps.x[i] < s.x_min - m || ps.x[i] > s.x_max + m || ps.z[i] > s.fluid_ceiling + m) {
-      report("left the domain", i);
-    } else if (std::abs(ps.rho[i] / s.eos.rho0 - 1.0) > s.max_density_variation) {
-      std::ostringstream w;
-      w << "|rho/rho0 - 1| = " << std::abs(ps.rho[i] / s.eos.rho0 - 1.0) << " above the limit "
-        << s.max_density_variation << " (sph.max_density_variation)";
-      report(w.str(), i);
+    switch (fluid_health(ps, i, s)) {
+      case FluidHealth::ok:
+        break;
+      case FluidHealth::non_finite:
+        report("non-finite state (NaN/Inf)", i);
+        break;
+      case FluidHealth::below_bed:
+        // Below every wall: it went through the boundary particles, not over them.
+        report("left the domain through the bottom (it passed through the bed's boundary particles: look for a gap in "
+               "the wall near this x in initial_particles.vtp, or a wall too soft for the impact: a larger "
+               "sph.sound_speed_coefficient or sph.boundary_layers)",
+               i);
+        break;
+      case FluidHealth::outside:
+        report("left the domain", i);
+        break;
+      case FluidHealth::density: {
+        std::ostringstream w;
+        w << "|rho/rho0 - 1| = " << std::abs(ps.rho[i] / s.eos.rho0 - 1.0) << " above the limit "
+          << s.max_density_variation << " (sph.max_density_variation)";
+        report(w.str(), i);
+        break;
+      }
     }
   }
   for (Eigen::Index i = 0; i < ps.size(); ++i) {
@@ -259,7 +266,7 @@ std::string diagnose(const Solver& solver) {
   head << "the SPH run went unstable at t = " << t << " s (step " << solver.clock().steps << "); " << reported
        << " problem(s)" << (reported > 5 ? ", the first 5:" : ":") << "\n"
        << out.str();
-  head << "  domain box [" << s.x_min << ", " << s.x_max << "] x [" << s.z_min << ", " << s.fluid_ceiling << "] m (margin " << m
+  head << "  domain box [" << s.x_min << ", " << s.x_max << "] x [" << s.z_min << ", " << s.fluid_ceiling << "] m (margin " << s.domain_margin
        << " m). Try a smaller sph.cfl_number, a finer resolution, or check the geometry.";
   return head.str();
 }
