@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 #include <stdexcept>
 
@@ -25,10 +26,13 @@ const std::string fluid_set_name = "fluidCells";  // the cells kept by the carte
 std::string n(double x) { return foam::format_number(x); }
 
 // A heuristic value (not from the spec) rounded to 3 significant digits for readability.
+// Through its decimal text, so that the double is the one nearest to the 3-digit decimal (255 * 1e-6
+// is 0.00025499999999999996, which the dictionary then printed).
 double round_significant(double x) {
   if (x == 0.0 || !std::isfinite(x)) return x;
-  const double scale = std::pow(10.0, std::floor(std::log10(std::abs(x))) - 2.0);
-  return std::round(x / scale) * scale;
+  std::ostringstream text;
+  text << std::setprecision(3) << x;
+  return std::stod(text.str());
 }
 
 // ------------------------------------------------------------------------------ mesh geometry
