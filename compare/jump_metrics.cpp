@@ -146,7 +146,7 @@ JumpMetrics compute_jump_metrics(const MethodStatistics& m, const JumpInputs& in
       for (std::size_t i = 0; i < frame.size(); ++i) z[i] = frame[i] - in.floor_z_m;
       const std::size_t k = find_toe(xs, z, x_up, in);
       toes.push_back(k < xs.size() ? xs[k] : not_a_number);
-      if (k == search_start) ++r.toe_frames_at_search_start;
+      if (up && k == search_start) ++r.toe_frames_at_search_start;
     }
     const ScalarStats ts = stats_of(toes);
     r.toe_mean_of_frames_x_m = ts.mean;
@@ -188,7 +188,7 @@ JumpMetrics compute_jump_metrics(const MethodStatistics& m, const JumpInputs& in
   // A mean toe at the search start: the mean surface already stands above the threshold at the
   // upstream section, so E1 there is sampled in the roller (not the incoming stream) and the true toe
   // lies at or upstream of it; Lr and Lj measured from it would be too short.
-  if (toe == search_start) {
+  if (up && toe == search_start) {
     std::ostringstream s;
     s << "the mean surface already stands above " << in.options.toe_threshold_y1 << " y1 at the \"upstream\" section (x = "
       << r.toe_x_m << " m, where the toe search starts): the jump reaches it, so the toe lies at or upstream of it,"

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,18 @@ ColumnSample uniform_column(double x, double z_b, double h, double u) {
 ColumnStatistics as_statistics(const std::string& name, const std::string& role, const ColumnSample& c) {
   ColumnSpec spec{name, role, c.x_m, c.z_bed_m, 21};
   return column_statistics(spec, {c, c}, 21, true);
+}
+
+// Stations every 4 mm over 2 m with the time-mean surface zeta(x).
+std::vector<ColumnStatistics> stations_with_surface(const std::function<double(double)>& zeta) {
+  std::vector<ColumnStatistics> out;
+  for (int i = 0; i <= 500; ++i) {
+    ColumnStatistics s;
+    s.spec = {"", "station", i * 0.004, 0.0, 21};
+    s.surface.mean = zeta(s.spec.x_m);
+    out.push_back(s);
+  }
+  return out;
 }
 
 // Sections and stations (every ds up to 2 m) of a synthetic jump: the surface y1 up to x_t, a linear
@@ -291,12 +304,7 @@ TEST_CASE("No toe in the reach: the downstream section's values are not reported
   MethodStatistics m;
   m.sections.push_back(as_statistics("upstream", "upstream", uniform_column(0.3, 0.0, y1, u1)));
   m.sections.push_back(as_statistics("downstream", "downstream", uniform_column(1.6, 0.0, y1, u1)));
-  for (int i = 0; i <= 500; ++i) {
-    ColumnStatistics s;
-    s.spec = {"", "station", i * 0.004, 0.0, 21};
-    s.surface.mean = y1;
-    m.stations.push_back(s);
-  }
+  m.stations = stations_with_surface([&](double) { return y1; });
   const JumpMetrics r = compute_jump_metrics(m, JumpInputs{y1, u1, 0.0, g, {}});
   CHECK(std::isnan(r.toe_x_m));
   CHECK(std::isnan(r.sequent_depth_m));
@@ -321,12 +329,7 @@ TEST_CASE("A jump reaching the upstream section gives no E1 or eta, and its pinn
   MethodStatistics m;
   m.sections.push_back(as_statistics("upstream", "upstream", uniform_column(0.3, 0.0, 0.10, q / 0.10)));
   m.sections.push_back(as_statistics("downstream", "downstream", uniform_column(1.6, 0.0, 0.104, q / 0.104)));
-  for (int i = 0; i <= 500; ++i) {
-    ColumnStatistics s;
-    s.spec = {"", "station", i * 0.004, 0.0, 21};
-    s.surface.mean = 0.10;
-    m.stations.push_back(s);
-  }
+  m.stations = stations_with_surface([](double) { return 0.10; });
   // Two frames: one like the mean, one with the jump at 0.8 m (supercritical y1 upstream of it).
   m.times = {1.0, 2.0};
   std::vector<double> pinned, held;
@@ -375,13 +378,7 @@ TEST_CASE("A toe downstream of the downstream section gives no y2 or eta, with a
   MethodStatistics m;
   m.sections.push_back(as_statistics("upstream", "upstream", uniform_column(0.3, 0.0, y1, u1)));
   m.sections.push_back(as_statistics("downstream", "downstream", uniform_column(0.6, 0.0, y1, u1)));
-  for (int i = 0; i <= 500; ++i) {
-    ColumnStatistics s;
-    s.spec = {"", "station", i * 0.004, 0.0, 21};
-    const double x = s.spec.x_m;
-    s.surface.mean = x < x_t ? y1 : (x < x_t + L ? y1 + (y2 - y1) * (x - x_t) / L : y2);
-    m.stations.push_back(s);
-  }
+  m.stations = stations_with_surface([&](double x) { return x < x_t ? y1 : (x < x_t + L ? y1 + (y2 - y1) * (x - x_t) / L : y2); });
   JumpInputs in{y1, u1, 0.0, g, {}};
   const JumpMetrics r = compute_jump_metrics(m, in);
   CHECK(r.toe_x_m > 0.85);
