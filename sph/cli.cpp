@@ -186,6 +186,10 @@ int run_sph_directory(const SphOptions& opt) {
   g_stop_requested.store(false);
   struct sigaction action {};
   action.sa_handler = request_stop;
+  // Restart an interrupted write: a signal arriving while the progress line goes to a pipe would
+  // otherwise fail that write (EINTR) and leave std::cerr in a failed state, silencing the messages
+  // that follow ("checkpoint written"). The run loop polls the flag; nothing waits for EINTR.
+  action.sa_flags = SA_RESTART;
   sigemptyset(&action.sa_mask);
   struct sigaction old_int {}, old_term {};
   sigaction(SIGINT, &action, &old_int);
