@@ -433,22 +433,23 @@ void read_vof(TableReader& t, VofSettings& v) {
     if (v.tailwater_control != "hold_toe" && t.has(key))
       t.fail_at(t.raw().get(key), key, "is only used with tailwater_control = \"hold_toe\" (here \"" + v.tailwater_control + "\")");
   }
-  // The volume error decays by (1 - interval / T_V) per leg: T_V below one interval would overshoot.
-  if (v.tailwater_control == "hold_toe" && v.volume_hold_time_s < v.tailwater_control_interval_s) {
-    const std::string key = t.has("volume_hold_time_s") ? "volume_hold_time_s" : "tailwater_control_interval_s";
+  // Both hold times must be at least one leg:
+  //   T_V: the volume error decays by (1 - interval / T_V) per leg, so T_V below one interval overshoots;
+  //   T_x: the toe term moves the volume target by (y2* - y1)/T_x * (toe error) per second, so T_x below
+  //   one leg overshoots in a single leg, and the outlet just flips between its clamps.
+  struct HoldTime {
+    const char* key;
+    double value_s;
+    const char* control;
+  };
+  for (const HoldTime& hold : {HoldTime{"volume_hold_time_s", v.volume_hold_time_s, "volume"},
+                               HoldTime{"toe_hold_time_s", v.toe_hold_time_s, "toe"}}) {
+    if (v.tailwater_control != "hold_toe" || !(hold.value_s < v.tailwater_control_interval_s)) continue;
+    const std::string key = t.has(hold.key) ? hold.key : "tailwater_control_interval_s";
     t.fail_at(t.raw().get(key.c_str()), key,
-              "is out of range: volume_hold_time_s (" + number_text(v.volume_hold_time_s) +
+              "is out of range: " + std::string(hold.key) + " (" + number_text(hold.value_s) +
                   " s) must be >= tailwater_control_interval_s (" + number_text(v.tailwater_control_interval_s) +
-                  " s), or the volume control overshoots");
-  }
-  // The toe term moves the volume target by (y2* - y1)/T_x * (toe error) per second: with T_x below one
-  // leg it overshoots in a single leg, and the outlet just flips between its clamps.
-  if (v.tailwater_control == "hold_toe" && v.toe_hold_time_s < v.tailwater_control_interval_s) {
-    const std::string key = t.has("toe_hold_time_s") ? "toe_hold_time_s" : "tailwater_control_interval_s";
-    t.fail_at(t.raw().get(key.c_str()), key,
-              "is out of range: toe_hold_time_s (" + number_text(v.toe_hold_time_s) +
-                  " s) must be >= tailwater_control_interval_s (" + number_text(v.tailwater_control_interval_s) +
-                  " s), or the toe control overshoots");
+                  " s), or the " + hold.control + " control overshoots");
   }
   t.reject_unknown_keys();
 }
