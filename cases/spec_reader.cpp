@@ -617,8 +617,11 @@ DamBreakCase read_dam_break(TableReader& c, const std::filesystem::path& base_di
       const std::string file = measured->string("front_file");
       std::filesystem::path p(file);
       if (p.is_relative()) p = base_dir / p;
-      if (!std::filesystem::exists(p)) {
+      std::error_code ec;
+      if (!std::filesystem::exists(p, ec)) {
         measured->fail_at(measured->raw().get("front_file"), "front_file", "= \"" + file + "\": no such file (looked for '" + p.string() + "')");
+      } else if (std::filesystem::is_directory(p, ec)) {
+        measured->fail_at(measured->raw().get("front_file"), "front_file", "= \"" + file + "\": '" + p.string() + "' is a directory, not a CSV file");
       }
       d.measured_front_file = std::filesystem::absolute(p).lexically_normal();
     }
@@ -928,6 +931,10 @@ Study parse_study(std::string_view toml_text, const std::string& source_name,
 }
 
 Study load_study(const std::filesystem::path& file, SpecPurpose purpose) {
+  // A directory opens as an empty stream on Linux and would be reported as a spec without [study].
+  std::error_code ec;
+  if (std::filesystem::is_directory(file, ec))
+    throw SpecError(file.string() + ": is a directory, not a study file (a .toml spec or a generated case.toml)");
   std::ifstream in(file, std::ios::binary);
   if (!in) throw SpecError(file.string() + ": cannot open the study file");
   std::ostringstream text;

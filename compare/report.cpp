@@ -263,7 +263,7 @@ void write_csvs(const CaseComparison& c, const fs::path& dir) {
          "specific_force_std_m2,void_fraction_mean\n";
   prof << "method,section,x_m,z_m,u_mean_m_s,u_std_m_s,w_mean_m_s,wet_fraction\n";
   lon << "method,x_m,z_bed_m,surface_mean_m,surface_std_m,near_surface_velocity_mean_m_s,mean_velocity_mean_m_s,"
-         "max_velocity_mean_m_s,discharge_mean_m2_s,void_fraction_mean\n";
+         "max_velocity_mean_m_s,discharge_mean_m2_s,void_fraction_mean,n_times,n_wet\n";
   for (int i = 0; i < 2; ++i) {
     const MethodOutcome* m = methods_of(c, i);
     if (!m->available) continue;
@@ -283,7 +283,8 @@ void write_csvs(const CaseComparison& c, const fs::path& dir) {
     for (const auto& s : m->stats.stations)
       lon << m->method << "," << num(s.spec.x_m) << "," << num(s.spec.z_bed_m) << "," << num(s.surface.mean) << ","
           << num(s.surface.std) << "," << num(s.near_surface_velocity.mean) << "," << num(s.mean_velocity.mean) << ","
-          << num(s.max_velocity.mean) << "," << num(s.discharge.mean) << "," << num(s.void_fraction.mean) << "\n";
+          << num(s.max_velocity.mean) << "," << num(s.discharge.mean) << "," << num(s.void_fraction.mean) << ","
+          << s.n_times << "," << s.n_wet << "\n";
     const FieldSnapshot& f = m->stats.snapshot;
     if (!f.empty()) {
       std::ostringstream snap;

@@ -4,6 +4,7 @@
 //   csv/section_timeseries.csv per method, section and output time: surface, depth, q, U, u_max, E
 //   csv/profiles.csv           per method and section: time-mean u(z), w(z), wet fraction
 //   csv/longitudinal.csv       per method and station: mean surface, near-surface/mean/max velocity
+//                              (means over the frames in which the station is wet: n_times, n_wet)
 //   csv/metrics.csv            y2, Lj, Lr, eta, ... SPH, VOF, experiment, published SPH side by side
 //   csv/profile_differences.csv, csv/eta.csv (one row: this case's eta bars), csv/case.csv (inputs),
 //   csv/snapshot_<method>.csv  the velocity field of the last frame in the window

@@ -180,6 +180,9 @@ class StudyRunner {
       const bool resumable = method == "sph" ? std::filesystem::exists(dir / "sph" / "checkpoint.bin")
                                              : std::filesystem::exists(dir / "vof" / "constant" / "polyMesh");
       if (std::filesystem::exists(started) && resumable) args.push_back("--resume");
+      // An SPH run of this study that stopped before its first checkpoint (its outputs and failure.txt
+      // are the study's own) starts over; `hydrojump sph` refuses to overwrite them otherwise.
+      else if (std::filesystem::exists(started) && method == "sph") args.push_back("--restart");
       const auto stage = run_stage(c.id, method, args, dir, run_fingerprint, started);
       any_solver_ok = any_solver_ok || stage.state == "done" || stage.state == "cached";
       any_solver_ran = any_solver_ran || stage.state == "done" || stage.state == "failed";

@@ -131,6 +131,14 @@ int run_sph_directory(const SphOptions& opt) {
     throw std::runtime_error("'" + dir.string() +
                              "' already holds a run (checkpoint.bin): use --resume to continue it or --restart to "
                              "start over (overwriting its outputs)");
+  } else if (!opt.restart) {
+    // A run that stopped before its first checkpoint (a failure, a kill) left outputs but nothing to
+    // resume: a plain start would delete them, the failure's diagnosis among them.
+    for (const char* name : {"failure.txt", "particles.pvd"})
+      if (std::filesystem::exists(dir / name))
+        throw std::runtime_error("'" + dir.string() + "' already holds the outputs of a run that stopped before its first checkpoint (" +
+                                 name + (std::string(name) == "failure.txt" ? ", its diagnosis" : "") +
+                                 "): nothing to resume; use --restart to start over (deleting them)");
   }
 
   std::unique_ptr<Solver> solver;

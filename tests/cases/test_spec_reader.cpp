@@ -6,6 +6,7 @@
 #include <regex>
 #include <string>
 
+#include "cases/atomic_file.hpp"
 #include "cases/fingerprint.hpp"
 #include "cases/geometry.hpp"
 #include "cases/results_case.hpp"
@@ -131,6 +132,27 @@ TEST_CASE("The verification specs load", "[cases][spec]") {
   const Study dam = load_study(source_dir + "/cases/dam_break.toml");
   CHECK(std::filesystem::exists(dam.cases[0].dam_break()->measured_front_file));
   CHECK(dam.cases[0].sections.size() == 4);
+}
+
+TEST_CASE("A missing study file, a directory in its place and a directory as the measured front are refused by name",
+          "[cases][spec][reject]") {
+  namespace fs = std::filesystem;
+  const hydrojump::testing::TempDir tmp("spec_paths");
+  CHECK_THROWS_WITH(load_study(tmp.path() / "absent.toml"), Catch::Contains("absent.toml: cannot open the study file"));
+  fs::create_directories(tmp.path() / "case.toml");
+  CHECK_THROWS_WITH(load_study(tmp.path() / "case.toml"), Catch::Contains("case.toml: is a directory, not a study file"));
+
+  std::string dam = read_text_file(source_dir + "/cases/dam_break.toml");
+  const auto at = dam.find("front_file = \"");
+  REQUIRE(at != std::string::npos);
+  const auto end = dam.find('\n', at);
+  dam = dam.substr(0, at) + "front_file = \"front\"" + dam.substr(end);
+  write_file_atomically(tmp.path() / "dam.toml", dam);
+  fs::create_directories(tmp.path() / "front");
+  CHECK_THROWS_WITH(load_study(tmp.path() / "dam.toml"),
+                    Catch::Contains("front_file") && Catch::Contains("is a directory, not a CSV file"));
+  fs::remove(tmp.path() / "front");
+  CHECK_THROWS_WITH(load_study(tmp.path() / "dam.toml"), Catch::Contains("front_file") && Catch::Contains("no such file"));
 }
 
 TEST_CASE("A resolved dam-break case carries its measured front and can be moved", "[cases][spec]") {

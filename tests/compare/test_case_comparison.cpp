@@ -211,6 +211,21 @@ TEST_CASE("compare_case_directory on a synthetic jump gives both methods with me
       CHECK(cases::csv_number(toes.rows[k][2]) == Approx(c.sph.metrics.toe_x_m).margin(0.01));
     }
   }
+  {
+    // The stations' means are over their wet frames: how many there were stands beside each mean (every
+    // station on the synthetic jump is wet in every frame).
+    const cases::CsvTable lon = cases::read_csv_table(fx.run() / "csv" / "longitudinal.csv");
+    REQUIRE(lon.header.size() >= 2u);
+    CHECK(lon.header[lon.header.size() - 2] == "n_times");
+    CHECK(lon.header.back() == "n_wet");
+    REQUIRE(lon.rows.size() > 200u);
+    for (const auto& r : lon.rows) {
+      REQUIRE(r.size() == lon.header.size());
+      const double frames = r[0] == "sph" ? 3.0 : 2.0;
+      CHECK(cases::csv_number(r[r.size() - 2]) == frames);
+      CHECK(cases::csv_number(r.back()) == frames);
+    }
+  }
   std::ifstream md(fx.run() / "report.md");
   std::stringstream mds;
   mds << md.rdbuf();

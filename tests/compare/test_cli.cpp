@@ -112,6 +112,30 @@ TEST_CASE("hydrojump sph stops on SIGTERM and SIGINT with a checkpoint, and --re
   CHECK(lines_in(run / "run_log.csv") == last.log_rows.size() + 1);
 }
 
+TEST_CASE("hydrojump sph keeps the outputs of a run that failed before its first checkpoint unless --restart",
+          "[compare][integration][restart]") {
+  hydrojump::testing::TempDir tmp("failed_run");
+  const std::string spec = std::string(HYDROJUMP_SOURCE_DIR) + "/cases/dam_break.toml";
+  REQUIRE(run({"generate", spec, "--out", tmp.path().string(), "--resolution", "quick"}, tmp.path() / "generate.log") == 0);
+  const fs::path dir = tmp.path() / "dam_break" / "sph";
+  // What a run that went unstable before its first checkpoint leaves: a diagnosis, no checkpoint.
+  std::ofstream(dir / "failure.txt") << "unstable at t = 0.1 s\n";
+
+  CHECK(run({"sph", dir.string(), "--quiet", "--end-time", "0.01"}, tmp.path() / "plain.log") != 0);
+  CHECK_THAT(read_text(tmp.path() / "plain.log"),
+             Catch::Contains("stopped before its first checkpoint (failure.txt, its diagnosis)") &&
+                 Catch::Contains("--restart"));
+  CHECK(read_text(dir / "failure.txt") == "unstable at t = 0.1 s\n");
+  CHECK_FALSE(fs::exists(dir / "particles.pvd"));
+
+  const int status = run({"sph", dir.string(), "--restart", "--quiet", "--threads", "1", "--end-time", "0.01"},
+                         tmp.path() / "restart.log");
+  INFO("restart log:\n" << read_text(tmp.path() / "restart.log"));
+  CHECK(status == 0);
+  CHECK_FALSE(fs::exists(dir / "failure.txt"));
+  CHECK(fs::exists(dir / "particles.pvd"));
+}
+
 TEST_CASE("hydrojump check prints run A's derived hydraulics", "[compare][integration][cli]") {
   hydrojump::testing::TempDir tmp("check");
   REQUIRE(run({"check", std::string(HYDROJUMP_SOURCE_DIR) + "/cases/ead2002.toml"}, tmp.path() / "check.log") == 0);

@@ -170,6 +170,31 @@ TEST_CASE("Study runner: failures are isolated, results cached, changes re-run",
   CHECK(fs::exists(options.out / "A" / "sph" / "case.toml"));
 }
 
+TEST_CASE("Study runner: an SPH run that failed before its first checkpoint is started over with --restart",
+          "[study]") {
+  const TempDir tmp("study_restart");
+  const fs::path& dir = tmp.path();
+  const fs::path calls = dir / "calls.txt";
+  // B's SPH run fails leaving only a diagnosis (no checkpoint.bin to resume from).
+  StudyOptions options = mini_study_with_stand_in(
+      dir, "echo \"$*\" >> '" + calls.string() +
+               "'\ncase \"$1 $2\" in\n  \"sph \"*/B/sph) echo unstable > \"$2/failure.txt\"; exit 3 ;;\nesac\nexit 0\n");
+  std::ostringstream log;
+  CHECK(run_study(options, log) == 1);
+  auto first = lines_of(calls);
+  REQUIRE(first.size() == 6);
+  for (const auto& call : first) {
+    CHECK_THAT(call, !Catch::Contains("--restart"));
+    CHECK_THAT(call, !Catch::Contains("--resume"));
+  }
+
+  fs::remove(calls);
+  CHECK(run_study(options, log) == 1);
+  auto second = lines_of(calls);
+  REQUIRE(second.size() == 2);
+  CHECK_THAT(second[0], Catch::StartsWith("sph ") && Catch::Contains("/B/sph") && Catch::EndsWith("--restart"));
+}
+
 TEST_CASE("Study runner: the report covers cases run earlier into the same directory while they are current",
           "[study]") {
   const TempDir tmp("study_earlier");
