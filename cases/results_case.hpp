@@ -41,7 +41,8 @@ struct SettingDifference {
 };
 SettingDifference first_setting_difference(std::string_view case_text_a, std::string_view case_text_b);
 
-// Whether a solver directory holds results of a run (SPH outputs or checkpoint, an OpenFOAM log).
+// Whether a solver directory holds results of a run (SPH outputs or checkpoint, an OpenFOAM log or a
+// time directory after 0, also under processor0/).
 bool holds_results(const std::filesystem::path& solver_dir);
 
 // The file holding the case `solver_dir`'s results were made with: its results_case.toml, or its own

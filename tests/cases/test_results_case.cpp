@@ -102,3 +102,29 @@ TEST_CASE("results_case: results are refused under a case.toml other than the on
   fs::remove(sph / "case.toml");
   CHECK_THROWS_WITH(require_results_of(sph, dir / "other.toml"), Catch::Contains("no case.toml"));
 }
+
+TEST_CASE("results_case: an OpenFOAM run without its log is known by its time directories", "[cases][results_case]") {
+  const hydrojump::testing::TempDir tmp("results_case_vof");
+  const fs::path vof = tmp.path() / "vof";
+  // A generated case: 0.orig/, 0/, constant/, system/ are not results.
+  for (const char* d : {"0.orig", "0", "constant", "system", "processor0/0", "processor0/constant"})
+    fs::create_directories(vof / d);
+  CHECK_FALSE(holds_results(vof));
+  // interFoam run by hand wrote 0.5/ (serial) or processor0/0.25/ (decomposed), and no log.interFoam.
+  fs::create_directories(vof / "processor0" / "0.25");
+  CHECK(holds_results(vof));
+  fs::remove_all(vof / "processor0");
+  CHECK_FALSE(holds_results(vof));
+  fs::create_directories(vof / "0.5");
+  CHECK(holds_results(vof));
+  // ... so its results are checked against the case.toml beside them (they have no record).
+  write(vof / "case.toml", resolved_case);
+  write(tmp.path() / "other.toml", "[case.run]\nend_time_s = 1.0\n");
+  CHECK_THROWS_WITH(require_results_of(vof, tmp.path() / "other.toml"), Catch::Contains("holds results made with other settings"));
+  // A file named like a time is not a time directory; neither are names that only begin with a number.
+  fs::remove_all(vof / "0.5");
+  write(vof / "1", "not a directory\n");
+  fs::create_directories(vof / "2e");
+  fs::create_directories(vof / "-1");
+  CHECK_FALSE(holds_results(vof));
+}
