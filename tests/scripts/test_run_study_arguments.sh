@@ -29,11 +29,12 @@ expect "--cases all" "study default --resolution quick --out study"
 expect "--cases=all --jobs 2" "study default --jobs 2 --resolution quick --out study"
 expect "--cases A,B" "study default --cases A,B --resolution quick --out study"
 expect "--cases=B" "study default --cases=B --resolution quick --out study"
-expect "my.toml --resolution default --out runs" "study my.toml --resolution default --out runs --cases A_smooth"
+expect "my.toml --resolution default --out runs" "study my.toml --resolution default --out runs"
+expect "my.toml --cases B" "study my.toml --cases B --resolution quick --out study"
 expect "--out runs --cases all --np 2" "study default --out runs --np 2 --resolution quick"
 expect "-r default --methods sph" "study default -r default --methods sph --cases A_smooth --out study"
 if [ "$failures" -ne 0 ]; then
   echo "$failures case(s) failed"
   exit 1
 fi
-echo "run-study.sh passes its arguments as documented (8 cases)"
+echo "run-study.sh passes its arguments as documented (9 cases)"
