@@ -1,5 +1,6 @@
 #include "reference/discharge_samples.hpp"
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -14,14 +15,13 @@ namespace fs = std::filesystem;
 std::vector<std::pair<double, double>> read_surface_field_value(const fs::path& function_dir,
                                                                const std::string& file_name) {
   std::vector<std::pair<double, double>> rows;
-  for (const auto& [start, dir] : sample_times(function_dir)) {
-    const fs::path file = dir / file_name;
-    if (!fs::exists(file)) continue;
-    while (!rows.empty() && rows.back().first >= start - 1e-12) rows.pop_back();
+  // Appends the rows of `file`, which replace those from its first row's time on.
+  const auto read_rows_of = [&rows](const fs::path& file) {
     std::ifstream in(file);
     if (!in) throw std::runtime_error(file.string() + ": cannot be read");
     std::string line;
     int line_number = 0;
+    bool first = true;
     while (std::getline(in, line)) {
       ++line_number;
       if (line.find_first_not_of(" \t\r") == std::string::npos || line[line.find_first_not_of(" \t")] == '#') continue;
@@ -31,8 +31,36 @@ std::vector<std::pair<double, double>> read_surface_field_value(const fs::path& 
         throw std::runtime_error(file.string() + ":" + std::to_string(line_number) +
                                  ": expected a time and a value, got \"" + line + "\"");
       }
+      if (first) {
+        while (!rows.empty() && rows.back().first >= t - 1e-12) rows.pop_back();
+        first = false;
+      }
       rows.emplace_back(t, value);
     }
+  };
+  const std::string stem = fs::path(file_name).stem().string(), extension = fs::path(file_name).extension().string();
+  for (const auto& [start, dir] : sample_times(function_dir)) {
+    const fs::path file = dir / file_name;
+    if (!fs::exists(file)) continue;
+    while (!rows.empty() && rows.back().first >= start - 1e-12) rows.pop_back();
+    read_rows_of(file);
+    // A run started again from the same time (a leg retried after a crash or a kill before its first
+    // output) finds the file there and writes `<stem>_<start time>.dat` beside it (OpenFOAM's
+    // writeFile::createFile); a third attempt overwrites that one. Its rows are the latest: the first
+    // file's rows after the start time belong to an abandoned attempt, even those the retry has not
+    // reached yet.
+    std::vector<fs::path> retries;
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(dir, ec)) {
+      const std::string name = entry.path().filename().string();
+      if (name.size() > stem.size() + 1 + extension.size() && name.rfind(stem + "_", 0) == 0 &&
+          entry.path().extension() == extension)
+        retries.push_back(entry.path());
+    }
+    if (retries.empty()) continue;
+    while (!rows.empty() && rows.back().first > start + 1e-12) rows.pop_back();
+    std::sort(retries.begin(), retries.end());
+    for (const fs::path& retry : retries) read_rows_of(retry);
   }
   return rows;
 }

@@ -30,7 +30,9 @@ namespace hydrojump::reference {
 
 // One column of an OpenFOAM `surfaceFieldValue` function object over time: the rows (t, value of the
 // first field) of every `<function_dir>/<start time>/surfaceFieldValue.dat`. A resumed run starts a
-// new start-time directory; its rows replace the earlier directory's rows from that start time on.
+// new start-time directory; its rows replace the earlier directory's rows from that start time on. A run
+// started again from the same time writes `<stem>_<start time>.dat` beside the first file: its rows
+// replace the first file's from its first row's time on.
 // Empty when the directory does not exist (cases written before the function object was added).
 // Throws naming the file and line on a row that is not two or more numbers. A `volFieldValue` function
 // object's rows are read the same way with file_name "volFieldValue.dat".

@@ -930,12 +930,24 @@ void tailwater_control_after_leg(const fs::path& dir, const TailwaterControlLaw&
                                  double max_time_step_s, bool parallel, double leg_start_s, double leg_end_s,
                                  std::ostream& out) {
   const double tol = 1e-6 * std::max(law.interval_s, 1e-3);
+  // The step integrates from the previous step (the log's last row at or before the leg's start), not
+  // from the leg's start: a run resumed between two control times, or after a step that was never
+  // logged (the runner killed between the leg's end and its log row), still moves the volume target by
+  // the toe over the whole time since that step.
+  std::optional<double> previous_target;
+  double previous_step_s = 0.0;
+  for (const TailwaterControlStep& s : read_tailwater_control_log(dir)) {
+    if (s.time_s <= leg_start_s + tol) {
+      previous_target = s.volume_target_m2;
+      previous_step_s = s.time_s;
+    }
+  }
   std::vector<double> toes;
   int samples = 0;
   const fs::path surfaces = dir / "postProcessing" / free_surface_function;
   std::vector<double> x, z;
   for (const auto& [t, time_dir] : sample_times(surfaces)) {
-    if (t <= leg_start_s + tol || t > leg_end_s + tol) continue;
+    if (t <= previous_step_s + tol || t > leg_end_s + tol) continue;
     const fs::path file = time_dir / free_surface_file;
     if (!fs::exists(file)) continue;
     ++samples;
@@ -948,7 +960,7 @@ void tailwater_control_after_leg(const fs::path& dir, const TailwaterControlLaw&
   }
   if (samples == 0) {
     throw OpenFoamError("tailwater control: no free surface (" + std::string(free_surface_file) + ") in " +
-                        surfaces.string() + " for (" + format_seconds(leg_start_s) + ", " + format_seconds(leg_end_s) +
+                        surfaces.string() + " for (" + format_seconds(previous_step_s) + ", " + format_seconds(leg_end_s) +
                         "] s (the case's controlDict lacks the freeSurface function object: regenerate the case)");
   }
   // The volume at the leg's end: a row of this leg's last time step, not one left by an earlier run.
@@ -964,12 +976,8 @@ void tailwater_control_after_leg(const fs::path& dir, const TailwaterControlLaw&
                                    : std::string(" (the case's controlDict lacks the water_volume function object: "
                                                  "regenerate the case)")));
   }
-  std::optional<double> previous_target;
-  for (const TailwaterControlStep& s : read_tailwater_control_log(dir)) {
-    if (s.time_s <= leg_start_s + tol) previous_target = s.volume_target_m2;
-  }
-  const TailwaterControlStep step =
-      tailwater_control_step(law, previous_target, leg_end_s, leg_end_s - leg_start_s, toes, volume_m3->second / thickness_m);
+  const TailwaterControlStep step = tailwater_control_step(law, previous_target, leg_end_s, leg_end_s - previous_step_s,
+                                                          toes, volume_m3->second / thickness_m);
   std::vector<fs::path> u_files;
   if (parallel) {
     for (const fs::path& rank : processor_directories(dir)) {

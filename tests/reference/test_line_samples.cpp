@@ -90,6 +90,20 @@ TEST_CASE("patch discharges: window means per unit width, outward fluxes, restar
   REQUIRE(q.has_value());
   CHECK(q->top_sampled);
   CHECK(q->top_outflow_m2_s == Approx(0.002).epsilon(1e-12));  // (0 + 3e-3 + 3e-3) / 3
+  // Started again from 1.5 s (the first restart crashed before its next output): OpenFOAM finds
+  // 1.5/surfaceFieldValue.dat and writes 1.5/surfaceFieldValue_1.5.dat. The retry's rows replace the
+  // crashed attempt's, also the row at 2.5 s the retry has not reached yet.
+  write("discharge_atmosphere", "1.5", "1.5\t1.5e-5\t0\n2\t1.5e-5\t0\n2.5\t7\t0\n");
+  std::ofstream(dir / "postProcessing" / "discharge_atmosphere" / "1.5" / "surfaceFieldValue_1.5.dat")
+      << "# Time\tsum(alphaPhi0.water)\tsum(phi)\n2\t3e-5\t0\n";
+  const auto rows = hydrojump::reference::read_surface_field_value(dir / "postProcessing" / "discharge_atmosphere");
+  REQUIRE(rows.size() == 3u);
+  CHECK(rows[0] == std::make_pair(1.0, 0.0));
+  CHECK(rows[1] == std::make_pair(1.5, 1.5e-5));
+  CHECK(rows[2] == std::make_pair(2.0, 3e-5));
+  q = patch_discharges(dir, 1.0, 2.0, thickness);
+  REQUIRE(q.has_value());
+  CHECK(q->top_outflow_m2_s == Approx(0.003).epsilon(1e-12));  // (0 + 3e-3 + 6e-3) / 3
   // A window without rows, or no thickness: nothing.
   CHECK_FALSE(patch_discharges(dir, 5.0, 6.0, thickness).has_value());
   CHECK_FALSE(patch_discharges(dir, 1.0, 2.0, 0.0).has_value());

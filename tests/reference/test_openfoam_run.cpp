@@ -432,6 +432,68 @@ TEST_CASE("a tiny basin with the tailwater control resets the outlet's Umean aft
   CHECK(fresh[2].time_s == Approx(0.03));
 }
 
+TEST_CASE("the tailwater control resumed between two control times integrates from its last step, and a retried "
+          "leg's samples replace the abandoned attempt's",
+          "[reference][openfoam][tailwater]") {
+  require_openfoam();
+  // Outputs every 5 ms, a control step every 10 ms.
+  const std::string spec = basin_spec("tailwater_control = \"hold_toe\"\ntailwater_control_interval_s = 0.01\n"
+                                      "volume_hold_time_s = 0.02\ntoe_hold_time_s = 5\n",
+                                      0.02, 0.005, "smooth");
+  const TempDir tmp("openfoam-tailwater-resume");
+  const fs::path dir = generate(spec, tmp.path() / "case");
+  std::ostringstream out;
+  reference::run_vof_case(dir, reference::RunOptions{}, out);
+  INFO(out.str());
+  auto rows = reference::read_tailwater_control_log(dir);
+  REQUIRE(rows.size() == 2);
+  CHECK(rows[1].toe_outputs == 2);
+  const auto next_target = [](const reference::TailwaterControlStep& previous, const reference::TailwaterControlStep& r) {
+    return previous.volume_target_m2 + (0.06 - 0.0254) / 5.0 * (r.toe_x_m - 0.1) * 0.01;
+  };
+
+  // Killed in the second leg after its output at 0.015 s: the resume starts there, and the step at
+  // 0.02 s still covers (0.01, 0.02] s: both outputs' toes and dt = 0.01 s.
+  fs::remove_all(dir / "0.02");
+  reference::RunOptions resume;
+  resume.resume = true;
+  std::ostringstream out2;
+  reference::run_vof_case(dir, resume, out2);
+  INFO(out2.str());
+  rows = reference::read_tailwater_control_log(dir);
+  REQUIRE(rows.size() == 2);
+  CHECK(rows[1].time_s == Approx(0.02));
+  CHECK(rows[1].toe_outputs == 2);
+  CHECK(rows[1].volume_target_m2 == Approx(next_target(rows[0], rows[1])).epsilon(1e-9));
+
+  // Killed again before the leg's end, and retried from 0.015 s: OpenFOAM finds the first attempt's
+  // volFieldValue.dat there and writes volFieldValue_0.015.dat beside it. The step reads the retry's
+  // volume, not the abandoned attempt's (made absurd here to tell them apart).
+  const fs::path volume_dir = dir / "postProcessing" / "water_volume" / "0.015";
+  std::vector<std::string> lines;
+  {
+    std::ifstream in(volume_dir / "volFieldValue.dat");
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
+  }
+  REQUIRE(!lines.empty());
+  REQUIRE(lines.back()[0] != '#');
+  lines.back() = lines.back().substr(0, lines.back().find_first_of(" \t")) + "\t1";
+  {
+    std::ofstream rewritten(volume_dir / "volFieldValue.dat");
+    for (const auto& line : lines) rewritten << line << "\n";
+  }
+  fs::remove_all(dir / "0.02");
+  std::ostringstream out3;
+  reference::run_vof_case(dir, resume, out3);
+  INFO(out3.str());
+  CHECK(fs::exists(volume_dir / "volFieldValue_0.015.dat"));
+  rows = reference::read_tailwater_control_log(dir);
+  REQUIRE(rows.size() == 2);
+  CHECK(rows[1].water_volume_m2 > 0.0254 * 0.472);
+  CHECK(rows[1].water_volume_m2 < 0.06 * 0.472);
+  CHECK(rows[1].volume_target_m2 == Approx(next_target(rows[0], rows[1])).epsilon(1e-9));
+}
+
 TEST_CASE("a tiny basin runs with the k-epsilon turbulence model", "[reference][openfoam]") {
   require_openfoam();
   const std::string spec = basin_spec("turbulence_model = \"kEpsilon\"", 0.01, 0.01);
