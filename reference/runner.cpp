@@ -174,24 +174,45 @@ std::vector<fs::path> processor_directories(const fs::path& dir) {
   return out;
 }
 
-// A time directory is complete when its main fields are present and readable to the end
-// (compressed files are tested with `gzip -t`, plain ones must end with OpenFOAM's closing rule).
+// Whether an OpenFOAM file was written to the end: compressed files pass `gzip -t`, plain ones hold
+// OpenFOAM's closing rule.
+bool foam_file_complete(const fs::path& file) {
+  std::error_code ec;
+  if (file.extension() == ".gz") {
+    if (fs::file_size(file, ec) == 0 || ec) return false;
+    return wait_for(spawn({"gzip", "-t", file.string()}, file.parent_path(), "/dev/null", true)) == 0;
+  }
+  return cases::read_text_file(file).find("// ****") != std::string::npos;
+}
+
+// A time directory is complete when its main fields are present and every field file in it (the
+// turbulence fields, phi, uniform/time too) was written to the end.
 bool time_directory_complete(const fs::path& time_dir) {
+  std::error_code ec;
   for (const char* field : {"alpha.water", "U", "p_rgh"}) {
-    const fs::path plain = time_dir / field;
-    const fs::path gz = time_dir / (std::string(field) + ".gz");
-    std::error_code ec;
-    if (fs::exists(gz, ec)) {
-      if (fs::file_size(gz, ec) == 0) return false;
-      const int rc = wait_for(spawn({"gzip", "-t", gz.string()}, time_dir, "/dev/null", true));
-      if (rc != 0) return false;
-    } else if (fs::exists(plain, ec)) {
-      if (cases::read_text_file(plain).find("// ****") == std::string::npos) return false;
-    } else {
-      return false;
+    if (!fs::exists(time_dir / field, ec) && !fs::exists(time_dir / (std::string(field) + ".gz"), ec)) return false;
+  }
+  for (const fs::path& sub : {time_dir, time_dir / "uniform"}) {
+    if (!fs::is_directory(sub, ec)) continue;
+    for (const auto& entry : fs::directory_iterator(sub, ec)) {
+      if (entry.is_regular_file(ec) && !foam_file_complete(entry.path())) return false;
     }
   }
   return true;
+}
+
+// Moves a half-written time directory aside as <name>.incomplete (.incomplete.2, ... when a directory
+// of that name is left from an earlier kill); returns the new name. Throws when it cannot.
+std::string move_incomplete_aside(const fs::path& time_dir) {
+  std::error_code ec;
+  fs::path aside = time_dir.string() + ".incomplete";
+  for (int n = 2; fs::exists(aside, ec); ++n) aside = time_dir.string() + ".incomplete." + std::to_string(n);
+  fs::rename(time_dir, aside, ec);
+  if (ec) {
+    throw OpenFoamError("cannot move the half-written time directory " + time_dir.string() + " aside to " +
+                        aside.string() + ": " + ec.message() + " (move or delete it, then resume)");
+  }
+  return aside.filename().string();
 }
 
 std::string format_seconds(double t) {
@@ -1125,25 +1146,40 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
       throw OpenFoamError(dir.string() + " holds newer parallel results in processor*/: resume with --np " +
                           std::to_string(existing_ranks));
     }
-    // A time directory left half-written by a killed run is moved aside.
-    const fs::path time_root = continue_decomposed ? dir / "processor0" : dir;
-    auto times = time_directories(time_root);
-    while (!times.empty() && !time_directory_complete(times.back().second)) {
-      const fs::path aside = times.back().second.string() + ".incomplete";
-      out << "  time directory " << times.back().second.filename().string()
-          << " is incomplete (killed while writing): moved to " << aside.filename().string() << "\n";
-      if (continue_decomposed) {
-        for (int r = 0; r < existing_ranks; ++r) {
-          const fs::path p = dir / ("processor" + std::to_string(r)) / times.back().second.filename();
-          std::error_code ec;
-          fs::rename(p, p.string() + ".incomplete", ec);
-        }
-      } else {
-        fs::rename(times.back().second, aside);
+    // A time directory left half-written by a killed run is moved aside: decomposed, a time is
+    // complete only when every rank has it complete (a rank killed while writing, or one that never
+    // got there, would make interFoam fail or start the ranks at different times).
+    const std::vector<fs::path> ranks = continue_decomposed ? processor_directories(dir) : std::vector<fs::path>{dir};
+    auto times = time_directories(ranks.front());
+    const auto complete_everywhere = [&ranks](const fs::path& first_rank_time) {
+      for (const fs::path& rank : ranks) {
+        if (!time_directory_complete(rank / first_rank_time.filename())) return false;
       }
+      return true;
+    };
+    while (!times.empty() && !complete_everywhere(times.back().second)) {
+      const fs::path name = times.back().second.filename();
+      std::string aside;
+      for (const fs::path& rank : ranks) {
+        std::error_code ec;
+        if (fs::exists(rank / name, ec)) aside = move_incomplete_aside(rank / name);
+      }
+      out << "  time directory " << name.string() << (continue_decomposed ? " (processor*/)" : "")
+          << " is incomplete (killed while writing): moved to " << aside << "\n";
       times.pop_back();
     }
     start = times.empty() ? std::nullopt : std::optional<double>(times.back().first);
+    if (continue_decomposed) {
+      // reconstructPar -newTimes skips a time already at the top level, so a reconstruction killed
+      // while writing would stay half-written there: move it aside to be reconstructed again.
+      auto reconstructed = time_directories(dir);
+      while (!reconstructed.empty() && !time_directory_complete(reconstructed.back().second)) {
+        out << "  reconstructed time directory " << reconstructed.back().second.filename().string()
+            << " is incomplete: moved to " << move_incomplete_aside(reconstructed.back().second)
+            << " (reconstructed again at the end)\n";
+        reconstructed.pop_back();
+      }
+    }
   }
 
   // The end time: system/controlDict's endTime, which --end-time rewrites (to extend a run).

@@ -553,16 +553,32 @@ TEST_CASE("an MPI run (--np 2) gives the same result as the serial run", "[refer
     CHECK(d_serial > 0.02);
     CHECK(d_parallel == Approx(d_serial).epsilon(0.01));
   }
-  // Resuming a decomposed run continues in parallel from the processor directories.
-  fs::remove_all(parallel / "0.03");
-  fs::remove_all(parallel / "processor0/0.03");
-  fs::remove_all(parallel / "processor1/0.03");
+  // Resuming a decomposed run continues in parallel from the processor directories. Killed while
+  // writing 0.03: rank 1's turbulence field k is cut short (rank 0's 0.03 is whole), and so is the
+  // reconstructed U; rank 0 also holds a 0.03.incomplete from an earlier kill. The time 0.03 is
+  // incomplete on every rank, moved aside beside the earlier one, and reconstructed again at the end.
+  const auto cut_short = [](const fs::path& file) {
+    REQUIRE(fs::exists(file));
+    const std::string text = cases::read_text_file(file);
+    std::ofstream(file, std::ios::binary | std::ios::trunc) << text.substr(0, text.size() / 2);
+  };
+  cut_short(parallel / "processor1/0.03" / (fs::exists(parallel / "processor1/0.03/k.gz") ? "k.gz" : "k"));
+  cut_short(parallel / "0.03/U.gz");
+  fs::create_directories(parallel / "processor0/0.03.incomplete/U");
   np2.resume = true;
   std::ostringstream out2;
   reference::run_vof_case(parallel, np2, out2);
+  INFO(out2.str());
+  CHECK_THAT(out2.str(), Catch::Contains("time directory 0.03 (processor*/) is incomplete"));
+  CHECK_THAT(out2.str(), Catch::Contains("reconstructed time directory 0.03 is incomplete"));
   CHECK_THAT(out2.str(), Catch::Contains("Resuming from t = 0.02"));
   CHECK_THAT(out2.str(), !Catch::Contains("decomposePar"));
-  CHECK(fs::exists(parallel / "0.03/U.gz"));
+  CHECK(fs::exists(parallel / "processor0/0.03.incomplete.2"));
+  CHECK(fs::exists(parallel / "processor1/0.03.incomplete"));
+  CHECK(fs::exists(parallel / "0.03.incomplete"));
+  CHECK(fs::exists(parallel / "processor1/0.03/k.gz") != fs::exists(parallel / "processor1/0.03/k"));
+  REQUIRE(fs::exists(parallel / "0.03/U.gz"));
+  CHECK(std::system(("gzip -t '" + (parallel / "0.03/U.gz").string() + "'").c_str()) == 0);
 }
 
 TEST_CASE("an MPI run (--np 2) with the tailwater control resets Umean in every processor's latest U",
