@@ -159,13 +159,19 @@ std::optional<ChildExit> poll_child(pid_t pid) {
 }
 
 ChildExit stop_child(pid_t pid, std::chrono::milliseconds grace) {
-  ::kill(pid, SIGTERM);
+  // A child leading its own process group (ChildCommand::own_process_group) is stopped with all it
+  // started (mpirun's ranks, a shell's commands), which would otherwise go on running unowned.
+  const pid_t target = ::getpgid(pid) == pid ? -pid : pid;
+  ::kill(target, SIGTERM);
   const auto deadline = std::chrono::steady_clock::now() + grace;
   while (std::chrono::steady_clock::now() < deadline) {
-    if (const auto e = poll_child(pid)) return *e;
+    if (const auto e = poll_child(pid)) {
+      if (target < 0) ::kill(target, SIGKILL);  // what the group's leader left behind
+      return *e;
+    }
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
-  ::kill(pid, SIGKILL);
+  ::kill(target, SIGKILL);
   return wait_child(pid);
 }
 

@@ -71,7 +71,9 @@ class ScratchDirectory {
 volatile std::sig_atomic_t stop_requested = 0;
 void reference_runner_request_stop(int) { stop_requested = 1; }
 
-// Installs SIGINT/SIGTERM handlers for its lifetime.
+// Installs SIGINT/SIGTERM handlers for its lifetime, and a SIGHUP one unless SIGHUP is ignored (nohup):
+// a closed terminal stops the solver with its state written, instead of leaving it running unowned
+// (it runs in its own process group, which the hangup does not reach).
 class StopRequestGuard {
  public:
   StopRequestGuard() {
@@ -81,10 +83,13 @@ class StopRequestGuard {
     sigemptyset(&sa.sa_mask);
     ::sigaction(SIGINT, &sa, &old_int_);
     ::sigaction(SIGTERM, &sa, &old_term_);
+    ::sigaction(SIGHUP, nullptr, &old_hup_);
+    if (old_hup_.sa_handler != SIG_IGN) ::sigaction(SIGHUP, &sa, nullptr);
   }
   ~StopRequestGuard() {
     ::sigaction(SIGINT, &old_int_, nullptr);
     ::sigaction(SIGTERM, &old_term_, nullptr);
+    ::sigaction(SIGHUP, &old_hup_, nullptr);
   }
   StopRequestGuard(const StopRequestGuard&) = delete;
   StopRequestGuard& operator=(const StopRequestGuard&) = delete;
@@ -92,6 +97,7 @@ class StopRequestGuard {
  private:
   struct sigaction old_int_ {};
   struct sigaction old_term_ {};
+  struct sigaction old_hup_ {};
 };
 
 // The last `n` lines of a text file, indented.
@@ -725,34 +731,64 @@ std::string leg_control_dict(const std::string& text, const fs::path& file, cons
   return with_end_time(parse_end_time_entry(result + text.substr(copied), file), leg.end_s);
 }
 
+std::optional<std::string> control_dict_after_leg(const std::string& original, const std::string& leg_text,
+                                                  const std::string& current, const fs::path& file, const SolverLeg& leg) {
+  if (current == leg_text) return original;
+  if (leg.write_interval_s) return std::nullopt;
+  const EndTimeEntry case_end = parse_end_time_entry(original, file);
+  const EndTimeEntry edited = parse_end_time_entry(current, file);
+  return edited.text.substr(0, edited.value_begin) + case_end.text.substr(case_end.value_begin, case_end.value_length) +
+         edited.text.substr(edited.value_begin + edited.value_length);
+}
+
 namespace {
 
 // A leg's controlDict in place of the case's for its lifetime (see above).
 class ControlDictOverride {
  public:
-  ControlDictOverride(const fs::path& dir, const SolverLeg& leg) : dir_(dir) {
+  ControlDictOverride(const fs::path& dir, const SolverLeg& leg) : dir_(dir), leg_(leg) {
     const fs::path file = dir / "system/controlDict";
     const std::string original = cases::read_text_file(file);
     cases::write_file_atomically(dir / control_dict_original, original);
-    cases::write_file_atomically(file, leg_control_dict(original, file, leg));
+    leg_text_ = leg_control_dict(original, file, leg);
+    cases::write_file_atomically(file, leg_text_);
   }
   ~ControlDictOverride() {
     try {
-      restore();
+      restore(nullptr);
     } catch (...) {
       // the next `hydrojump vof` puts it back (restore_control_dict_left_behind)
     }
   }
   ControlDictOverride(const ControlDictOverride&) = delete;
   ControlDictOverride& operator=(const ControlDictOverride&) = delete;
-  void restore() {
+  // Puts the case's controlDict back, keeping an edit made by hand during the leg (runTimeModifiable:
+  // a changed maxCo, say) where it can (control_dict_after_leg); says so on `out` when given.
+  void restore(std::ostream* out) {
     if (restored_) return;
-    fs::rename(dir_ / control_dict_original, dir_ / "system/controlDict");
+    const fs::path file = dir_ / "system/controlDict", saved = dir_ / control_dict_original;
+    const std::string current = cases::read_text_file(file);
+    const auto back = control_dict_after_leg(cases::read_text_file(saved), leg_text_, current, file, leg_);
+    if (!back) {
+      cases::write_file_atomically(dir_ / "system/controlDict.edited-during-leg", current);
+      fs::rename(saved, file);
+      if (out != nullptr)
+        *out << "  system/controlDict was edited during a leg that wrote at its own interval: the case's is put "
+                "back and the edited one kept as system/controlDict.edited-during-leg (apply the edit again)\n";
+    } else if (current != leg_text_) {
+      cases::write_file_atomically(file, *back);
+      fs::remove(saved);
+      if (out != nullptr) *out << "  system/controlDict was edited during the leg: the edit is kept, with the case's endTime\n";
+    } else {
+      fs::rename(saved, file);
+    }
     restored_ = true;
   }
 
  private:
   fs::path dir_;
+  SolverLeg leg_;
+  std::string leg_text_;
   bool restored_ = false;
 };
 
@@ -1298,7 +1334,7 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
         leg_control.emplace(dir, leg);
       }
       reached = run_solver(run, leg_start, leg.end_s, out);
-      if (leg_control) leg_control->restore();
+      if (leg_control) leg_control->restore(&out);
       if (control) {
         tailwater_control_after_leg(dir, *control, vof.mesh.thickness_m, c.vof.max_time_step_s, parallel,
                                     leg_start.value_or(0.0), leg.end_s, out);

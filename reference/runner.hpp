@@ -102,6 +102,14 @@ std::vector<SolverLeg> split_legs_for_control(const std::vector<SolverLeg>& legs
 // time (its block's writeControl adjustable, adjustableRunTime or runTime) set to it.
 std::string leg_control_dict(const std::string& text, const std::filesystem::path& file, const SolverLeg& leg);
 
+// What goes back into system/controlDict after a leg: the case's text `original` when the file still
+// holds the leg's `leg_text`; when it was edited by hand during the leg (`current`: OpenFOAM rereads it,
+// runTimeModifiable), the edit with the case's endTime value back, unless the leg also set its own
+// write interval (nullopt: the edit cannot be told from the leg's changes; the caller keeps it aside).
+std::optional<std::string> control_dict_after_leg(const std::string& original, const std::string& leg_text,
+                                                  const std::string& current, const std::filesystem::path& file,
+                                                  const SolverLeg& leg);
+
 // Meshes and runs the case in `dir` (written by `hydrojump generate`, holding case.toml).
 // Throws OpenFoamError (or cases::SpecError for a bad case.toml).
 void run_vof_case(const std::filesystem::path& dir, const RunOptions& options, std::ostream& out);

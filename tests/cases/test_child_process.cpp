@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <chrono>
+#include <csignal>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -78,6 +79,33 @@ TEST_CASE("A child killed by a signal reports it as 128 + the signal number", "[
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   CHECK(killed.signal == 9);
   CHECK(seconds < 5.0);
+}
+
+TEST_CASE("stop_child stops a process-group leader with everything it started", "[cases][process]") {
+  const hydrojump::testing::TempDir tmp("child_group");
+  const fs::path& dir = tmp.path();
+  // As mpirun with its ranks: a shell in its own process group waiting for a command it started.
+  ChildCommand command = shell("sleep 60 & echo $! > '" + (dir / "grandchild").string() + "'; wait", dir / "log");
+  command.own_process_group = true;
+  const pid_t leader = start_child(command);
+  const auto ready_by = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (read(dir / "grandchild").find('\n') == std::string::npos) {
+    REQUIRE(std::chrono::steady_clock::now() < ready_by);
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  const pid_t grandchild = std::stoi(read(dir / "grandchild"));
+  stop_child(leader);
+  // The command it started is gone too (or a zombie waiting for init to reap it), not still running.
+  const auto gone_by = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  const auto running = [grandchild] {
+    const std::string stat = read("/proc/" + std::to_string(grandchild) + "/stat");
+    if (stat.empty()) return false;
+    const auto close = stat.rfind(')');
+    return close != std::string::npos && close + 2 < stat.size() && stat[close + 2] != 'Z';
+  };
+  while (running() && std::chrono::steady_clock::now() < gone_by) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  CHECK_FALSE(running());
+  if (running()) ::kill(grandchild, SIGKILL);
 }
 
 TEST_CASE("A child runs in its working directory with the requested environment changes", "[cases][process]") {

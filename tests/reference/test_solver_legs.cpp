@@ -127,3 +127,33 @@ TEST_CASE("a leg's controlDict sets its own write interval only where the interv
   end_only.replace(end_only.find("endTime         10;"), 19, "endTime         3;");
   CHECK(hydrojump::reference::leg_control_dict(text, "system/controlDict", leg) == end_only);
 }
+
+TEST_CASE("a controlDict edited by hand during a leg keeps the edit, with the case's endTime back",
+          "[reference][legs]") {
+  using hydrojump::reference::control_dict_after_leg;
+  const std::string original = "FoamFile { version 2.0; format ascii; class dictionary; object controlDict; }\n"
+                               "endTime         10; // endTime = run.end_time_s\n"
+                               "writeInterval   0.1;\n"
+                               "maxCo           0.8;\n";
+  hydrojump::reference::SolverLeg leg;
+  leg.end_s = 4.5;
+  const std::string leg_text = hydrojump::reference::leg_control_dict(original, "system/controlDict", leg);
+  REQUIRE(leg_text != original);
+  // Untouched: the case's text comes back as it was.
+  CHECK(control_dict_after_leg(original, leg_text, leg_text, "system/controlDict", leg) == original);
+  // maxCo lowered by hand while interFoam ran the leg: kept, and endTime is the case's again.
+  std::string edited = leg_text;
+  edited.replace(edited.find("maxCo           0.8;"), 20, "maxCo           0.5;");
+  const auto back = control_dict_after_leg(original, leg_text, edited, "system/controlDict", leg);
+  REQUIRE(back.has_value());
+  std::string expected = original;
+  expected.replace(expected.find("maxCo           0.8;"), 20, "maxCo           0.5;");
+  CHECK(*back == expected);
+  // A leg that also set its own write interval: the edit cannot be separated from the leg's changes.
+  leg.write_interval_s = 0.05;
+  const std::string aligning = hydrojump::reference::leg_control_dict(original, "system/controlDict", leg);
+  std::string edited_aligning = aligning;
+  edited_aligning.replace(edited_aligning.find("maxCo           0.8;"), 20, "maxCo           0.5;");
+  CHECK_FALSE(control_dict_after_leg(original, aligning, edited_aligning, "system/controlDict", leg).has_value());
+  CHECK(control_dict_after_leg(original, aligning, aligning, "system/controlDict", leg) == original);
+}
