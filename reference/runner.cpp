@@ -85,11 +85,18 @@ class StopRequestGuard {
     ::sigaction(SIGTERM, &sa, &old_term_);
     ::sigaction(SIGHUP, nullptr, &old_hup_);
     if (old_hup_.sa_handler != SIG_IGN) ::sigaction(SIGHUP, &sa, nullptr);
+    // A progress line written to a pipe whose reader a hangup ended must not kill the runner before it
+    // has stopped the solver (the write fails instead).
+    struct sigaction ignore {};
+    ignore.sa_handler = SIG_IGN;
+    sigemptyset(&ignore.sa_mask);
+    ::sigaction(SIGPIPE, &ignore, &old_pipe_);
   }
   ~StopRequestGuard() {
     ::sigaction(SIGINT, &old_int_, nullptr);
     ::sigaction(SIGTERM, &old_term_, nullptr);
     ::sigaction(SIGHUP, &old_hup_, nullptr);
+    ::sigaction(SIGPIPE, &old_pipe_, nullptr);
   }
   StopRequestGuard(const StopRequestGuard&) = delete;
   StopRequestGuard& operator=(const StopRequestGuard&) = delete;
@@ -98,6 +105,7 @@ class StopRequestGuard {
   struct sigaction old_int_ {};
   struct sigaction old_term_ {};
   struct sigaction old_hup_ {};
+  struct sigaction old_pipe_ {};
 };
 
 // The last `n` lines of a text file, indented.
@@ -201,6 +209,9 @@ bool time_directory_complete(const fs::path& time_dir) {
   for (const fs::path& sub : {time_dir, time_dir / "uniform"}) {
     if (!fs::is_directory(sub, ec)) continue;
     for (const auto& entry : fs::directory_iterator(sub, ec)) {
+      // Not OpenFOAM's: a temporary file of an atomic write cut short, an editor's swap or backup file.
+      const std::string name = entry.path().filename().string();
+      if (name.empty() || name.front() == '.' || name.back() == '~') continue;
       if (entry.is_regular_file(ec) && !foam_file_complete(entry.path())) return false;
     }
   }
@@ -886,9 +897,9 @@ double run_solver(const SolverRun& run, std::optional<double> start, double end_
     std::this_thread::sleep_for(std::chrono::milliseconds(500));
     ended = cases::poll_child(pid);
     if (stop_requested && !ended && !stop_sent) {
+      ::kill(pid, write_and_stop_signal);  // first: the message may go to a pipe a hangup has closed
       out << (interactive ? "\n" : "") << "Stop requested: interFoam writes the current time and stops...\n"
           << std::flush;
-      ::kill(pid, write_and_stop_signal);
       stop_sent = true;
       stop_time = std::chrono::steady_clock::now();
     }
@@ -1185,26 +1196,46 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
     // A time directory left half-written by a killed run is moved aside: decomposed, a time is
     // complete only when every rank has it complete (a rank killed while writing, or one that never
     // got there, would make interFoam fail or start the ranks at different times).
+    // The times of every rank: one that only some ranks reached is incomplete too.
     const std::vector<fs::path> ranks = continue_decomposed ? processor_directories(dir) : std::vector<fs::path>{dir};
-    auto times = time_directories(ranks.front());
-    const auto complete_everywhere = [&ranks](const fs::path& first_rank_time) {
+    std::map<double, std::string> times;
+    for (const fs::path& rank : ranks)
+      for (const auto& [t, path] : time_directories(rank)) times.emplace(t, path.filename().string());
+    const auto complete_everywhere = [&ranks](const std::string& name) {
       for (const fs::path& rank : ranks) {
-        if (!time_directory_complete(rank / first_rank_time.filename())) return false;
+        if (!time_directory_complete(rank / name)) return false;
       }
       return true;
     };
-    while (!times.empty() && !complete_everywhere(times.back().second)) {
-      const fs::path name = times.back().second.filename();
+    while (!times.empty() && !complete_everywhere(times.rbegin()->second)) {
+      const std::string name = times.rbegin()->second;
       std::string aside;
       for (const fs::path& rank : ranks) {
         std::error_code ec;
         if (fs::exists(rank / name, ec)) aside = move_incomplete_aside(rank / name);
       }
-      out << "  time directory " << name.string() << (continue_decomposed ? " (processor*/)" : "")
+      out << "  time directory " << name << (continue_decomposed ? " (processor*/)" : "")
           << " is incomplete (killed while writing): moved to " << aside << "\n";
-      times.pop_back();
+      times.erase(std::prev(times.end()));
     }
-    start = times.empty() ? std::nullopt : std::optional<double>(times.back().first);
+    start = times.empty() ? std::nullopt : std::optional<double>(times.rbegin()->first);
+    // Samples the abandoned part wrote after the start (a function object's start-time directory of a
+    // later leg, a surface at a time the run never kept) would be read as this run's: moved aside.
+    std::error_code ec;
+    for (fs::directory_iterator fo(dir / "postProcessing", ec), end; !ec && fo != end; fo.increment(ec)) {
+      if (!fo->is_directory(ec)) continue;
+      for (const auto& [t, path] : sample_times(fo->path())) {
+        if (t <= start.value_or(0.0) + 1e-12) continue;
+        fs::path aside = path.string() + ".abandoned";
+        for (int n = 2; fs::exists(aside); ++n) aside = path.string() + ".abandoned." + std::to_string(n);
+        std::error_code move_error;
+        fs::rename(path, aside, move_error);
+        if (move_error) {
+          throw OpenFoamError("cannot move the abandoned samples " + path.string() + " aside: " + move_error.message() +
+                              " (move or delete them, then resume)");
+        }
+      }
+    }
     if (continue_decomposed) {
       // reconstructPar -newTimes skips a time already at the top level, so a reconstruction killed
       // while writing would stay half-written there: move it aside to be reconstructed again.

@@ -483,10 +483,17 @@ TEST_CASE("the tailwater control resumed between two control times integrates fr
     for (const auto& line : lines) rewritten << line << "\n";
   }
   fs::remove_all(dir / "0.02");
+  // The abandoned attempt had also begun a later leg's samples (a start-time directory after 0.015 s):
+  // moved aside, not read after the retry's.
+  const fs::path later = dir / "postProcessing" / "water_volume" / "0.0175";
+  fs::create_directories(later);
+  std::ofstream(later / "volFieldValue.dat") << "# Time volIntegrate(alpha.water)\n0.02\t1\n";
   std::ostringstream out3;
   reference::run_vof_case(dir, resume, out3);
   INFO(out3.str());
   CHECK(fs::exists(volume_dir / "volFieldValue_0.015.dat"));
+  CHECK_FALSE(fs::exists(later));
+  CHECK(fs::exists(later.string() + ".abandoned"));
   rows = reference::read_tailwater_control_log(dir);
   REQUIRE(rows.size() == 2);
   CHECK(rows[1].water_volume_m2 > 0.0254 * 0.472);
@@ -565,6 +572,10 @@ TEST_CASE("an MPI run (--np 2) gives the same result as the serial run", "[refer
   cut_short(parallel / "processor1/0.03" / (fs::exists(parallel / "processor1/0.03/k.gz") ? "k.gz" : "k"));
   cut_short(parallel / "0.03/U.gz");
   fs::create_directories(parallel / "processor0/0.03.incomplete/U");
+  // Rank 1 alone had begun a later time; rank 0's 0.02 holds a temporary file of a write cut short
+  // (not OpenFOAM's: 0.02 stays the start).
+  fs::create_directories(parallel / "processor1/0.04");
+  std::ofstream(parallel / "processor0/0.02/.U.tmp.1.1") << "FoamFile {";
   np2.resume = true;
   std::ostringstream out2;
   reference::run_vof_case(parallel, np2, out2);
@@ -575,6 +586,8 @@ TEST_CASE("an MPI run (--np 2) gives the same result as the serial run", "[refer
   CHECK_THAT(out2.str(), !Catch::Contains("decomposePar"));
   CHECK(fs::exists(parallel / "processor0/0.03.incomplete.2"));
   CHECK(fs::exists(parallel / "processor1/0.03.incomplete"));
+  CHECK(fs::exists(parallel / "processor1/0.04.incomplete"));
+  CHECK_FALSE(fs::exists(parallel / "processor1/0.04"));
   CHECK(fs::exists(parallel / "0.03.incomplete"));
   CHECK(fs::exists(parallel / "processor1/0.03/k.gz") != fs::exists(parallel / "processor1/0.03/k"));
   REQUIRE(fs::exists(parallel / "0.03/U.gz"));
