@@ -102,6 +102,13 @@ StudyOptions mini_study_with_stand_in(const fs::path& dir, const std::string& sc
   return options;
 }
 
+// A stand-in that records each call in `calls` and fails case B's SPH run after running `on_failure`
+// (a shell command in B's sph directory "$2").
+StudyOptions mini_study_failing_b_sph(const fs::path& dir, const fs::path& calls, const std::string& on_failure) {
+  return mini_study_with_stand_in(dir, "echo \"$*\" >> '" + calls.string() + "'\ncase \"$1 $2\" in\n  \"sph \"*/B/sph) " +
+                                           on_failure + " ; exit 3 ;;\nesac\nexit 0\n");
+}
+
 }  // namespace
 
 TEST_CASE("Study runner: failures are isolated, results cached, changes re-run", "[study]") {
@@ -110,9 +117,7 @@ TEST_CASE("Study runner: failures are isolated, results cached, changes re-run",
   const fs::path calls = dir / "calls.txt";
   // A stand-in for the hydrojump executable: records each call; the SPH run of case B fails, leaving a
   // checkpoint behind as the real solver does.
-  StudyOptions options = mini_study_with_stand_in(
-      dir, "echo \"$*\" >> '" + calls.string() +
-               "'\ncase \"$1 $2\" in\n  \"sph \"*/B/sph) touch \"$2/checkpoint.bin\"; echo 'B diverged' ; exit 3 ;;\nesac\nexit 0\n");
+  StudyOptions options = mini_study_failing_b_sph(dir, calls, "touch \"$2/checkpoint.bin\"; echo 'B diverged'");
   std::ostringstream log;
 
   // First run: every stage runs; B's SPH fails but B's VOF and comparison still run.
@@ -176,9 +181,7 @@ TEST_CASE("Study runner: an SPH run that failed before its first checkpoint is s
   const fs::path& dir = tmp.path();
   const fs::path calls = dir / "calls.txt";
   // B's SPH run fails leaving only a diagnosis (no checkpoint.bin to resume from).
-  StudyOptions options = mini_study_with_stand_in(
-      dir, "echo \"$*\" >> '" + calls.string() +
-               "'\ncase \"$1 $2\" in\n  \"sph \"*/B/sph) echo unstable > \"$2/failure.txt\"; exit 3 ;;\nesac\nexit 0\n");
+  StudyOptions options = mini_study_failing_b_sph(dir, calls, "echo unstable > \"$2/failure.txt\"");
   std::ostringstream log;
   CHECK(run_study(options, log) == 1);
   auto first = lines_of(calls);
