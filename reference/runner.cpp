@@ -1016,6 +1016,10 @@ void tailwater_control_after_leg(const fs::path& dir, const TailwaterControlLaw&
   std::vector<double> x, z;
   for (const auto& [t, time_dir] : sample_times(surfaces)) {
     if (t <= previous_step_s + tol || t > leg_end_s + tol) continue;
+    // Before a resume, a stop wrote its time off the output grid (4.41491 s): an uninterrupted run has
+    // no sample there, so the step does not count it either.
+    const double k = t / law.output_interval_s;
+    if (t <= leg_start_s + tol && std::abs(k - std::round(k)) > 1e-6 * std::max(1.0, k)) continue;
     const fs::path file = time_dir / free_surface_file;
     if (!fs::exists(file)) continue;
     ++samples;

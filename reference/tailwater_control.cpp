@@ -41,6 +41,7 @@ TailwaterControlLaw tailwater_control_law(const cases::Case& c, const cases::Cas
   }
   law.outlet_x_m = geo.x_max_m;
   law.interval_s = c.vof.tailwater_control_interval_s;
+  law.output_interval_s = c.run.output_interval_s;
   law.volume_hold_time_s = c.vof.volume_hold_time_s;
   law.toe_hold_time_s = c.vof.toe_hold_time_s;
   return law;

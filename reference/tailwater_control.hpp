@@ -70,6 +70,7 @@ struct TailwaterControlLaw {
   double toe_search_from_m = 0.0;     // the upstream section
   double outlet_x_m = 0.0;            // the toe of a leg without one
   double interval_s = 0.5;            // the legs' length
+  double output_interval_s = 0.1;     // the case's output times k dt_out, where the toes are read
   double volume_hold_time_s = 1.0;    // T_V
   double toe_hold_time_s = 5.0;       // T_x
 };
