@@ -121,6 +121,9 @@ pid_t start_child(const ChildCommand& command) {
   posix_spawn_file_actions_adddup2(&actions, log_fd, STDOUT_FILENO);
   posix_spawn_file_actions_adddup2(&actions, log_fd, STDERR_FILENO);
   posix_spawn_file_actions_adddup2(&actions, null_fd, STDIN_FILENO);
+  // dup2 onto itself clears close-on-exec in the child (POSIX 2018; glibc >= 2.29).
+  for (const int fd : command.inherited_descriptors)
+    if (fd > STDERR_FILENO) posix_spawn_file_actions_adddup2(&actions, fd, fd);
   if (!dir.empty()) posix_spawn_file_actions_addchdir_np(&actions, dir.c_str());
   posix_spawnattr_t attributes;
   posix_spawnattr_init(&attributes);

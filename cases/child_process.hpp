@@ -47,6 +47,9 @@ struct ChildCommand {
   std::filesystem::path working_directory;
   bool own_process_group = false;
   std::vector<std::string> environment;
+  // Descriptors the child keeps open under the same numbers (all others are close-on-exec): a
+  // directory lock it must hold while it runs, even if its parent dies before it (DirectoryLock).
+  std::vector<int> inherited_descriptors;
 };
 
 // How a child ended.

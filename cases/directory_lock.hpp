@@ -5,7 +5,8 @@
 //
 // The lock is flock(2) on an open file: the kernel releases it when the holder exits, however it exits
 // (SIGKILL, power loss of the process), so there is no stale lock to delete by hand. Child processes do
-// not inherit it (close-on-exec). The file keeps the holder's pid and command for the message. On a
+// not inherit it (close-on-exec), except one started with the lock's descriptor() among its
+// ChildCommand::inherited_descriptors (the OpenFOAM solver), which then holds it until it ends too. The file keeps the holder's pid and command for the message. On a
 // file system without flock support the run goes on unprotected, with a warning.
 //
 // Usage
@@ -36,6 +37,10 @@ class DirectoryLock {
   DirectoryLock& operator=(const DirectoryLock&) = delete;
 
   static constexpr const char* file_name = ".hydrojump.lock";
+
+  // The lock's descriptor (-1 on a file system without flock), for a child that must hold the lock as
+  // long as it runs, also when this process dies first (ChildCommand::inherited_descriptors).
+  int descriptor() const { return fd_; }
 
  private:
   int fd_ = -1;

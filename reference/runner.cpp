@@ -125,10 +125,12 @@ std::string tail_file(const fs::path& file, std::size_t n = 20) {
 // Starts `argv` in `cwd` with stdout and stderr going to `log` (appended or truncated), in its own
 // process group: Ctrl-C reaches hydrojump, which asks the solver to write and stop. OpenFOAM warns when
 // PWD differs from the working directory.
-pid_t spawn(const std::vector<std::string>& argv, const fs::path& cwd, const fs::path& log, bool append) {
+pid_t spawn(const std::vector<std::string>& argv, const fs::path& cwd, const fs::path& log, bool append,
+            std::vector<int> inherited_descriptors = {}) {
   try {
     cases::ChildCommand command(argv, log);
     command.append_to_log = append;
+    command.inherited_descriptors = std::move(inherited_descriptors);
     command.working_directory = cwd;
     command.own_process_group = true;
     command.environment = {"PWD=" + cwd.string()};
@@ -822,6 +824,7 @@ struct SolverRun {
   bool parallel;
   const RunOptions& options;
   double run_end_s;                  // the end time of the whole run (progress and ETA)
+  int lock_descriptor = -1;          // the case directory's lock, which the solver holds while it runs
 };
 
 // Runs the solver from `start` (nothing: t = 0) until `end_time_s`, showing progress, and returns the
@@ -842,7 +845,9 @@ double run_solver(const SolverRun& run, std::optional<double> start, double end_
   }
   out << "Running " << command_text(run.command) << " to t = " << format_seconds(end_time_s)
       << " s (log: log.interFoam)\n" << std::flush;
-  const pid_t pid = spawn(run.command, dir, log_file, start.has_value());
+  // The solver holds the directory's lock too: if this runner dies (SIGKILL, out of memory) while
+  // interFoam goes on, a second `hydrojump vof DIR` is refused until that solver has ended.
+  const pid_t pid = spawn(run.command, dir, log_file, start.has_value(), {run.lock_descriptor});
   SolverLog log(DivergenceLimits{c.vof.max_courant, 25.0, 1e-9});
   const bool interactive = (&out == &std::cout) && ::isatty(STDOUT_FILENO);
   const double t_begin = start.value_or(0.0);
@@ -1334,7 +1339,7 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
       solver.push_back(a);
     }
   }
-  const SolverRun run{dir, c, vof.mesh.thickness_m, solver, parallel, options, end_time_s};
+  const SolverRun run{dir, c, vof.mesh.thickness_m, solver, parallel, options, end_time_s, lock.descriptor()};
   // Legs that keep every output on the case's grid (plan_solver_legs): usually one.
   const double t_begin = start.value_or(0.0);
   std::optional<double> leg_start = start;

@@ -1,5 +1,6 @@
 // The run-directory lock (cases/directory_lock.hpp): a second holder is refused with a message naming
-// the first; the lock goes with its holder, including one killed by SIGKILL; children do not inherit it.
+// the first; the lock goes with its holder, including one killed by SIGKILL; children do not inherit it
+// unless given its descriptor.
 #include <catch2/catch.hpp>
 
 #include <chrono>
@@ -78,4 +79,22 @@ TEST_CASE("A child started while the lock is held does not keep it", "[cases][lo
   // The parent let go; the sleeping child must not hold the lock.
   CHECK(busy_message(dir) == "not refused");
   stop_child(child);
+}
+
+TEST_CASE("A child given the lock's descriptor holds the lock until it ends, also after its parent let go",
+          "[cases][lock]") {
+  const hydrojump::testing::TempDir tmp("lock");
+  const fs::path dir = tmp.path() / "run";
+  pid_t child = 0;
+  {
+    const DirectoryLock lock(dir, "hydrojump vof");
+    REQUIRE(lock.descriptor() > 2);
+    ChildCommand solver({"/bin/sh", "-c", "sleep 30"});
+    solver.inherited_descriptors = {lock.descriptor()};
+    child = start_child(solver);
+  }
+  // As interFoam after its runner was killed: a second runner is refused while it runs.
+  CHECK_THAT(busy_message(dir), Catch::Contains("in use by another process (hydrojump vof"));
+  stop_child(child);
+  CHECK(busy_message(dir) == "not refused");
 }
