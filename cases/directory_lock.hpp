@@ -6,7 +6,8 @@
 // The lock is flock(2) on an open file: the kernel releases it when the holder exits, however it exits
 // (SIGKILL, power loss of the process), so there is no stale lock to delete by hand. Child processes do
 // not inherit it (close-on-exec), except one started with the lock's descriptor() among its
-// ChildCommand::inherited_descriptors (the OpenFOAM solver), which then holds it until it ends too. The file keeps the holder's pid and command for the message. On a
+// ChildCommand::inherited_descriptors (the OpenFOAM solver), which then holds it until it ends too.
+// The file keeps the holder's pid and command for the message. On a
 // file system without flock support the run goes on unprotected, with a warning.
 //
 // Usage

@@ -220,18 +220,23 @@ bool time_directory_complete(const fs::path& time_dir) {
   return true;
 }
 
-// Moves a half-written time directory aside as <name>.incomplete (.incomplete.2, ... when a directory
-// of that name is left from an earlier kill); returns the new name. Throws when it cannot.
-std::string move_incomplete_aside(const fs::path& time_dir) {
+// Moves `dir` aside as <dir>.<suffix> (<dir>.<suffix>.2, ... when that name is left from an earlier
+// kill); returns the new name. Throws naming `what` when it cannot.
+std::string move_aside(const fs::path& dir, const std::string& suffix, const std::string& what) {
   std::error_code ec;
-  fs::path aside = time_dir.string() + ".incomplete";
-  for (int n = 2; fs::exists(aside, ec); ++n) aside = time_dir.string() + ".incomplete." + std::to_string(n);
-  fs::rename(time_dir, aside, ec);
+  fs::path aside = dir.string() + "." + suffix;
+  for (int n = 2; fs::exists(aside, ec); ++n) aside = dir.string() + "." + suffix + "." + std::to_string(n);
+  fs::rename(dir, aside, ec);
   if (ec) {
-    throw OpenFoamError("cannot move the half-written time directory " + time_dir.string() + " aside to " +
-                        aside.string() + ": " + ec.message() + " (move or delete it, then resume)");
+    throw OpenFoamError("cannot move " + what + " " + dir.string() + " aside to " + aside.string() + ": " +
+                        ec.message() + " (move or delete it, then resume)");
   }
   return aside.filename().string();
+}
+
+// A half-written time directory, as <name>.incomplete.
+std::string move_incomplete_aside(const fs::path& time_dir) {
+  return move_aside(time_dir, "incomplete", "the half-written time directory");
 }
 
 std::string format_seconds(double t) {
@@ -1235,14 +1240,7 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
       if (!fo->is_directory(ec)) continue;
       for (const auto& [t, path] : sample_times(fo->path())) {
         if (t <= start.value_or(0.0) + 1e-12) continue;
-        fs::path aside = path.string() + ".abandoned";
-        for (int n = 2; fs::exists(aside); ++n) aside = path.string() + ".abandoned." + std::to_string(n);
-        std::error_code move_error;
-        fs::rename(path, aside, move_error);
-        if (move_error) {
-          throw OpenFoamError("cannot move the abandoned samples " + path.string() + " aside: " + move_error.message() +
-                              " (move or delete them, then resume)");
-        }
+        move_aside(path, "abandoned", "the abandoned samples");
       }
     }
     if (continue_decomposed) {
