@@ -89,7 +89,9 @@ TEST_CASE("A child given the lock's descriptor holds the lock until it ends, als
   {
     const DirectoryLock lock(dir, "hydrojump vof");
     REQUIRE(lock.descriptor() > 2);
-    ChildCommand solver({"/bin/sh", "-c", "sleep 30"});
+    // sleep itself, in its own group (a shell could leave a forked sleep holding the lock after stop_child).
+    ChildCommand solver({"/bin/sleep", "30"});
+    solver.own_process_group = true;
     solver.inherited_descriptors = {lock.descriptor()};
     child = start_child(solver);
   }
