@@ -1,6 +1,8 @@
 #include "cases/directory_lock.hpp"
 
 #include <cerrno>
+#include <csignal>
+#include <cstdlib>
 #include <cstring>
 #include <iostream>
 #include <string>
@@ -20,6 +22,43 @@ std::string read_all(int fd) {
   for (ssize_t n; (n = ::read(fd, buffer, sizeof buffer)) > 0;) text.append(buffer, static_cast<std::size_t>(n));
   while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
   return text;
+}
+
+// Replaces the file's text (best effort: the lock, not the text, is what counts).
+void write_all(int fd, const std::string& text) {
+  if (::ftruncate(fd, 0) != 0) return;
+  ::lseek(fd, 0, SEEK_SET);
+  [[maybe_unused]] const auto written = ::write(fd, text.data(), text.size());
+}
+
+// Whether the holder the text's first line names ("<holder>, pid <pid>") has ended while the lock is
+// still held: then a child it gave the lock to runs on (a runner killed while its solver runs).
+bool holder_has_ended(const std::string& text) {
+  const std::string first_line = text.substr(0, text.find('\n'));
+  const std::size_t at = first_line.rfind(", pid ");
+  if (at == std::string::npos) return false;
+  char* end = nullptr;
+  const long pid = std::strtol(first_line.c_str() + at + 6, &end, 10);
+  if (end == first_line.c_str() + at + 6 || *end != '\0' || pid <= 0) return false;
+  return ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;
+}
+
+// The message for a second process: the holder and its note; when the holder has ended, that what it
+// left running holds the lock.
+std::string busy_message(const std::filesystem::path& dir, const std::string& text) {
+  if (text.empty()) {
+    return dir.string() + " is in use by another process (holder unknown); wait for it to finish or stop it "
+                          "(Ctrl-C or SIGTERM: runs stop with a checkpoint) first";
+  }
+  const std::size_t newline = text.find('\n');
+  const std::string holder = text.substr(0, newline);
+  const std::string note = newline == std::string::npos ? std::string() : text.substr(newline + 1);
+  if (!note.empty() && holder_has_ended(text)) {
+    return dir.string() + " is in use: " + holder + " has ended, but the child it left running holds the lock (" +
+           note + "); wait for it to finish or stop it first";
+  }
+  return dir.string() + " is in use by another process (" + holder + (note.empty() ? "" : "; " + note) +
+         "); wait for it to finish or stop it (Ctrl-C or SIGTERM: runs stop with a checkpoint) first";
 }
 
 }  // namespace
@@ -46,23 +85,21 @@ DirectoryLock::DirectoryLock(const std::filesystem::path& dir, const std::string
     const std::string other = read_all(fd_);
     ::close(fd_);
     fd_ = -1;
-    if (error == EWOULDBLOCK) {
-      throw DirectoryBusy(dir.string() + " is in use by another process (" +
-                          (other.empty() ? std::string("holder unknown") : other) +
-                          "); wait for it to finish or stop it (Ctrl-C or SIGTERM: runs stop with a checkpoint) first");
-    }
+    if (error == EWOULDBLOCK) throw DirectoryBusy(busy_message(dir, other));
     // A file system without flock (some NFS, FUSE): run unprotected rather than not at all.
     std::cerr << "warning: cannot lock " << file.string() << " (" << std::strerror(error)
               << "); make sure no other hydrojump process uses " << dir.string() << "\n";
     return;
   }
-  if (!writable) return;
-  // Ours: record who holds it (best effort; the lock, not the text, is what counts).
-  const std::string text = holder + ", pid " + std::to_string(::getpid()) + "\n";
-  if (::ftruncate(fd_, 0) == 0) {
-    ::lseek(fd_, 0, SEEK_SET);
-    [[maybe_unused]] const auto written = ::write(fd_, text.data(), text.size());
-  }
+  writable_ = writable;
+  holder_text_ = holder + ", pid " + std::to_string(::getpid());
+  // Ours: record who holds it.
+  set_note("");
+}
+
+void DirectoryLock::set_note(const std::string& note) const {
+  if (fd_ < 0 || !writable_) return;
+  write_all(fd_, holder_text_ + "\n" + (note.empty() ? std::string() : note + "\n"));
 }
 
 DirectoryLock::~DirectoryLock() {

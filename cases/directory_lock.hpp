@@ -7,11 +7,14 @@
 // (SIGKILL, power loss of the process), so there is no stale lock to delete by hand. Child processes do
 // not inherit it (close-on-exec), except one started with the lock's descriptor() among its
 // ChildCommand::inherited_descriptors (the OpenFOAM solver), which then holds it until it ends too.
-// The file keeps the holder's pid and command for the message. On a
-// file system without flock support the run goes on unprotected, with a warning.
+// The file keeps the holder's pid and command for the message, and a note on the child that holds
+// the lock with it (set_note); when the holder has ended and that child runs on, the message says so
+// and shows the note (how to stop the child). On a file system without flock support the run goes on
+// unprotected, with a warning.
 //
 // Usage
-//   const DirectoryLock lock(run_dir, "hydrojump sph");   // throws DirectoryBusy if held
+//   const DirectoryLock lock(run_dir, "hydrojump vof");   // throws DirectoryBusy if held
+//   lock.set_note("its solver: interFoam, pid 4242");     // while the child runs; set_note("") after
 //   ... run; the lock is released when `lock` goes out of scope ...
 #pragma once
 
@@ -43,8 +46,14 @@ class DirectoryLock {
   // long as it runs, also when this process dies first (ChildCommand::inherited_descriptors).
   int descriptor() const { return fd_; }
 
+  // Shows `note` after the holder in a second process's message (the child given descriptor(): what
+  // it is, its pid, how to stop it); "" removes it. Best effort, as the holder text.
+  void set_note(const std::string& note) const;
+
  private:
   int fd_ = -1;
+  bool writable_ = false;
+  std::string holder_text_;  // "<holder>, pid <pid>"
 };
 
 }  // namespace hydrojump::cases

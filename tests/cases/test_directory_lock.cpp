@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 
 #include <chrono>
+#include <fstream>
 #include <string>
 #include <thread>
 
@@ -99,4 +100,42 @@ TEST_CASE("A child given the lock's descriptor holds the lock until it ends, als
   CHECK_THAT(busy_message(dir), Catch::Contains("in use by another process (hydrojump vof"));
   stop_child(child);
   CHECK(busy_message(dir) == "not refused");
+}
+
+TEST_CASE("The holder's note on the child it runs is shown, and taken back", "[cases][lock]") {
+  const hydrojump::testing::TempDir tmp("lock");
+  const fs::path dir = tmp.path() / "run";
+  const DirectoryLock lock(dir, "hydrojump vof");
+  const std::string holder = "hydrojump vof, pid " + std::to_string(::getpid());
+  lock.set_note("its solver interFoam, pid 4242");
+  CHECK_THAT(busy_message(dir), Catch::Contains("in use by another process (" + holder +
+                                                "; its solver interFoam, pid 4242)"));
+  lock.set_note("");
+  CHECK_THAT(busy_message(dir), Catch::Contains("in use by another process (" + holder + ")"));
+}
+
+TEST_CASE("A lock held by the child of a holder that has ended says so and shows the note", "[cases][lock]") {
+  const hydrojump::testing::TempDir tmp("lock");
+  const fs::path dir = tmp.path() / "run";
+  fs::create_directories(dir);
+  // The solver a killed runner started, here flock(1) holding the lock as the inherited descriptor
+  // would.
+  const auto flock_program = find_on_path("flock");
+  if (!flock_program) FAIL("flock(1) (util-linux) is needed for this test");
+  const pid_t solver = start_child(ChildCommand(
+      {flock_program->string(), "--no-fork", (dir / DirectoryLock::file_name).string(), "sleep", "30"}));
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (busy_message(dir) == "not refused") {
+    REQUIRE(std::chrono::steady_clock::now() < deadline);
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  // The text the runner left (its pid above any pid_max, so no process has it); written now, since a
+  // probe that got the lock before flock(1) did wrote its own.
+  std::ofstream(dir / DirectoryLock::file_name)
+      << "hydrojump vof, pid 999999999\nits solver interFoam, pid 4242 (`kill -USR2 4242` stops it)\n";
+  const std::string message = busy_message(dir);
+  CHECK_THAT(message, Catch::StartsWith(dir.string() + " is in use: hydrojump vof, pid 999999999 has ended, but the "
+                                                       "child it left running holds the lock (its solver interFoam, "
+                                                       "pid 4242 (`kill -USR2 4242` stops it))"));
+  stop_child(solver);
 }
