@@ -1,14 +1,13 @@
 #include "cases/results_case.hpp"
 
 #include <algorithm>
-#include <cmath>
-#include <cstdlib>
 #include <initializer_list>
 #include <sstream>
 #include <stdexcept>
 
 #include "cases/atomic_file.hpp"
 #include "cases/fingerprint.hpp"
+#include "cases/time_directories.hpp"
 
 namespace fs = std::filesystem;
 
@@ -60,28 +59,11 @@ SettingDifference first_setting_difference(std::string_view case_text_a, std::st
   return {};
 }
 
-namespace {
-
-// Whether `dir` holds an OpenFOAM time directory after the start (a name that is a number > 0).
-bool holds_later_time_directory(const fs::path& dir) {
-  std::error_code ec;
-  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
-    if (!it->is_directory(ec)) continue;
-    const std::string name = it->path().filename().string();
-    char* rest = nullptr;
-    const double t = std::strtod(name.c_str(), &rest);
-    if (!name.empty() && rest != nullptr && *rest == '\0' && std::isfinite(t) && t > 0.0) return true;
-  }
-  return false;
-}
-
-}  // namespace
-
 bool holds_results(const fs::path& solver_dir) {
   for (const char* name : {"checkpoint.bin", "particles.pvd", "summary.json", "log.interFoam"})
     if (fs::exists(solver_dir / name)) return true;
   // An OpenFOAM run without its log (interFoam run by hand): its time directories, serial or decomposed.
-  return holds_later_time_directory(solver_dir) || holds_later_time_directory(solver_dir / "processor0");
+  return !time_directories(solver_dir, 0.0).empty() || !time_directories(solver_dir / "processor0", 0.0).empty();
 }
 
 void record_results_case(const fs::path& solver_dir) {

@@ -1,6 +1,7 @@
 #include "compare/readers.hpp"
 
 #include "cases/output_times.hpp"
+#include "cases/time_directories.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -253,15 +254,8 @@ bool has_openfoam_results(const fs::path& vof_dir) {
   if (!fs::exists(vof_dir / "constant" / "polyMesh" / "owner") &&
       !fs::exists(vof_dir / "constant" / "polyMesh" / "owner.gz"))
     return false;
-  for (const auto& e : fs::directory_iterator(vof_dir)) {
-    if (!e.is_directory()) continue;
-    const std::string name = e.path().filename().string();
-    char* end = nullptr;
-    const double t = std::strtod(name.c_str(), &end);
-    if (end && *end == '\0' && !name.empty() && t > 0.0 &&
-        (fs::exists(e.path() / "alpha.water") || fs::exists(e.path() / "alpha.water.gz")))
-      return true;
-  }
+  for (const auto& [t, time_dir] : cases::time_directories(vof_dir, 0.0))
+    if (fs::exists(time_dir / "alpha.water") || fs::exists(time_dir / "alpha.water.gz")) return true;
   return false;
 }
 

@@ -1,8 +1,5 @@
 #include "reference/line_samples.hpp"
 
-#include <algorithm>
-#include <cmath>
-#include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -45,21 +42,6 @@ std::optional<double> surge_front(const LineSample& line, double max_gap_m) {
     }
   }
   return front;
-}
-
-std::vector<std::pair<double, std::filesystem::path>> sample_times(const std::filesystem::path& function_dir) {
-  std::vector<std::pair<double, std::filesystem::path>> out;
-  std::error_code ec;
-  if (!std::filesystem::is_directory(function_dir, ec)) return out;
-  for (const auto& entry : std::filesystem::directory_iterator(function_dir, ec)) {
-    if (!entry.is_directory()) continue;
-    const std::string name = entry.path().filename().string();
-    char* end = nullptr;
-    const double t = std::strtod(name.c_str(), &end);
-    if (end != name.c_str() && *end == '\0' && std::isfinite(t)) out.emplace_back(t, entry.path());
-  }
-  std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  return out;
 }
 
 }  // namespace hydrojump::reference

@@ -33,7 +33,4 @@ double water_depth(const LineSample& line);
 // The furthest wet position connected to the start of the line (nothing if the start is dry).
 std::optional<double> surge_front(const LineSample& line, double max_gap_m);
 
-// The sample times written under postProcessing/<function>/ (sorted).
-std::vector<std::pair<double, std::filesystem::path>> sample_times(const std::filesystem::path& function_dir);
-
 }  // namespace hydrojump::reference

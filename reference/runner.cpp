@@ -32,6 +32,7 @@
 #include "cases/geometry.hpp"
 #include "cases/results_case.hpp"
 #include "cases/spec_reader.hpp"
+#include "cases/time_directories.hpp"
 #include "reference/case_writer.hpp"
 #include "reference/discharge_samples.hpp"
 #include "reference/foam_dictionary.hpp"
@@ -68,16 +69,19 @@ class ScratchDirectory {
   fs::path path_;
 };
 
-volatile std::sig_atomic_t stop_requested = 0;
-void reference_runner_request_stop(int) { stop_requested = 1; }
+// The stop requests (Ctrl-C, SIGTERM, a hangup) since the StopRequestGuard of this run was installed.
+volatile std::sig_atomic_t stop_requests = 0;
+void reference_runner_request_stop(int) { stop_requests = stop_requests + 1; }
 
-// Installs SIGINT/SIGTERM handlers for its lifetime, and a SIGHUP one unless SIGHUP is ignored (nohup):
-// a closed terminal stops the solver with its state written, instead of leaving it running unowned
-// (it runs in its own process group, which the hangup does not reach).
+// Installs SIGINT/SIGTERM handlers for its lifetime (one run of `hydrojump vof`), and a SIGHUP one
+// unless SIGHUP is ignored (nohup): a closed terminal stops the solver with its state written, instead
+// of leaving it running unowned (it runs in its own process group, which the hangup does not reach).
+// The run stops at the next safe point: the solver writes its current time and stops, a utility
+// (blockMesh, decomposePar, reconstructPar, ...) is stopped, and no further step starts.
 class StopRequestGuard {
  public:
   StopRequestGuard() {
-    stop_requested = 0;
+    stop_requests = 0;
     struct sigaction sa {};
     sa.sa_handler = reference_runner_request_stop;
     sigemptyset(&sa.sa_mask);
@@ -149,37 +153,34 @@ std::string command_text(const std::vector<std::string>& argv) {
   return s;
 }
 
-// Runs one utility to completion; a non-zero exit stops the run with the tail of its log.
+// Whether a step runs after a stop request made before it started: a step of the run does not
+// start; the reconstruction of what an interrupted parallel run wrote does (a new request stops it).
+enum class AfterStopRequest { skip, run };
+
+// Runs one utility to completion; a non-zero exit stops the run with the tail of its log. A stop
+// request stops it (what it wrote is not used: the next run starts the step again).
 void run_step(const fs::path& dir, const std::vector<std::string>& argv, const std::string& log_name,
-              std::ostream& out) {
+              std::ostream& out, AfterStopRequest after_request = AfterStopRequest::skip) {
+  const std::sig_atomic_t requests_before = after_request == AfterStopRequest::run ? stop_requests : 0;
+  const std::string interrupted = "interrupted: " + argv.front() + " in " + dir.string() +
+                                  " was stopped on request. Run the same `hydrojump vof` command with --resume to "
+                                  "go on (the step runs again).";
+  if (stop_requests != requests_before) throw OpenFoamError(interrupted);
   out << "  " << command_text(argv) << "  (log: " << log_name << ")\n" << std::flush;
   const fs::path log = dir / log_name;
-  const cases::ChildExit ended = cases::wait_child(spawn(argv, dir, log, false));
-  if (ended.status() != 0) {
-    throw OpenFoamError(argv.front() + " failed (it " + ended.describe() + ") in " + dir.string() +
+  const pid_t pid = spawn(argv, dir, log, false);
+  std::optional<cases::ChildExit> ended;
+  while (!(ended = cases::poll_child(pid))) {
+    if (stop_requests != requests_before) {
+      cases::stop_child(pid);
+      throw OpenFoamError(interrupted);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  if (ended->status() != 0) {
+    throw OpenFoamError(argv.front() + " failed (it " + ended->describe() + ") in " + dir.string() +
                         "; last lines of " + log_name + ":\n" + tail_file(log));
   }
-}
-
-std::optional<double> parse_time_name(const std::string& name) {
-  if (name.empty() || !(std::isdigit(static_cast<unsigned char>(name[0])) || name[0] == '.')) return std::nullopt;
-  char* end = nullptr;
-  const double t = std::strtod(name.c_str(), &end);
-  if (end == name.c_str() || *end != '\0' || !std::isfinite(t)) return std::nullopt;
-  return t;
-}
-
-std::vector<std::pair<double, fs::path>> time_directories(const fs::path& dir) {
-  std::vector<std::pair<double, fs::path>> out;
-  std::error_code ec;
-  if (!fs::is_directory(dir, ec)) return out;
-  for (const auto& entry : fs::directory_iterator(dir, ec)) {
-    if (!entry.is_directory()) continue;
-    const auto t = parse_time_name(entry.path().filename().string());
-    if (t && *t > 0.0) out.emplace_back(*t, entry.path());
-  }
-  std::sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  return out;
 }
 
 // processor0/, processor1/, ... of a decomposed case, up to the first missing rank.
@@ -198,7 +199,17 @@ bool foam_file_complete(const fs::path& file) {
     if (fs::file_size(file, ec) == 0 || ec) return false;
     return wait_for(spawn({"gzip", "-t", file.string()}, file.parent_path(), "/dev/null", true)) == 0;
   }
-  return cases::read_text_file(file).find("// ****") != std::string::npos;
+  // The rule is the file's last line (a blank line may follow it): its tail is enough to read.
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return false;
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in.tellg();
+  if (size <= 0) return false;
+  const std::streamoff tail = std::min<std::streamoff>(size, 4096);
+  std::string text(static_cast<std::size_t>(tail), '\0');
+  in.seekg(size - tail);
+  in.read(text.data(), tail);
+  return in && text.find("// ****") != std::string::npos;
 }
 
 // A time directory is complete when its main fields are present and every field file in it (the
@@ -558,15 +569,15 @@ MapSource check_map_source(const fs::path& source_in, const fs::path& target, co
                         (source_study.cases.empty() ? std::string() : source_study.cases.front().id) +
                         "\", not \"" + case_id + "\" (the state of another case is not an initial state for this one)");
   }
-  auto times = time_directories(source);
-  while (!times.empty() && !time_directory_complete(times.back().second)) times.pop_back();
+  auto times = cases::time_directories(source, 0.0);
+  while (!times.empty() && !time_directory_complete(times.back().path)) times.pop_back();
   if (times.empty()) {
     const bool decomposed = latest_time(source / "processor0").has_value();
     throw OpenFoamError(what + ": no complete time directory after t = 0" +
                         (decomposed ? std::string(" (its results are in processor*/: run reconstructPar there first)")
                                     : std::string()));
   }
-  return MapSource{source, times.back().second.filename().string()};
+  return MapSource{source, times.back().path.filename().string()};
 }
 
 // The setting lines (cases::setting_lines) of one resolved case that the other lacks, each as
@@ -818,6 +829,34 @@ void restore_control_dict_left_behind(const fs::path& dir, std::ostream& out) {
       << " (left by a run stopped while aligning with the output times)\n";
 }
 
+// Present while decomposePar runs: processor*/ are then not a decomposition to resume from.
+constexpr const char* decomposing_marker = ".decomposing";
+
+// Removes processor*/ left by a decomposePar that was stopped or killed (the marker is still there).
+// Nothing in them is lost: decomposePar -force had replaced the earlier ones, and the time they
+// were decomposed from is still in the case directory.
+void remove_cut_short_decomposition(const fs::path& dir, std::ostream& out) {
+  if (!fs::exists(dir / decomposing_marker)) return;
+  std::vector<fs::path> ranks;
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (name.rfind("processor", 0) == 0 && name.size() > 9 &&
+        name.find_first_not_of("0123456789", 9) == std::string::npos)
+      ranks.push_back(it->path());
+  }
+  for (const fs::path& rank : ranks) {
+    fs::remove_all(rank, ec);
+    if (ec) {
+      throw OpenFoamError("cannot remove " + rank.string() + ", left by a decomposePar that was cut short: " +
+                          ec.message() + " (delete processor*/ and " + decomposing_marker + ", then run again)");
+    }
+  }
+  fs::remove(dir / decomposing_marker);
+  out << "  removed " << ranks.size() << " processor directories left by a decomposePar that was cut short "
+      << "(the case is decomposed again)\n";
+}
+
 // --------------------------------------------------------------------------------- the solver
 
 // What every leg of interFoam needs: the case, the command (interFoam, or mpirun ... -parallel).
@@ -829,7 +868,7 @@ struct SolverRun {
   bool parallel;
   const RunOptions& options;
   double run_end_s;                  // the end time of the whole run (progress and ETA)
-  int lock_descriptor = -1;          // the case directory's lock, which the solver holds while it runs
+  const cases::DirectoryLock& lock;  // the case directory's, which the solver holds while it runs
 };
 
 // Runs the solver from `start` (nothing: t = 0) until `end_time_s`, showing progress, and returns the
@@ -852,7 +891,14 @@ double run_solver(const SolverRun& run, std::optional<double> start, double end_
       << " s (log: log.interFoam)\n" << std::flush;
   // The solver holds the directory's lock too: if this runner dies (SIGKILL, out of memory) while
   // interFoam goes on, a second `hydrojump vof DIR` is refused until that solver has ended.
-  const pid_t pid = spawn(run.command, dir, log_file, start.has_value(), {run.lock_descriptor});
+  const pid_t pid = spawn(run.command, dir, log_file, start.has_value(), {run.lock.descriptor()});
+  // What a second runner is shown, also when this one was killed and the solver runs on.
+  run.lock.set_note("its solver " + run.command.front() + ", pid " + std::to_string(pid) + " (`kill -USR2 " +
+                    std::to_string(pid) + "` makes it write its current time and stop; then --resume)");
+  struct NoteCleared {
+    const cases::DirectoryLock& lock;
+    ~NoteCleared() { lock.set_note(""); }
+  } note_cleared{run.lock};
   SolverLog log(DivergenceLimits{c.vof.max_courant, 25.0, 1e-9});
   const bool interactive = (&out == &std::cout) && ::isatty(STDOUT_FILENO);
   const double t_begin = start.value_or(0.0);
@@ -900,13 +946,12 @@ double run_solver(const SolverRun& run, std::optional<double> start, double end_
       out << line << "\n" << std::flush;
     }
   };
-  StopRequestGuard stop_guard;
   bool stop_sent = false;
   std::chrono::steady_clock::time_point stop_time;
   while (!ended) {
     std::this_thread::sleep_for(std::chrono::milliseconds(500));
     ended = cases::poll_child(pid);
-    if (stop_requested && !ended && !stop_sent) {
+    if (stop_requests > 0 && !ended && !stop_sent) {
       ::kill(pid, write_and_stop_signal);  // first: the message may go to a pipe a hangup has closed
       out << (interactive ? "\n" : "") << "Stop requested: interFoam writes the current time and stops...\n"
           << std::flush;
@@ -962,9 +1007,9 @@ double run_solver(const SolverRun& run, std::optional<double> start, double end_
 }  // namespace
 
 std::optional<double> latest_time(const fs::path& case_dir) {
-  const auto times = time_directories(case_dir);
+  const auto times = cases::time_directories(case_dir, 0.0);
   if (times.empty()) return std::nullopt;
-  return times.back().first;
+  return times.back().time_s;
 }
 
 std::vector<SolverLeg> plan_solver_legs(double start_s, double end_s, std::optional<double> interval) {
@@ -1024,7 +1069,7 @@ void tailwater_control_after_leg(const fs::path& dir, const TailwaterControlLaw&
   int samples = 0;
   const fs::path surfaces = dir / "postProcessing" / free_surface_function;
   std::vector<double> x, z;
-  for (const auto& [t, time_dir] : sample_times(surfaces)) {
+  for (const auto& [t, time_dir] : cases::time_directories(surfaces)) {
     if (t <= previous_step_s + tol || t > leg_end_s + tol) continue;
     // Before a resume, a stop wrote its time off the output grid (4.41491 s): an uninterrupted run has
     // no sample there, so the step does not count it either.
@@ -1063,12 +1108,12 @@ void tailwater_control_after_leg(const fs::path& dir, const TailwaterControlLaw&
   std::vector<fs::path> u_files;
   if (parallel) {
     for (const fs::path& rank : processor_directories(dir)) {
-      const auto times = time_directories(rank);
-      if (!times.empty()) u_files.push_back(times.back().second / "U");
+      const auto times = cases::time_directories(rank, 0.0);
+      if (!times.empty()) u_files.push_back(times.back().path / "U");
     }
   } else {
-    const auto times = time_directories(dir);
-    if (!times.empty()) u_files.push_back(times.back().second / "U");
+    const auto times = cases::time_directories(dir, 0.0);
+    if (!times.empty()) u_files.push_back(times.back().path / "U");
   }
   if (u_files.empty()) throw OpenFoamError("tailwater control: no time directory in " + dir.string());
   for (const fs::path& f : u_files) {
@@ -1099,13 +1144,14 @@ void tailwater_control_after_leg(const fs::path& dir, const TailwaterControlLaw&
 // `compare`, ParaView and a serial resume see them; processor*/ stay for `--resume --np N`. Returns a
 // sentence for the error message (empty when there was nothing to reconstruct).
 std::string reconstruct_written_times(const fs::path& dir, int np, std::ostream& out) {
-  auto times = time_directories(dir / "processor0");
-  while (!times.empty() && !time_directory_complete(times.back().second)) times.pop_back();
+  auto times = cases::time_directories(dir / "processor0", 0.0);
+  while (!times.empty() && !time_directory_complete(times.back().path)) times.pop_back();
   const auto reconstructed = latest_time(dir);
-  if (times.empty() || (reconstructed && *reconstructed >= times.back().first - 1e-12)) return "";
-  const std::string last = times.back().second.filename().string();
+  if (times.empty() || (reconstructed && *reconstructed >= times.back().time_s - 1e-12)) return "";
+  const std::string last = times.back().path.filename().string();
   try {
-    run_step(dir, {"reconstructPar", "-newTimes", "-time", ":" + last}, "log.reconstructPar", out);
+    run_step(dir, {"reconstructPar", "-newTimes", "-time", ":" + last}, "log.reconstructPar", out,
+             AfterStopRequest::run);
   } catch (const OpenFoamError& e) {
     const std::string why = e.what();
     return "\nThe times written so far are only in processor*/: reconstructPar failed (" +
@@ -1127,7 +1173,10 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
   }
   // One process per case directory (a second one stops here, naming the first).
   const cases::DirectoryLock lock(dir, "hydrojump vof");
+  // Ctrl-C, SIGTERM or a hangup from here on stop the run at its next safe point.
+  const StopRequestGuard stop_guard;
   restore_control_dict_left_behind(dir, out);
+  remove_cut_short_decomposition(dir, out);
   const cases::Study study = cases::load_study(spec_file);
   if (study.cases.size() != 1 || study.cases.front().resolutions.size() != 1) {
     throw OpenFoamError(spec_file.string() + " must hold exactly one case with one resolution table "
@@ -1214,7 +1263,7 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
     const std::vector<fs::path> ranks = continue_decomposed ? processor_directories(dir) : std::vector<fs::path>{dir};
     std::map<double, std::string> times;
     for (const fs::path& rank : ranks)
-      for (const auto& [t, path] : time_directories(rank)) times.emplace(t, path.filename().string());
+      for (const auto& [t, path] : cases::time_directories(rank, 0.0)) times.emplace(t, path.filename().string());
     const auto complete_everywhere = [&ranks](const std::string& name) {
       for (const fs::path& rank : ranks) {
         if (!time_directory_complete(rank / name)) return false;
@@ -1238,18 +1287,16 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
     std::error_code ec;
     for (fs::directory_iterator fo(dir / "postProcessing", ec), end; !ec && fo != end; fo.increment(ec)) {
       if (!fo->is_directory(ec)) continue;
-      for (const auto& [t, path] : sample_times(fo->path())) {
-        if (t <= start.value_or(0.0) + 1e-12) continue;
+      for (const auto& [t, path] : cases::time_directories(fo->path(), start.value_or(0.0) + 1e-12))
         move_aside(path, "abandoned", "the abandoned samples");
-      }
     }
     if (continue_decomposed) {
       // reconstructPar -newTimes skips a time already at the top level, so a reconstruction killed
       // while writing would stay half-written there: move it aside to be reconstructed again.
-      auto reconstructed = time_directories(dir);
-      while (!reconstructed.empty() && !time_directory_complete(reconstructed.back().second)) {
-        out << "  reconstructed time directory " << reconstructed.back().second.filename().string()
-            << " is incomplete: moved to " << move_incomplete_aside(reconstructed.back().second)
+      auto reconstructed = cases::time_directories(dir, 0.0);
+      while (!reconstructed.empty() && !time_directory_complete(reconstructed.back().path)) {
+        out << "  reconstructed time directory " << reconstructed.back().path.filename().string()
+            << " is incomplete: moved to " << move_incomplete_aside(reconstructed.back().path)
             << " (reconstructed again at the end)\n";
         reconstructed.pop_back();
       }
@@ -1327,7 +1374,10 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
           foam::format_file({"dictionary", "system", "decomposeParDict"}, decompose_par_dict(options.np)));
       std::vector<std::string> argv = {"decomposePar", "-force"};
       if (start) argv.push_back("-latestTime");
+      // Until it has finished, processor*/ are not a decomposition to resume from.
+      cases::write_file_atomically(dir / decomposing_marker, "decomposePar started by hydrojump vof\n");
       run_step(dir, argv, "log.decomposePar", out);
+      fs::remove(dir / decomposing_marker);
     }
     solver = {"mpirun"};
     if (::geteuid() == 0) solver.push_back("--allow-run-as-root");
@@ -1337,7 +1387,7 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
       solver.push_back(a);
     }
   }
-  const SolverRun run{dir, c, vof.mesh.thickness_m, solver, parallel, options, end_time_s, lock.descriptor()};
+  const SolverRun run{dir, c, vof.mesh.thickness_m, solver, parallel, options, end_time_s, lock};
   // Legs that keep every output on the case's grid (plan_solver_legs): usually one.
   const double t_begin = start.value_or(0.0);
   std::optional<double> leg_start = start;
@@ -1356,8 +1406,18 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
     out << line.str();
   }
   // A parallel run that stops early leaves its written times where compare and ParaView look.
+  // Between two steps (after a leg, during the control step) a stop request ends the run here.
+  const auto stop_if_requested = [&]() {
+    if (stop_requests == 0) return;
+    const auto written = latest_time(parallel ? dir / "processor0" : dir);
+    throw OpenFoamError("interrupted: stopped on request with the latest time directory at " +
+                        (written ? "t = " + format_seconds(*written) + " s" : std::string("none")) +
+                        ". Continue with `hydrojump vof " + dir.string() + " --resume" +
+                        (parallel ? " --np " + std::to_string(options.np) : std::string()) + "`.");
+  };
   try {
     for (const SolverLeg& leg : legs) {
+      stop_if_requested();
       std::optional<ControlDictOverride> leg_control;
       if (leg.write_interval_s || std::abs(leg.end_s - end_time_s) > 1e-12) {
         if (leg_start && leg.write_interval_s && leg.end_s < end_time_s) {
@@ -1379,6 +1439,7 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
       }
       leg_start = leg.end_s;
     }
+    stop_if_requested();
   } catch (const OpenFoamError& e) {
     if (!parallel) throw;
     throw OpenFoamError(e.what() + reconstruct_written_times(dir, options.np, out));

@@ -55,10 +55,6 @@ TEST_CASE("raw .xy files are read and bad ones rejected with the file name", "[r
   CHECK_THROWS_WITH(hydrojump::reference::read_line_sample(dir / "0.25/line_alpha.water.xy"),
                     Catch::Contains("0.25/line_alpha.water.xy"));
   CHECK_THROWS_WITH(hydrojump::reference::read_line_sample(dir / "missing.xy"), Catch::Contains("missing.xy"));
-  const auto times = hydrojump::reference::sample_times(dir);
-  REQUIRE(times.size() == 2);
-  CHECK(times[0].first == 0.25);
-  CHECK(times[1].first == 0.5);
 }
 
 TEST_CASE("patch discharges: window means per unit width, outward fluxes, restarts and missing samples",

@@ -5,6 +5,9 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <csignal>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -12,6 +15,9 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <thread>
+
+#include <unistd.h>
 
 #include "cases/fingerprint.hpp"
 #include "cases/spec_reader.hpp"
@@ -93,6 +99,35 @@ std::vector<double> internal_field(const fs::path& gz_file) {
   while (in >> v) values.push_back(v);
   return values;
 }
+
+// Sends SIGINT (Ctrl-C) to this process once `file` holds `text` (within 60 s), as a user watching the
+// run would: the runner's handler, installed while it runs, turns it into a stop request.
+class InterruptWhen {
+ public:
+  InterruptWhen(fs::path file, std::string text)
+      : thread_([file = std::move(file), text = std::move(text), this]() {
+          const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+          while (!cancelled_ && std::chrono::steady_clock::now() < deadline) {
+            if (fs::exists(file) && cases::read_text_file(file).find(text) != std::string::npos) {
+              ::kill(::getpid(), SIGINT);
+              sent_ = true;
+              return;
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(5));
+          }
+        }) {}
+  ~InterruptWhen() {
+    cancelled_ = true;
+    thread_.join();
+  }
+  InterruptWhen(const InterruptWhen&) = delete;
+  InterruptWhen& operator=(const InterruptWhen&) = delete;
+  bool sent() const { return sent_; }
+
+ private:
+  std::atomic<bool> cancelled_{false}, sent_{false};
+  std::thread thread_;
+};
 
 long checkmesh_cells(const fs::path& dir) {
   const std::string log = cases::read_text_file(dir / "log.checkMesh");
@@ -645,6 +680,86 @@ TEST_CASE("an MPI run that stops early has the times written so far reconstructe
   CHECK(fs::exists(dir / "processor1/0.01/alpha.water.gz"));
   CHECK_FALSE(fs::exists(dir / "0.02"));
   CHECK_THAT(cases::read_text_file(dir / "log.reconstructPar"), Catch::Contains("Time = 0.01"));
+}
+
+TEST_CASE("Ctrl-C while interFoam runs writes the current time and stops; --resume finishes the run",
+          "[reference][openfoam][stop]") {
+  require_openfoam();
+  const TempDir tmp("openfoam-stop");
+  const fs::path dir = generate(basin_spec("", 0.3, 0.1), tmp.path() / "case");
+  std::ostringstream out;
+  {
+    // After a few time steps (the first output is at 0.1 s).
+    const InterruptWhen ctrl_c(dir / "log.interFoam", "\nTime = 0.01");
+    CHECK_THROWS_WITH(reference::run_vof_case(dir, reference::RunOptions{}, out),
+                      Catch::StartsWith("interrupted: interFoam stopped at t = ") &&
+                          Catch::Contains("--resume"));
+    CHECK(ctrl_c.sent());
+  }
+  INFO(out.str());
+  CHECK_THAT(out.str(), Catch::Contains("Stop requested: interFoam writes the current time and stops"));
+  // It wrote the time it had reached (off the output grid), whole; nothing is left running.
+  const auto written = reference::latest_time(dir);
+  REQUIRE(written.has_value());
+  CHECK(*written > 0.01);
+  CHECK(*written < 0.3);
+  CHECK_THAT(cases::read_text_file(dir / ".hydrojump.lock"), !Catch::Contains("its solver"));
+  reference::RunOptions resume;
+  resume.resume = true;
+  std::ostringstream out2;
+  reference::run_vof_case(dir, resume, out2);
+  INFO(out2.str());
+  CHECK_THAT(out2.str(), Catch::Contains("reached t = 0.3"));
+  CHECK(fs::exists(dir / "0.1"));
+  CHECK(fs::exists(dir / "0.3"));
+}
+
+TEST_CASE("Ctrl-C during meshing stops the step and starts nothing after it; the next run meshes again",
+          "[reference][openfoam][stop]") {
+  require_openfoam();
+  const TempDir tmp("openfoam-stop-mesh");
+  const fs::path dir = generate(basin_spec("", 0.02, 0.01), tmp.path() / "case");
+  std::ostringstream out;
+  {
+    const InterruptWhen ctrl_c(dir / "log.blockMesh", "");
+    CHECK_THROWS_WITH(reference::run_vof_case(dir, reference::RunOptions{}, out),
+                      Catch::StartsWith("interrupted: ") && Catch::Contains("was stopped on request") &&
+                          Catch::Contains("--resume"));
+    CHECK(ctrl_c.sent());
+  }
+  INFO(out.str());
+  CHECK_FALSE(fs::exists(dir / "log.interFoam"));
+  CHECK_FALSE(fs::exists(dir / "log.setFields"));
+  reference::RunOptions resume;
+  resume.resume = true;
+  std::ostringstream out2;
+  reference::run_vof_case(dir, resume, out2);
+  INFO(out2.str());
+  CHECK_THAT(out2.str(), Catch::Contains("blockMesh") && Catch::Contains("reached t = 0.02"));
+}
+
+TEST_CASE("processor directories of a decomposition that was cut short are removed and made again",
+          "[reference][openfoam][stop]") {
+  require_openfoam();
+  const TempDir tmp("openfoam-decomposition-cut-short");
+  const fs::path dir = generate(basin_spec("", 0.02, 0.01), tmp.path() / "case");
+  // decomposePar killed while writing: two ranks begun, a time directory in one of them, and the
+  // runner's marker still there.
+  fs::create_directories(dir / "processor0/constant/polyMesh");
+  fs::create_directories(dir / "processor0/0.01");
+  fs::create_directories(dir / "processor1");
+  std::ofstream(dir / "processor0/0.01/U") << "FoamFile {";
+  std::ofstream(dir / ".decomposing") << "decomposePar started by hydrojump vof\n";
+  reference::RunOptions np2;
+  np2.np = 2;
+  std::ostringstream out;
+  reference::run_vof_case(dir, np2, out);
+  INFO(out.str());
+  CHECK_THAT(out.str(), Catch::Contains("removed 2 processor directories left by a decomposePar that was cut short"));
+  CHECK_THAT(out.str(), Catch::Contains("decomposePar") && Catch::Contains("reached t = 0.02"));
+  CHECK_FALSE(fs::exists(dir / ".decomposing"));
+  CHECK(fs::exists(dir / "processor1/0.02"));
+  CHECK(fs::exists(dir / "0.02"));
 }
 
 TEST_CASE("body_fitted is refused exactly when the self-test shows the non-orthogonal defect",
