@@ -149,7 +149,9 @@ void write_trial_cases(const cases::Study& study, const std::vector<const cases:
 std::vector<const cases::Case*> select_cases(const cases::Study& study,
                                              const std::vector<std::string>& ids) {
   std::vector<const cases::Case*> selected;
-  if (ids.empty()) {
+  // "all" (alone, in a study without a case of that name) is every case, as no ids are.
+  const bool all = ids.size() == 1 && ids.front() == "all" && study.find_case("all") == nullptr;
+  if (ids.empty() || all) {
     for (const auto& c : study.cases) selected.push_back(&c);
     return selected;
   }
@@ -159,7 +161,7 @@ std::vector<const cases::Case*> select_cases(const cases::Study& study,
       std::string known;
       for (const auto& k : study.cases) known += (known.empty() ? "" : ", ") + k.id;
       throw cases::SpecError(study.source_file.string() + ": --case \"" + id +
-                             "\": no such case (cases in this study: " + known + ")");
+                             "\": no such case (cases in this study: " + known + "; \"all\" for every case)");
     }
     // A case named twice runs once (two runs of one case would share its directory).
     if (std::find(selected.begin(), selected.end(), c) == selected.end()) selected.push_back(c);
@@ -251,7 +253,7 @@ void register_case_commands(CLI::App& app) {
   generate->add_option("SPEC", options->spec, "study file (TOML), or \"default\" for the embedded one")
       ->required();
   generate->add_option("--out,-o", options->out, "output directory")->required()->check(cases::non_empty_path());
-  generate->add_option("--case,-c", options->cases, "case id to generate (repeatable; default: all)");
+  generate->add_option("--case,-c", options->cases, "case id to generate (repeatable; default or \"all\": every case)");
   generate->add_option("--resolution,-r", options->resolution,
                        "resolution level defined in the spec (quick, default, fine)")
       ->capture_default_str();

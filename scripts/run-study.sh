@@ -16,17 +16,9 @@ spec=default
 if [ $# -gt 0 ] && [ "${1#-}" = "$1" ]; then spec="$1"; shift; fi
 has_cases=0 has_resolution=0 has_out=0
 filtered=()
-skip_all=0
 for a in "$@"; do
-  if [ "$skip_all" -eq 1 ]; then
-    skip_all=0
-    # "--cases all" means every case: drop the option.
-    if [ "$a" = all ]; then unset 'filtered[-1]'; continue; fi
-  fi
   case "$a" in
-    --cases) has_cases=1; skip_all=1 ;;
-    --cases=all) has_cases=1; continue ;;
-    --cases=*) has_cases=1 ;;
+    --cases|--cases=*) has_cases=1 ;;  # "--cases all": every case (hydrojump study reads "all")
     --resolution|--resolution=*|-r) has_resolution=1 ;;
     --out|--out=*|-o) has_out=1 ;;
   esac
