@@ -1,9 +1,12 @@
 #include "cases/directory_lock.hpp"
 
 #include <cerrno>
+#include <algorithm>
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
+#include <sstream>
+#include <vector>
 #include <iostream>
 #include <string>
 
@@ -24,41 +27,44 @@ std::string read_all(int fd) {
   return text;
 }
 
-// Replaces the file's text (best effort: the lock, not the text, is what counts).
+// Replaces the file's text (best effort: the lock, not the text, is what counts). Written over the old
+// text, then cut to its length, so that a reader never finds the file empty.
 void write_all(int fd, const std::string& text) {
-  if (::ftruncate(fd, 0) != 0) return;
-  ::lseek(fd, 0, SEEK_SET);
-  [[maybe_unused]] const auto written = ::write(fd, text.data(), text.size());
+  if (::pwrite(fd, text.data(), text.size(), 0) != static_cast<ssize_t>(text.size())) return;
+  [[maybe_unused]] const int cut = ::ftruncate(fd, static_cast<off_t>(text.size()));
 }
 
-// Whether the holder the text's first line names ("<holder>, pid <pid>") has ended while the lock is
-// still held: then a child it gave the lock to runs on (a runner killed while its solver runs).
-bool holder_has_ended(const std::string& text) {
-  const std::string first_line = text.substr(0, text.find('\n'));
-  const std::size_t at = first_line.rfind(", pid ");
-  if (at == std::string::npos) return false;
+// The process named by "..., pid <pid>" at the end of `line`, or 0.
+pid_t pid_in(const std::string& line) {
+  const std::size_t at = line.rfind("pid ");
+  if (at == std::string::npos) return 0;
   char* end = nullptr;
-  const long pid = std::strtol(first_line.c_str() + at + 6, &end, 10);
-  if (end == first_line.c_str() + at + 6 || *end != '\0' || pid <= 0) return false;
-  return ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;
+  const long pid = std::strtol(line.c_str() + at + 4, &end, 10);
+  if (end == line.c_str() + at + 4 || pid <= 0) return 0;
+  return static_cast<pid_t>(pid);
 }
 
-// The message for a second process: the holder and its note; when the holder has ended, that what it
-// left running holds the lock.
+bool process_exists(pid_t pid) { return pid > 0 && (::kill(pid, 0) == 0 || errno == EPERM); }
+
+// The message for a second process. The file holds the holder ("<holder>, pid <pid>"), then the note
+// on the child it runs and the hint for stopping that child (DirectoryLock::set_note). When the holder
+// has ended and the child of the note still runs, the child holds the lock: the message says so, with
+// the hint. (A note left by an earlier holder whose child has ended as well is not believed.)
 std::string busy_message(const std::filesystem::path& dir, const std::string& text) {
-  if (text.empty()) {
-    return dir.string() + " is in use by another process (holder unknown); wait for it to finish or stop it "
-                          "(Ctrl-C or SIGTERM: runs stop with a checkpoint) first";
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  lines.resize(std::max<std::size_t>(lines.size(), 3));
+  const std::string& holder = lines[0];
+  const std::string& note = lines[1];
+  const std::string& hint = lines[2];
+  const std::string wait = "; wait for it to finish or stop it (Ctrl-C or SIGTERM: runs stop with a checkpoint) first";
+  if (holder.empty()) return dir.string() + " is in use by another process (holder unknown)" + wait;
+  if (!note.empty() && !process_exists(pid_in(holder)) && process_exists(pid_in(note))) {
+    return dir.string() + " is in use: " + holder + " has ended, but " + note + " runs on and holds the lock" +
+           (hint.empty() ? std::string() : ": " + hint) + "; or wait for it to finish";
   }
-  const std::size_t newline = text.find('\n');
-  const std::string holder = text.substr(0, newline);
-  const std::string note = newline == std::string::npos ? std::string() : text.substr(newline + 1);
-  if (!note.empty() && holder_has_ended(text)) {
-    return dir.string() + " is in use: " + holder + " has ended, but the child it left running holds the lock (" +
-           note + "); wait for it to finish or stop it first";
-  }
-  return dir.string() + " is in use by another process (" + holder + (note.empty() ? "" : "; " + note) +
-         "); wait for it to finish or stop it (Ctrl-C or SIGTERM: runs stop with a checkpoint) first";
+  return dir.string() + " is in use by another process (" + holder + (note.empty() ? "" : "; " + note) + ")" + wait;
 }
 
 }  // namespace
@@ -97,9 +103,9 @@ DirectoryLock::DirectoryLock(const std::filesystem::path& dir, const std::string
   set_note("");
 }
 
-void DirectoryLock::set_note(const std::string& note) const {
+void DirectoryLock::set_note(const std::string& note, const std::string& hint_if_holder_ends) const {
   if (fd_ < 0 || !writable_) return;
-  write_all(fd_, holder_text_ + "\n" + (note.empty() ? std::string() : note + "\n"));
+  write_all(fd_, holder_text_ + "\n" + (note.empty() ? std::string() : note + "\n" + hint_if_holder_ends + "\n"));
 }
 
 DirectoryLock::~DirectoryLock() {

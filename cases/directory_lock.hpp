@@ -9,12 +9,13 @@
 // ChildCommand::inherited_descriptors (the OpenFOAM solver), which then holds it until it ends too.
 // The file keeps the holder's pid and command for the message, and a note on the child that holds
 // the lock with it (set_note); when the holder has ended and that child runs on, the message says so
-// and shows the note (how to stop the child). On a file system without flock support the run goes on
-// unprotected, with a warning.
+// and gives the note's hint (how to stop the child). On a file system without flock support the run
+// goes on unprotected, with a warning.
 //
 // Usage
 //   const DirectoryLock lock(run_dir, "hydrojump vof");   // throws DirectoryBusy if held
-//   lock.set_note("its solver: interFoam, pid 4242");     // while the child runs; set_note("") after
+//   lock.set_note("its solver interFoam, pid 4242", "`kill -USR2 4242` stops it");  // while it runs
+//   lock.set_note("");                                    // after
 //   ... run; the lock is released when `lock` goes out of scope ...
 #pragma once
 
@@ -46,9 +47,11 @@ class DirectoryLock {
   // long as it runs, also when this process dies first (ChildCommand::inherited_descriptors).
   int descriptor() const { return fd_; }
 
-  // Shows `note` after the holder in a second process's message (the child given descriptor(): what
-  // it is, its pid, how to stop it); "" removes it. Best effort, as the holder text.
-  void set_note(const std::string& note) const;
+  // Shows `note` after the holder in a second process's message: the child given descriptor(), as
+  // "<what>, pid <pid>". When this process has ended and that child runs on, the message says so and
+  // adds `hint_if_holder_ends` (how to stop the child). "" removes the note. Best effort, as the
+  // holder text.
+  void set_note(const std::string& note, const std::string& hint_if_holder_ends = "") const;
 
  private:
   int fd_ = -1;

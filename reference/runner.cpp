@@ -157,26 +157,37 @@ std::string command_text(const std::vector<std::string>& argv) {
 // start; the reconstruction of what an interrupted parallel run wrote does (a new request stops it).
 enum class AfterStopRequest { skip, run };
 
+// Waits for a child started by spawn; a stop request made since `requests_before` stops it instead
+// (nothing is returned then).
+std::optional<cases::ChildExit> wait_unless_stop_requested(pid_t pid, std::sig_atomic_t requests_before) {
+  for (;;) {
+    if (auto ended = cases::poll_child(pid)) return ended;
+    if (stop_requests != requests_before) {
+      cases::stop_child(pid);
+      return std::nullopt;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+}
+
+// Thrown by run_step when a stop request stopped its utility or kept it from starting; the run adds
+// how to go on.
+class StepStopped : public OpenFoamError {
+ public:
+  using OpenFoamError::OpenFoamError;
+};
+
 // Runs one utility to completion; a non-zero exit stops the run with the tail of its log. A stop
 // request stops it (what it wrote is not used: the next run starts the step again).
 void run_step(const fs::path& dir, const std::vector<std::string>& argv, const std::string& log_name,
               std::ostream& out, AfterStopRequest after_request = AfterStopRequest::skip) {
   const std::sig_atomic_t requests_before = after_request == AfterStopRequest::run ? stop_requests : 0;
-  const std::string interrupted = "interrupted: " + argv.front() + " in " + dir.string() +
-                                  " was stopped on request. Run the same `hydrojump vof` command with --resume to "
-                                  "go on (the step runs again).";
-  if (stop_requests != requests_before) throw OpenFoamError(interrupted);
+  const std::string interrupted = "interrupted: " + argv.front() + " in " + dir.string() + " was stopped on request.";
+  if (stop_requests != requests_before) throw StepStopped(interrupted);
   out << "  " << command_text(argv) << "  (log: " << log_name << ")\n" << std::flush;
   const fs::path log = dir / log_name;
-  const pid_t pid = spawn(argv, dir, log, false);
-  std::optional<cases::ChildExit> ended;
-  while (!(ended = cases::poll_child(pid))) {
-    if (stop_requests != requests_before) {
-      cases::stop_child(pid);
-      throw OpenFoamError(interrupted);
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  }
+  const auto ended = wait_unless_stop_requested(spawn(argv, dir, log, false), requests_before);
+  if (!ended) throw StepStopped(interrupted);
   if (ended->status() != 0) {
     throw OpenFoamError(argv.front() + " failed (it " + ended->describe() + ") in " + dir.string() +
                         "; last lines of " + log_name + ":\n" + tail_file(log));
@@ -391,14 +402,19 @@ double run_self_test_box(const fs::path& dir, double shear_m) {
   fs::remove_all(dir);
   fs::create_directories(dir);
   write_self_test_case(dir, shear_m);
+  // A stop request (Ctrl-C while `hydrojump vof` runs it) ends the self-test at once.
+  const auto run_stoppable = [&dir](const std::string& app) {
+    const auto ended = wait_unless_stop_requested(spawn({app}, dir, dir / ("log." + app), false), 0);
+    if (!ended) throw OpenFoamError("interrupted: the self-test of interFoam was stopped on request");
+    return ended->status();
+  };
   for (const char* app : {"blockMesh", "setFields"}) {
-    const int rc = wait_for(spawn({app}, dir, dir / (std::string("log.") + app), false));
-    if (rc != 0) {
+    if (run_stoppable(app) != 0) {
       throw OpenFoamError(std::string("self-test: ") + app + " failed in " + dir.string() + ":\n" +
                           tail_file(dir / (std::string("log.") + app)));
     }
   }
-  const int rc = wait_for(spawn({"interFoam"}, dir, dir / "log.interFoam", false));
+  const int rc = run_stoppable("interFoam");
   SolverLog log(DivergenceLimits{1.0, 1e300, 0.0});
   std::ifstream in(dir / "log.interFoam");
   std::string line;
@@ -833,8 +849,8 @@ void restore_control_dict_left_behind(const fs::path& dir, std::ostream& out) {
 constexpr const char* decomposing_marker = ".decomposing";
 
 // Removes processor*/ left by a decomposePar that was stopped or killed (the marker is still there).
-// Nothing in them is lost: decomposePar -force had replaced the earlier ones, and the time they
-// were decomposed from is still in the case directory.
+// Nothing in them is lost: decomposePar runs only for a new run or when the case directory holds the
+// newest time (which it decomposes, replacing processor*/ with -force), and that time is still there.
 void remove_cut_short_decomposition(const fs::path& dir, std::ostream& out) {
   if (!fs::exists(dir / decomposing_marker)) return;
   std::vector<fs::path> ranks;
@@ -853,8 +869,10 @@ void remove_cut_short_decomposition(const fs::path& dir, std::ostream& out) {
     }
   }
   fs::remove(dir / decomposing_marker);
-  out << "  removed " << ranks.size() << " processor directories left by a decomposePar that was cut short "
-      << "(the case is decomposed again)\n";
+  if (!ranks.empty()) {
+    out << "  removed " << ranks.size() << " processor directories left by a decomposePar that was cut short "
+        << "(the case is decomposed again)\n";
+  }
 }
 
 // --------------------------------------------------------------------------------- the solver
@@ -893,8 +911,10 @@ double run_solver(const SolverRun& run, std::optional<double> start, double end_
   // interFoam goes on, a second `hydrojump vof DIR` is refused until that solver has ended.
   const pid_t pid = spawn(run.command, dir, log_file, start.has_value(), {run.lock.descriptor()});
   // What a second runner is shown, also when this one was killed and the solver runs on.
-  run.lock.set_note("its solver " + run.command.front() + ", pid " + std::to_string(pid) + " (`kill -USR2 " +
-                    std::to_string(pid) + "` makes it write its current time and stop; then --resume)");
+  run.lock.set_note("its solver " + run.command.front() + ", pid " + std::to_string(pid),
+                    "`kill -USR2 " + std::to_string(pid) + "` makes it write its current time and stop (then `hydrojump vof " +
+                        dir.string() + " --resume" + (run.parallel ? " --np " + std::to_string(run.options.np) : std::string()) +
+                        "`)");
   struct NoteCleared {
     const cases::DirectoryLock& lock;
     ~NoteCleared() { lock.set_note(""); }
@@ -1163,8 +1183,9 @@ std::string reconstruct_written_times(const fs::path& dir, int np, std::ostream&
 
 }  // namespace
 
-void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostream& out) {
-  const fs::path dir = fs::absolute(dir_in);
+namespace {
+
+void run_vof_case_steps(const fs::path& dir, const RunOptions& options, std::ostream& out) {
   if (options.np < 1) throw OpenFoamError("--np must be >= 1");
   const fs::path spec_file = dir / "case.toml";
   if (!fs::exists(spec_file)) {
@@ -1375,6 +1396,7 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
       std::vector<std::string> argv = {"decomposePar", "-force"};
       if (start) argv.push_back("-latestTime");
       // Until it has finished, processor*/ are not a decomposition to resume from.
+      if (stop_requests > 0) throw StepStopped("interrupted: stopped on request before decomposePar.");
       cases::write_file_atomically(dir / decomposing_marker, "decomposePar started by hydrojump vof\n");
       run_step(dir, argv, "log.decomposePar", out);
       fs::remove(dir / decomposing_marker);
@@ -1439,7 +1461,6 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
       }
       leg_start = leg.end_s;
     }
-    stop_if_requested();
   } catch (const OpenFoamError& e) {
     if (!parallel) throw;
     throw OpenFoamError(e.what() + reconstruct_written_times(dir, options.np, out));
@@ -1453,6 +1474,24 @@ void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostrea
   out << "Done: case \"" << c.id << "\" reached t = " << format_seconds(reached) << " s in "
       << format_duration(wall) << " of wall time; fields in the time directories, section samples in "
       << (dir / "postProcessing").string() << "\n";
+}
+
+}  // namespace
+
+void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostream& out) {
+  const fs::path dir = fs::absolute(dir_in);
+  try {
+    run_vof_case_steps(dir, options, out);
+  } catch (const StepStopped& e) {
+    // A utility stopped on request (meshing, decomposing, reconstructing): how to go on depends on
+    // what the run has written.
+    const bool written = latest_time(dir).has_value() || latest_time(dir / "processor0").has_value();
+    const std::string np = options.np > 1 ? " --np " + std::to_string(options.np) : std::string();
+    throw OpenFoamError(std::string(e.what()) +
+                        (written ? " Continue with `hydrojump vof " + dir.string() + " --resume" + np + "`."
+                                 : " Nothing was computed yet: run the same `hydrojump vof` command again to start "
+                                   "over."));
+  }
 }
 
 }  // namespace hydrojump::reference

@@ -8,6 +8,15 @@ Eigen::Index ParticleSet::fluid_count() const {
   return n;
 }
 
+double ParticleSet::water_mass() const {
+  constexpr auto fluid = static_cast<std::uint8_t>(ParticleType::fluid);
+  constexpr auto outflow = static_cast<std::uint8_t>(ParticleType::outflow);
+  double m = 0.0;
+  for (Eigen::Index i = 0; i < size(); ++i)
+    if (type[i] == fluid || type[i] == outflow) m += mass[i];
+  return m;
+}
+
 void ParticleSet::for_each_real_array(const std::function<void(Vector&)>& f) {
   for (Vector* v : {&x, &z, &u, &w, &rho, &mass, &ghost_dx, &ghost_dz, &wall_u, &wall_w, &x_old, &z_old, &u_old, &w_old,
                     &rho_old, &p, &ax, &az, &drho, &tau_xx, &tau_xz, &tau_zz})

@@ -52,6 +52,11 @@ struct ParticleSet {
   Eigen::Index size() const { return x.size(); }
   bool is_fluid(Eigen::Index i) const { return type[i] == static_cast<std::uint8_t>(ParticleType::fluid); }
   Eigen::Index fluid_count() const;
+  // The water in the domain (kg/m): fluid and outflow-buffer particles. An inflow buffer's total
+  // counts a particle when it becomes fluid, an outflow buffer's or a tailgate's when it is removed, so
+  // with such boundaries water_mass(t) - water_mass(0) = inflow - outflow. (A piston reservoir's water
+  // is fluid before its gate crossing counts it.)
+  double water_mass() const;
 
   // Resizes every array to n (new entries are zero).
   void resize(Eigen::Index n);

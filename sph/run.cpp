@@ -66,10 +66,12 @@ class RunState {
     series_.write(ps, t);
     // Run log.
     const auto& s = solver_.settings();
-    double mass = 0.0, kinetic = 0.0, potential = 0.0, max_var = 0.0;
+    // The water mass with the outflow buffers' particles, which the outflow total counts only when
+    // they are removed; the energies and the density variation of the fluid.
+    const double mass = ps.water_mass();
+    double kinetic = 0.0, potential = 0.0, max_var = 0.0;
     for (Eigen::Index i = 0; i < ps.size(); ++i) {
       if (!ps.is_fluid(i)) continue;
-      mass += ps.mass[i];
       kinetic += 0.5 * ps.mass[i] * (ps.u[i] * ps.u[i] + ps.w[i] * ps.w[i]);
       potential += -ps.mass[i] * s.body_force_z * ps.z[i];
       max_var = std::max(max_var, std::abs(ps.rho[i] / s.eos.rho0 - 1.0));

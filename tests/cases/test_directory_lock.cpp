@@ -107,9 +107,11 @@ TEST_CASE("The holder's note on the child it runs is shown, and taken back", "[c
   const fs::path dir = tmp.path() / "run";
   const DirectoryLock lock(dir, "hydrojump vof");
   const std::string holder = "hydrojump vof, pid " + std::to_string(::getpid());
-  lock.set_note("its solver interFoam, pid 4242");
-  CHECK_THAT(busy_message(dir), Catch::Contains("in use by another process (" + holder +
-                                                "; its solver interFoam, pid 4242)"));
+  lock.set_note("its solver interFoam, pid 4242", "`kill -USR2 4242` stops it");
+  // The holder runs: the hint for a child left running is not shown.
+  const std::string message = busy_message(dir);
+  CHECK_THAT(message, Catch::Contains("in use by another process (" + holder + "; its solver interFoam, pid 4242)"));
+  CHECK_THAT(message, !Catch::Contains("kill"));
   lock.set_note("");
   CHECK_THAT(busy_message(dir), Catch::Contains("in use by another process (" + holder + ")"));
 }
@@ -129,13 +131,21 @@ TEST_CASE("A lock held by the child of a holder that has ended says so and shows
     REQUIRE(std::chrono::steady_clock::now() < deadline);
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
-  // The text the runner left (its pid above any pid_max, so no process has it); written now, since a
-  // probe that got the lock before flock(1) did wrote its own.
+  // The text the runner left (its pid above any pid_max, so no process has it), naming the solver
+  // that runs on; written now, since a probe that got the lock before flock(1) did wrote its own.
+  const std::string solver_pid = std::to_string(solver);
+  std::ofstream(dir / DirectoryLock::file_name) << "hydrojump vof, pid 999999999\nits solver flock, pid " << solver_pid
+                                                << "\n`kill -USR2 " << solver_pid << "` stops it\n";
+  CHECK_THAT(busy_message(dir), Catch::StartsWith(dir.string() + " is in use: hydrojump vof, pid 999999999 has ended, "
+                                                  "but its solver flock, pid " + solver_pid + " runs on and holds the "
+                                                  "lock: `kill -USR2 " + solver_pid + "` stops it; or wait for it to finish"));
+  // A note whose child has ended too (left by an earlier holder) is not believed: no hint to kill a pid
+  // that may be another process's by now.
   std::ofstream(dir / DirectoryLock::file_name)
-      << "hydrojump vof, pid 999999999\nits solver interFoam, pid 4242 (`kill -USR2 4242` stops it)\n";
-  const std::string message = busy_message(dir);
-  CHECK_THAT(message, Catch::StartsWith(dir.string() + " is in use: hydrojump vof, pid 999999999 has ended, but the "
-                                                       "child it left running holds the lock (its solver interFoam, "
-                                                       "pid 4242 (`kill -USR2 4242` stops it))"));
+      << "hydrojump vof, pid 999999999\nits solver interFoam, pid 999999998\n`kill -USR2 999999998` stops it\n";
+  const std::string stale = busy_message(dir);
+  CHECK_THAT(stale, Catch::Contains("is in use by another process (hydrojump vof, pid 999999999; its solver "
+                                    "interFoam, pid 999999998)"));
+  CHECK_THAT(stale, !Catch::Contains("kill"));
   stop_child(solver);
 }

@@ -34,14 +34,6 @@ sph_test::LoadedCase piston_basin() {
   });
 }
 
-// Fluid and outflow-buffer particles (the outlet has not removed those yet).
-double water_mass(const sph::ParticleSet& ps) {
-  double m = 0.0;
-  for (Eigen::Index i = 0; i < ps.size(); ++i)
-    if (ps.is_fluid(i) || ps.type[i] == static_cast<std::uint8_t>(sph::ParticleType::outflow)) m += ps.mass[i];
-  return m;
-}
-
 // The reservoir level: the highest fluid particle over the middle of the reservoir, plus dx/2.
 double reservoir_surface(const sph::ParticleSet& ps, double x0, double x1, double dx) {
   double top = 0.0;
@@ -151,7 +143,7 @@ TEST_CASE("piston inflow: a short run pushes water under the gate, contracting a
     if (c.particles.type[i] == static_cast<std::uint8_t>(sph::ParticleType::moving_wall))
       x_plate0 = std::min(x_plate0, c.particles.x[i]);
   sph::Solver solver(c.settings, c.particles, {}, sph::OpenBoundaries::from_geometry(c.geometry, sph::buffer_parameters(c.settings)));
-  const double m0 = water_mass(solver.particles());
+  const double m0 = solver.particles().water_mass();
   const double x_p = c.geometry.moving_walls.front().face.points.front().x();
   std::string problem;
   double in_at_020 = -1.0;
@@ -175,7 +167,7 @@ TEST_CASE("piston inflow: a short run pushes water under the gate, contracting a
   CHECK(x_plate - x_plate0 > u_p * solver.time());
   CHECK(motion.for_step(ps).u_m_s > u_p);
   // Nothing created: the water now in the domain plus what left over the outlet is the initial water.
-  const double m1 = water_mass(ps);
+  const double m1 = ps.water_mass();
   CHECK(std::abs(m1 + solver.clock().outflow_mass - m0) <= 1e-9 * m0);
   const double q_gate = (solver.clock().inflow_mass - in_at_020) / rho0 / (solver.time() - 0.2);
   double opening = 0.0;

@@ -30,14 +30,6 @@ using namespace hydrojump;
 
 namespace {
 
-double water_mass(const sph::ParticleSet& ps) {
-  double m = 0.0;
-  for (Eigen::Index i = 0; i < ps.size(); ++i) {
-    const auto t = static_cast<sph::ParticleType>(ps.type[i]);
-    if (t == sph::ParticleType::fluid || t == sph::ParticleType::outflow) m += ps.mass[i];
-  }
-  return m;
-}
 
 double strip_discharge(const sph::ParticleSet& ps, double x0, double x1) {
   double q = 0.0;
@@ -101,7 +93,7 @@ TEST_CASE("smooth-bed stilling basin: stable, mass balance and inflow discharge"
   const double rho0 = settings.eos.rho0;
 
   sph::Solver solver(settings, std::move(b.particles), {}, open_boundaries_of(b));
-  const double m0 = water_mass(solver.particles());
+  const double m0 = solver.particles().water_mass();
   const double end_time = 0.5;
   double q_strip_sum = 0.0;
   long q_strip_samples = 0;
@@ -121,7 +113,7 @@ TEST_CASE("smooth-bed stilling basin: stable, mass balance and inflow discharge"
   // The totals kept in the clock (checkpointed, run_log.csv) are the buffers' own.
   CHECK(solver.clock().inflow_mass == Approx(open.mass_in()).epsilon(1e-12));
   CHECK(solver.clock().outflow_mass == Approx(open.mass_out()).epsilon(1e-12));
-  const double m1 = water_mass(solver.particles());
+  const double m1 = solver.particles().water_mass();
   const double balance = (m1 - m0) - (open.mass_in() - open.mass_out());
   const double q_in = open.mass_in() / rho0 / solver.time();
   const double q_strip = q_strip_sum / static_cast<double>(q_strip_samples);

@@ -31,13 +31,6 @@ sph_test::LoadedCase gate_basin(double height) {
   });
 }
 
-double water_mass(const sph::ParticleSet& ps) {
-  double m = 0.0;
-  for (Eigen::Index i = 0; i < ps.size(); ++i)
-    if (ps.is_fluid(i)) m += ps.mass[i];
-  return m;
-}
-
 }  // namespace
 
 TEST_CASE("tailgate height: Rehbock's weir holds the tailwater, or the given height", "[sph][tailgate]") {
@@ -126,7 +119,7 @@ TEST_CASE("tailgate basin: a short coupled run spills over the crest, stays wate
   const auto open = sph::OpenBoundaries::from_geometry(b.geometry, sph::buffer_parameters(b.settings));
   const sph::Tailgate gate = open.tailgates().front();
   sph::Solver solver(b.settings, std::move(b.particles), {}, open);
-  const double m0 = water_mass(solver.particles());
+  const double m0 = solver.particles().water_mass();
   std::string problem;
   while (solver.time() < 0.4 && problem.empty()) {
     solver.step();
@@ -135,7 +128,7 @@ TEST_CASE("tailgate basin: a short coupled run spills over the crest, stays wate
   INFO(problem);
   REQUIRE(problem.empty());
   const auto& o = solver.open_boundaries();
-  const double m1 = water_mass(solver.particles());
+  const double m1 = solver.particles().water_mass();
   const double balance = (m1 - m0) - (o.mass_in() - o.mass_out());
   std::cout << "tailgate basin A_smooth (short), crest " << gate.crest_height() << " m, t = " << solver.time()
             << " s: in " << o.mass_in() << ", over the gate " << o.mass_out() << ", imbalance " << balance
