@@ -682,7 +682,7 @@ TEST_CASE("an MPI run that stops early has the times written so far reconstructe
   CHECK_THAT(cases::read_text_file(dir / "log.reconstructPar"), Catch::Contains("Time = 0.01"));
 }
 
-TEST_CASE("Ctrl-C while interFoam runs writes the current time and stops; --resume finishes the run",
+TEST_CASE("Ctrl-C while interFoam runs writes the current time and stops, and --resume goes on from it",
           "[reference][openfoam][stop]") {
   require_openfoam();
   const TempDir tmp("openfoam-stop");
@@ -716,7 +716,7 @@ TEST_CASE("Ctrl-C while interFoam runs writes the current time and stops; --resu
   CHECK(fs::exists(dir / "0.25"));
 }
 
-TEST_CASE("Ctrl-C during meshing stops the step and starts nothing after it; the next run meshes again",
+TEST_CASE("Ctrl-C during meshing stops the step and starts nothing after it, and the next run meshes again",
           "[reference][openfoam][stop]") {
   require_openfoam();
   const TempDir tmp("openfoam-stop-mesh");
