@@ -12,6 +12,7 @@
 
 #include <fcntl.h>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace hydrojump::cases {
@@ -73,11 +74,23 @@ DirectoryLock::DirectoryLock(const std::filesystem::path& dir, const std::string
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   const std::filesystem::path file = dir / file_name;
-  fd_ = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  // Never through a symbolic link (its target would be truncated and written), nor on anything but
+  // a regular file.
+  fd_ = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
   bool writable = fd_ >= 0;
   // A lock file left by another user (or a root run) can still be locked through a read-only
   // descriptor; only the holder text is not written then.
-  if (fd_ < 0 && errno == EACCES) fd_ = ::open(file.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd_ < 0 && errno == EACCES) fd_ = ::open(file.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
+  struct stat info {};
+  if (fd_ >= 0 && (::fstat(fd_, &info) != 0 || !S_ISREG(info.st_mode))) {
+    ::close(fd_);
+    fd_ = -1;
+    errno = EINVAL;
+  }
+  if (fd_ < 0 && (errno == ELOOP || errno == EINVAL || errno == EISDIR)) {
+    throw std::runtime_error("the lock file " + file.string() +
+                             " is a symbolic link or not a regular file: remove it (hydrojump creates its own)");
+  }
   if (fd_ < 0) {
     throw std::runtime_error("cannot create the lock file " + file.string() + " (" + std::strerror(errno) +
                              "): is " + dir.string() + " writable?");

@@ -149,3 +149,24 @@ TEST_CASE("A lock held by the child of a holder that has ended says so and shows
   CHECK_THAT(stale, !Catch::Contains("kill"));
   stop_child(solver);
 }
+
+TEST_CASE("A lock file that is a symbolic link or a directory is refused, and its target left alone", "[cases][lock]") {
+  const hydrojump::testing::TempDir tmp("lock");
+  const fs::path dir = tmp.path() / "run";
+  fs::create_directories(dir);
+  const fs::path target = tmp.path() / "precious";
+  std::ofstream(target) << "keep me\n";
+  fs::create_symlink(target, dir / DirectoryLock::file_name);
+  CHECK_THROWS_WITH(DirectoryLock(dir, "hydrojump sph"),
+                    Catch::Contains((dir / DirectoryLock::file_name).string() + " is a symbolic link or not a regular file"));
+  std::string text;
+  std::getline(std::ifstream(target), text);
+  CHECK(text == "keep me");
+  // A dangling link is not followed to create its target either.
+  fs::remove(target);
+  CHECK_THROWS(DirectoryLock(dir, "hydrojump sph"));
+  CHECK_FALSE(fs::exists(target));
+  fs::remove(dir / DirectoryLock::file_name);
+  fs::create_directory(dir / DirectoryLock::file_name);
+  CHECK_THROWS_WITH(DirectoryLock(dir, "hydrojump sph"), Catch::Contains("is a symbolic link or not a regular file"));
+}
