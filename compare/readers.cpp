@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <fstream>
 #include <regex>
 #include <sstream>
@@ -46,6 +47,9 @@ std::vector<PvdEntry> read_pvd(const fs::path& pvd_file) {
   const std::string text = ss.str();
   if (text.find("Collection") == std::string::npos)
     throw std::runtime_error(pvd_file.string() + ": not a ParaView collection (no <Collection>)");
+  // A file cut short would list only its first frames (hydrojump sph replaces it whole at every output).
+  if (text.find("</Collection>") == std::string::npos)
+    throw std::runtime_error(pvd_file.string() + ": ends before </Collection>: the file is damaged (cut short)");
   std::vector<PvdEntry> out;
   const std::regex tag_re("<DataSet\\b[^>]*>");
   for (auto it = std::sregex_iterator(text.begin(), text.end(), tag_re); it != std::sregex_iterator(); ++it) {
@@ -54,13 +58,15 @@ std::vector<PvdEntry> read_pvd(const fs::path& pvd_file) {
     const std::string f = attribute(tag, "file");
     if (f.empty())
       throw std::runtime_error(pvd_file.string() + ": a <DataSet> has no file attribute: " + tag);
+    if (t.empty())
+      throw std::runtime_error(pvd_file.string() + ": a <DataSet> has no timestep attribute: " + tag);
     PvdEntry e;
     try {
       std::size_t used = 0;
-      e.time_s = t.empty() ? 0.0 : std::stod(t, &used);
-      if (!t.empty() && used != t.size()) throw std::invalid_argument(t);
+      e.time_s = std::stod(t, &used);
+      if (used != t.size() || !std::isfinite(e.time_s)) throw std::invalid_argument(t);
     } catch (const std::exception&) {
-      throw std::runtime_error(pvd_file.string() + ": timestep=\"" + t + "\" is not a number in " + tag);
+      throw std::runtime_error(pvd_file.string() + ": timestep=\"" + t + "\" is not a finite number in " + tag);
     }
     e.file = fs::path(f).is_absolute() ? fs::path(f) : pvd_file.parent_path() / f;
     out.push_back(e);

@@ -80,6 +80,14 @@ TEST_CASE("PVD/VTP errors name the file and what is wrong", "[compare][readers][
   }
   CHECK_THROWS_WITH(read_pvd(tmp.path() / "bad.pvd"), Catch::Contains("bad.pvd") && Catch::Contains("abc"));
   CHECK_THROWS_WITH(read_pvd(tmp.path() / "none.pvd"), Catch::Contains("none.pvd"));
+  // Cut short (the first frame only would be read), a time that is not finite, no time at all.
+  const auto write_pvd = [&](const std::string& name, const std::string& text) { std::ofstream(tmp.path() / name) << text; };
+  write_pvd("cut.pvd", "<VTKFile type=\"Collection\"><Collection><DataSet timestep=\"0\" file=\"p_0.vtp\"/><DataSet time");
+  CHECK_THROWS_WITH(read_pvd(tmp.path() / "cut.pvd"), Catch::Contains("cut.pvd: ends before </Collection>"));
+  write_pvd("nan.pvd", "<VTKFile type=\"Collection\"><Collection><DataSet timestep=\"nan\" file=\"p.vtp\"/></Collection></VTKFile>");
+  CHECK_THROWS_WITH(read_pvd(tmp.path() / "nan.pvd"), Catch::Contains("nan.pvd") && Catch::Contains("timestep=\"nan\""));
+  write_pvd("untimed.pvd", "<VTKFile type=\"Collection\"><Collection><DataSet file=\"p.vtp\"/></Collection></VTKFile>");
+  CHECK_THROWS_WITH(read_pvd(tmp.path() / "untimed.pvd"), Catch::Contains("untimed.pvd: a <DataSet> has no timestep"));
   const ParticleFrame f = lattice_particles(0.1, 0.05, 0.01, 1, [](double, double) { return 0.0; },
                                             [](double, double) { return 0.0; });
   write_vtp(tmp.path() / "nodensity.vtp", f, false);
