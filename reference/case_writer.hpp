@@ -66,6 +66,11 @@
 
 namespace hydrojump::reference {
 
+// The copy of case.toml the dictionaries were written from, beside it (write_vof_case): `hydrojump
+// vof` refuses to start a run when case.toml's settings no longer agree with it (edited after
+// `generate`).
+inline constexpr const char* generated_case_file_name = ".generated_case.toml";
+
 // One OpenFOAM utility run: the application and its arguments.
 struct FoamStep {
   std::string application;

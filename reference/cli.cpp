@@ -5,6 +5,7 @@
 
 #include "cases/atomic_file.hpp"
 #include "cases/cli_checks.hpp"
+#include "cases/fingerprint.hpp"
 #include "cases/spec_reader.hpp"
 #include "reference/case_writer.hpp"
 #include "reference/runner.hpp"
@@ -106,6 +107,7 @@ void write_vof_case(const cases::Study& study, const cases::Case& c, const std::
   std::filesystem::create_directories(dir);
   write_vof_files(vof, dir);
   cases::write_resolved_case(study, c, resolution, dir / "case.toml");
+  cases::write_file_atomically(dir / generated_case_file_name, cases::read_text_file(dir / "case.toml"));
 }
 
 }  // namespace hydrojump::reference

@@ -1211,6 +1211,16 @@ void run_vof_case_steps(const fs::path& dir, const RunOptions& options, std::ost
                           " is missing (regenerate it with `hydrojump generate`)");
     }
   }
+  // The dictionaries were written from the case.toml `generate` wrote: a new run of an edited one
+  // would record settings its dictionaries do not have (a resumed run is checked against its record).
+  if (const fs::path generated = dir / generated_case_file_name; !cases::holds_results(dir) && fs::exists(generated)) {
+    const auto d = cases::first_setting_difference(cases::read_text_file(generated), cases::read_text_file(spec_file));
+    if (d.any()) {
+      throw OpenFoamError(spec_file.string() + " was edited after `hydrojump generate` wrote the OpenFOAM dictionaries "
+                          "from it: it has '" + d.b + "' where they were written with '" + d.a +
+                          "'. Run `hydrojump generate` again to rewrite them from it (or restore the line).");
+    }
+  }
   const std::string resolution = c.resolutions.begin()->first;
   const VofCase vof = build_vof_case(study, c, resolution);
 

@@ -4,12 +4,14 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <fstream>
 #include <filesystem>
 #include <set>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 
+#include "cases/fingerprint.hpp"
 #include "cases/geometry.hpp"
 #include "cases/spec_reader.hpp"
 #include "reference/case_writer.hpp"
@@ -446,6 +448,27 @@ TEST_CASE("write_vof_case writes a complete case directory with its resolved spe
   CHECK(vof2.mesh.cell_count() == vof.mesh.cell_count());
   CHECK(foam::format_file(vof2.headers.at("system/controlDict"), vof2.files.at("system/controlDict")) ==
         foam::format_file(vof.headers.at("system/controlDict"), vof.files.at("system/controlDict")));
+}
+
+TEST_CASE("a case.toml edited after generate is refused before a new run, naming the line", "[reference][case]") {
+  const cases::Study study = parse(basin_spec());
+  const hydrojump::testing::TempDir tmp("reference-edited");
+  const fs::path dir = tmp.path() / "case";
+  reference::write_vof_case(study, study.cases.front(), "quick", dir);
+  const std::string written = cases::read_text_file(dir / "case.toml");
+  CHECK(cases::read_text_file(dir / reference::generated_case_file_name) == written);
+  // The inflow velocity changed by hand: setFieldsDict and the inlet still carry the old one.
+  std::string edited = written;
+  const std::string key = "velocity_m_s = 2";
+  REQUIRE(edited.find(key) != std::string::npos);
+  edited.replace(edited.find(key), key.size(), "velocity_m_s = 3");
+  std::ofstream(dir / "case.toml") << edited;
+  std::ostringstream out;
+  CHECK_THROWS_WITH(reference::run_vof_case(dir, reference::RunOptions{}, out),
+                    Catch::Contains((dir / "case.toml").string() + " was edited after `hydrojump generate`") &&
+                        Catch::Contains("velocity_m_s = 3") && Catch::Contains("Run `hydrojump generate` again"));
+  CHECK_FALSE(fs::exists(dir / "results_case.toml"));
+  CHECK_FALSE(fs::exists(dir / "log.blockMesh"));
 }
 
 TEST_CASE("SPH-only cases get a note instead of an OpenFOAM case and the runner refuses them",
