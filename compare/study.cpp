@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <csignal>
 #include <cstdint>
 #include <ctime>
 #include <fstream>
@@ -11,6 +12,7 @@
 #include <iostream>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <thread>
 
@@ -29,6 +31,43 @@
 
 namespace hydrojump::compare {
 namespace {
+
+// A stop request to the study (Ctrl-C, SIGTERM, a hangup): its signal number, 0 while none came.
+volatile std::sig_atomic_t study_stop_signal = 0;
+void request_study_stop(int signal) { study_stop_signal = signal; }
+
+// The study's handlers for SIGINT, SIGTERM and SIGHUP (unless SIGHUP is ignored, as under nohup)
+// while it runs. Its stages run in their own process groups, so a request reaches them once, from
+// the study (a SIGTERM: the SPH run writes a checkpoint, the OpenFOAM run its current time), and no
+// further stage starts; the next study resumes them.
+class StudyStopSignals {
+ public:
+  StudyStopSignals() {
+    study_stop_signal = 0;
+    struct sigaction sa {};
+    sa.sa_handler = request_study_stop;
+    sigemptyset(&sa.sa_mask);
+    sa.sa_flags = SA_RESTART;
+    ::sigaction(SIGINT, &sa, &old_int_);
+    ::sigaction(SIGTERM, &sa, &old_term_);
+    ::sigaction(SIGHUP, nullptr, &old_hup_);
+    if (old_hup_.sa_handler != SIG_IGN) ::sigaction(SIGHUP, &sa, nullptr);
+  }
+  ~StudyStopSignals() {
+    ::sigaction(SIGINT, &old_int_, nullptr);
+    ::sigaction(SIGTERM, &old_term_, nullptr);
+    ::sigaction(SIGHUP, &old_hup_, nullptr);
+  }
+  StudyStopSignals(const StudyStopSignals&) = delete;
+  StudyStopSignals& operator=(const StudyStopSignals&) = delete;
+
+ private:
+  struct sigaction old_int_ {};
+  struct sigaction old_term_ {};
+  struct sigaction old_hup_ {};
+};
+
+bool study_stopping() { return study_stop_signal != 0; }
 
 std::string clock_now() {
   const auto t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
@@ -81,7 +120,7 @@ std::vector<std::unique_ptr<cases::DirectoryLock>> lock_solver_directories(
 
 struct StageResult {
   std::string stage;
-  std::string state;     // "done", "cached", "failed", "skipped", "earlier run"
+  std::string state;     // "done", "cached", "failed", "stopped", "skipped", "earlier run"
   double seconds = 0.0;
   int exit_status = 0;
   std::string message;   // why a stage failed before it could run
@@ -165,6 +204,10 @@ class StudyRunner {
     }
     bool any_solver_ok = false, any_solver_ran = false;
     for (const auto& method : options_.methods) {
+      if (study_stopping()) {
+        result.stages.push_back({method, "skipped", 0.0, 0, "the study was stopped"});
+        continue;
+      }
       std::vector<std::string> args = {self_.string(), method, (dir / method).string()};
       if (method == "sph" && options_.sph_threads > 0) {
         args.push_back("--threads");
@@ -190,7 +233,7 @@ class StudyRunner {
     }
     // A comparison is only as current as the solver results it read.
     if (any_solver_ran) std::filesystem::remove(dir / "compare.stamp");
-    if (any_solver_ok) {
+    if (any_solver_ok && !study_stopping()) {
       result.stages.push_back(run_stage(c.id, "compare", {self_.string(), "compare", dir.string()}, dir,
                                         compare_fingerprint, {}));
     } else {
@@ -213,8 +256,20 @@ class StudyRunner {
     const auto t0 = std::chrono::steady_clock::now();
     int status = 127;
     std::string start_error;
+    bool stopped = false;
     try {
-      status = cases::run_child(cases::ChildCommand(args, log_file)).status();
+      cases::ChildCommand command(args, log_file);
+      command.own_process_group = true;  // a stop request reaches it from the study, once
+      const pid_t pid = cases::start_child(command);
+      std::optional<cases::ChildExit> ended;
+      while (!(ended = cases::poll_child(pid))) {
+        if (study_stopping() && !stopped) {
+          ::kill(pid, SIGTERM);  // it stops with its state written
+          stopped = true;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      }
+      status = ended->status();
     } catch (const std::exception& e) {
       start_error = e.what();
     }
@@ -222,6 +277,10 @@ class StudyRunner {
     if (!start_error.empty()) {
       say(id + ": " + stage + " FAILED: " + start_error);
       return {stage, "failed", seconds, status, start_error};
+    }
+    if (stopped && status != 0) {
+      say(id + ": " + stage + " stopped on request after " + duration_text(seconds) + " (the next study resumes it)");
+      return {stage, "stopped", seconds, status, {}};
     }
     if (status != 0) {
       say(id + ": " + stage + " FAILED (exit status " + std::to_string(status) + ") after " +
@@ -369,8 +428,12 @@ int run_study(const StudyOptions& given, std::ostream& log) {
   StudyRunner runner(options, study, log);
   std::vector<CaseResult> results(selected.size());
   std::atomic<std::size_t> next{0};
+  const StudyStopSignals stop_signals;
   const auto worker = [&] {
-    for (std::size_t i = next++; i < selected.size(); i = next++) results[i] = runner.run_case(*selected[i]);
+    for (std::size_t i = next++; i < selected.size(); i = next++) {
+      results[i] = study_stopping() ? CaseResult{selected[i]->id, {{"setup", "skipped", 0.0, 0, "the study was stopped"}}}
+                                    : runner.run_case(*selected[i]);
+    }
   };
   std::vector<std::thread> pool;
   for (int j = 0; j < options.jobs; ++j) pool.emplace_back(worker);
@@ -381,6 +444,14 @@ int run_study(const StudyOptions& given, std::ostream& log) {
   for (const auto& r : results) failed += r.failed() ? 1 : 0;
   log << "study report: " << (options.out / "study_report.md").string() << "; " << failed << " of "
       << results.size() << " case(s) had a failed stage" << std::endl;
+  if (study_stopping()) {
+    const int signal = study_stop_signal;
+    log << "study stopped by " << (signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : "SIGHUP")
+        << ": the stages that were running stopped with their state written, no other stage started; run the "
+           "same command again to go on from there"
+        << std::endl;
+    return 128 + signal;
+  }
   return failed;
 }
 
@@ -412,8 +483,9 @@ void register_study_command(CLI::App& app) {
       ->check(CLI::IsMember({"sph", "vof"}));
   cmd->add_flag("--force", options->force, "ignore cached results and run every stage again");
   cmd->callback([options] {
-    const int failed = run_study(*options, std::cout);
-    if (failed > 0) throw CLI::RuntimeError(1);
+    const int status = run_study(*options, std::cout);
+    if (status >= 128) throw CLI::RuntimeError(status);  // stopped by a signal: 128 + its number
+    if (status > 0) throw CLI::RuntimeError(1);
   });
 }
 

@@ -3,6 +3,8 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <chrono>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -10,6 +12,8 @@
 #include <string>
 #include <thread>
 #include <vector>
+
+#include <unistd.h>
 
 #include "cases/directory_lock.hpp"
 #include "cases/fingerprint.hpp"
@@ -408,4 +412,41 @@ TEST_CASE("Study runner: a reworded description or a relaxed stability limit kee
   options.cases = {"A"};
   CHECK(run_study(options, log) == 0);
   CHECK(hydrojump::cases::read_text_file(by_hand / "A.previous" / "sph" / "summary.json") == "{\"hours\": 3}\n");
+}
+
+TEST_CASE("Study runner: a stop request stops the running stage with its state written and starts no other",
+          "[study]") {
+  const TempDir tmp("study-stop");
+  const fs::path& dir = tmp.path();
+  const fs::path calls = dir / "calls.txt";
+  // The stand-in's SPH run goes on until it gets SIGTERM, which it records (the real one writes a
+  // checkpoint) before it exits as a stopped process does.
+  StudyOptions options = mini_study_with_stand_in(
+      dir, "echo \"$*\" >> '" + calls.string() + "'\ncase \"$1\" in\n  sph) trap 'echo TERM > \"$2/term\"; exit 143' TERM\n"
+           "    touch \"$2/running\"\n    while true; do sleep 0.05; done ;;\nesac\nexit 0\n");
+  options.cases = {"A", "B"};
+  std::ostringstream log;
+  int status = -1;
+  std::thread study([&] { status = run_study(options, log); });
+  const fs::path running = options.out / "A" / "sph" / "running";
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (!fs::exists(running) && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  const bool started = fs::exists(running);
+  // As `kill -TERM <study>`: the signal reaches the study alone (its stages run in their own groups).
+  ::kill(::getpid(), SIGTERM);
+  study.join();
+  REQUIRE(started);
+  INFO(log.str());
+  CHECK(status == 128 + SIGTERM);
+  CHECK(fs::exists(options.out / "A" / "sph" / "term"));  // passed on to the stage
+  CHECK(fs::exists(options.out / "A" / "sph.started"));  // the next study resumes it
+  CHECK_THAT(log.str(), Catch::Contains("A: sph stopped on request") && Catch::Contains("study stopped by SIGTERM"));
+  // Nothing after it: not A's VOF run or comparison, not case B.
+  const auto called = lines_of(calls);
+  REQUIRE(called.size() == 1);
+  CHECK(called.front().rfind("sph ", 0) == 0);
+  const std::string report = hydrojump::cases::read_text_file(options.out / "study_report.md");
+  CHECK_THAT(report, Catch::Contains("| A | sph | stopped |") && Catch::Contains("| A | vof | skipped |") &&
+                         Catch::Contains("| B | setup | skipped |"));
 }
