@@ -103,12 +103,21 @@ struct Resolution {
 // [case.run]
 // Each output time is one file per method (particles, OpenFOAM time directory): a run has at most this many.
 inline constexpr double max_outputs_per_run = 100000.0;
+// The longest run a case may ask for (s of simulated time).
+inline constexpr double max_end_time_s = 1.0e5;
 
 struct RunSettings {
   double end_time_s = 0.0;
   double output_interval_s = 0.05;
   double average_start_s = 0.0;   // averaging window [average_start_s, average_end_s]
   double average_end_s = 0.0;     // defaults to end_time_s
+
+  // The latest end time a run of these settings may be given (`--end-time`): max_end_time_s, and at
+  // most max_outputs_per_run outputs.
+  double latest_end_time_s() const {
+    const double by_outputs = output_interval_s * max_outputs_per_run;
+    return by_outputs < max_end_time_s ? by_outputs : max_end_time_s;
+  }
 };
 
 // [[case.sections]]: a named x position where both results are compared (a vertical line from the

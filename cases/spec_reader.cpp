@@ -13,6 +13,7 @@
 #include "cases/fingerprint.hpp"
 #include "cases/geometry.hpp"
 #include "cases/hydraulics.hpp"
+#include "cases/output_times.hpp"
 
 namespace hydrojump::cases {
 namespace {
@@ -322,7 +323,7 @@ void read_sph(TableReader& t, SphSettings& s) {
   s.sound_speed_coefficient = t.number_or("sound_speed_coefficient", s.sound_speed_coefficient, Range{1.0, 1000.0, false, false, "c0 / sqrt(g H_max)"});
   s.sound_speed_m_s = t.number_or("sound_speed_m_s", s.sound_speed_m_s, non_negative("m/s", 1e5));
   s.sound_speed_min_flow_ratio = t.number_or("sound_speed_min_flow_ratio", s.sound_speed_min_flow_ratio, Range{0.0, 1000.0, true, false, "c0 / expected max flow speed"});
-  s.cfl_number = t.number_or("cfl_number", s.cfl_number, Range{0.0, 1.0, true, false, ""});
+  s.cfl_number = t.number_or("cfl_number", s.cfl_number, Range{0.01, 1.0, false, false, ""});
   s.coef_h = t.number_or("coef_h", s.coef_h, Range{0.5, 3.0, false, false, "h = coef_h sqrt(2) dx"});
   s.time_integrator = t.choice("time_integrator", s.time_integrator, {"symplectic", "verlet"});
   s.verlet_euler_interval = t.integer_or("verlet_euler_interval", s.verlet_euler_interval, 1, 1000);
@@ -420,9 +421,9 @@ void read_vof(TableReader& t, VofSettings& v) {
                   "\" needs an epsilon-based turbulence_model (allowed: \"kEpsilon\", \"RNGkEpsilon\"), but turbulence_model is \"" +
                   v.turbulence_model + "\"");
   }
-  v.max_courant = t.number_or("max_courant", v.max_courant, Range{0.0, 5.0, true, false, ""});
-  v.max_alpha_courant = t.number_or("max_alpha_courant", v.max_alpha_courant, Range{0.0, 5.0, true, false, ""});
-  v.max_time_step_s = t.number_or("max_time_step_s", v.max_time_step_s, positive("s", 1.0));
+  v.max_courant = t.number_or("max_courant", v.max_courant, Range{0.01, 5.0, false, false, ""});
+  v.max_alpha_courant = t.number_or("max_alpha_courant", v.max_alpha_courant, Range{0.01, 5.0, false, false, ""});
+  v.max_time_step_s = t.number_or("max_time_step_s", v.max_time_step_s, Range{1e-6, 1.0, false, false, "s"});
   v.mesh_strategy = t.choice("mesh_strategy", v.mesh_strategy, {"cartesian_cut", "body_fitted"});
   v.surface_refinement_band_m = t.number_or("surface_refinement_band_m", v.surface_refinement_band_m, non_negative("m", 100.0));
   v.tailwater_control = t.choice("tailwater_control", v.tailwater_control, {"none", "hold_toe"});
@@ -493,8 +494,8 @@ void read_resolutions(TableReader& parent, std::map<std::string, Resolution>& ou
 }
 
 void read_run(TableReader& t, RunSettings& run) {
-  run.end_time_s = t.number("end_time_s", positive("s", 1e5));
-  run.output_interval_s = t.number_or("output_interval_s", run.output_interval_s, positive("s", 1e5));
+  run.end_time_s = t.number("end_time_s", positive("s", max_end_time_s));
+  run.output_interval_s = t.number_or("output_interval_s", run.output_interval_s, positive("s", max_end_time_s));
   if (run.output_interval_s > run.end_time_s) {
     t.fail_at(t.raw().get("output_interval_s"), "output_interval_s", "= " + number_text(run.output_interval_s) + " is out of range: must be <= run.end_time_s (" + number_text(run.end_time_s) + " s)");
   }
@@ -506,6 +507,16 @@ void read_run(TableReader& t, RunSettings& run) {
   }
   run.average_start_s = t.number_or("average_start_s", 0.5 * run.end_time_s, Range{0.0, run.end_time_s, false, true, "s, within the run and before its end"});
   run.average_end_s = t.number_or("average_end_s", run.end_time_s, Range{run.average_start_s, run.end_time_s, true, false, "s, after average_start_s and within the run"});
+  // A time mean (and a standard deviation, a trend) needs two outputs at least.
+  if (const long n = outputs_in_window(run.average_start_s, run.average_end_s, run.output_interval_s); n < 2) {
+    const toml::node* at = t.raw().get("average_end_s") ? t.raw().get("average_end_s") : t.raw().get("average_start_s");
+    const bool end_given = at == t.raw().get("average_end_s");
+    t.fail_at(at, end_given ? "average_end_s" : "average_start_s",
+              "= " + number_text(end_given ? run.average_end_s : run.average_start_s) + " leaves the averaging window [" +
+                  number_text(run.average_start_s) + ", " + number_text(run.average_end_s) + "] s with " +
+                  number_text(static_cast<double>(n)) + " output time(s) (one every output_interval_s = " +
+                  number_text(run.output_interval_s) + " s): it must hold at least 2");
+  }
   t.reject_unknown_keys();
 }
 

@@ -219,6 +219,8 @@ std::string format_number(double x) {
     throw std::invalid_argument("foam: cannot write a non-finite number to an OpenFOAM dictionary");
   }
   if (x == 0.0) return "0";
+  // A whole number as an integer: OpenFOAM reads a cell count (a label) "1e+05" as an error.
+  if (std::abs(x) < 1e15 && x == std::round(x)) return std::to_string(static_cast<long long>(x));
   char buffer[64];
   const auto result = std::to_chars(buffer, buffer + sizeof buffer, x);
   if (result.ec != std::errc{}) throw std::runtime_error("foam: number formatting failed");

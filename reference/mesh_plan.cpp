@@ -109,6 +109,17 @@ MeshPlan plan_mesh(const cases::Case& c, const cases::CaseGeometry& g, const cas
     throw std::invalid_argument("case \"" + c.id + "\": resolution." + r.name +
                                 ".vof_cell_size_bulk_m must be >= vof_cell_size_bed_m");
   }
+  // At most max_cells cells (memory, and months of run time on a workstation), estimated as the
+  // whole domain in cells of the bed size (the grading of the bulk only lowers it).
+  const double domain_area_m2 = (g.x_max_m - g.x_min_m) * (g.z_max_m - g.z_min_m);
+  if (domain_area_m2 / (h * h) > max_cells) {
+    const double count = std::min(domain_area_m2 / (h * h), 1e18);
+    throw std::invalid_argument("case \"" + c.id + "\": resolution." + r.name + ".vof_cell_size_bed_m = " +
+                                foam::format_number(h) + " m gives up to " + foam::format_number(std::round(count)) +
+                                " cells: must be at most " + foam::format_number(max_cells) +
+                                ", i.e. vof_cell_size_bed_m >= " + foam::format_number(std::sqrt(domain_area_m2 / max_cells)) +
+                                " m");
+  }
   const std::string& strategy = c.vof.mesh_strategy;
   if (strategy != "cartesian_cut" && strategy != "body_fitted") {
     throw std::invalid_argument("case \"" + c.id + "\": vof.mesh_strategy = \"" + strategy +

@@ -70,6 +70,9 @@ struct MeshPlan {
   long cell_count() const;              // cells of the final mesh
 };
 
+// The largest mesh plan_mesh accepts (cells of a 2D case).
+inline constexpr double max_cells = 1.0e7;
+
 // Plans the mesh of `c` (stilling_basin, dam_break or still_water) at `resolution`.
 // Throws std::invalid_argument with a clear message for unsupported kinds or strategies, and for
 // cell sizes that leave fewer than 2 cells across the inflow depth.

@@ -1337,6 +1337,12 @@ void run_vof_case_steps(const fs::path& dir, const RunOptions& options, std::ost
   // The end time: system/controlDict's endTime, which --end-time rewrites (to extend a run).
   double end_time_s = read_end_time_entry(dir).value_s;
   if (options.end_time_s) {
+    if (*options.end_time_s > c.run.latest_end_time_s()) {
+      throw OpenFoamError("--end-time " + format_seconds(*options.end_time_s) + " s is out of range for " +
+                          spec_file.string() + ": must be <= " + format_seconds(c.run.latest_end_time_s()) +
+                          " s (at most 100000 outputs, one every " + format_seconds(c.run.output_interval_s) +
+                          " s, and at most 100000 s)");
+    }
     if (!(*options.end_time_s > 0.0) || (start && *options.end_time_s <= *start + 1e-12)) {
       throw OpenFoamError("--end-time " + format_seconds(*options.end_time_s) + " s: must be after " +
                           (start ? "the latest time " + format_seconds(*start) + " s of " + dir.string()

@@ -91,6 +91,13 @@ int run_sph_directory(const SphOptions& opt) {
 
   RunOptions ro;
   ro.dir = dir;
+  if (opt.end_time > c.run.latest_end_time_s()) {
+    std::ostringstream e;
+    e << "--end-time " << opt.end_time << " s is out of range for '" << case_file.string() << "': must be <= "
+      << c.run.latest_end_time_s() << " s (at most " << cases::max_outputs_per_run << " outputs, one every "
+      << c.run.output_interval_s << " s, and at most " << cases::max_end_time_s << " s)";
+    throw std::runtime_error(e.str());
+  }
   ro.end_time_s = opt.end_time > 0.0 ? opt.end_time : c.run.end_time_s;
   if (c.sph.inflow_condition == "piston" && ro.end_time_s > c.run.end_time_s)
     throw std::runtime_error("'" + case_file.string() + "': --end-time " + std::to_string(ro.end_time_s) +

@@ -248,6 +248,22 @@ TEST_CASE("Non-physical values are rejected with the allowed range", "[cases][sp
     const auto msg = rejection(replaced(valid_spec, "average_start_s = 6.0", "average_start_s = 10.0"));
     CHECK_THAT(msg, Catch::Contains("run.average_start_s = 10 is out of range: must be >= 0 and < 10"));
   }
+  SECTION("an averaging window holding one output (no time mean, standard deviation or trend)") {
+    const auto text = replaced(valid_spec, "average_start_s = 6.0", "average_start_s = 9.97");
+    const auto msg = rejection(text);
+    CHECK_THAT(msg, Catch::Contains("spec.toml:" + std::to_string(line_of(text, "average_start_s"))));
+    CHECK_THAT(msg, Catch::Contains("run.average_start_s = 9.97 leaves the averaging window [9.97, 10] s with 1 output "
+                                    "time(s) (one every output_interval_s = 0.05 s): it must hold at least 2"));
+    CHECK_NOTHROW(parse_study(replaced(valid_spec, "average_start_s = 6.0", "average_start_s = 9.95"), "spec.toml", "."));
+  }
+  SECTION("time-step limits so small that a run would never end") {
+    CHECK_THAT(rejection(valid_spec + "[sph]\ncfl_number = 1e-12\n"),
+               Catch::Contains("sph.cfl_number = 1e-12 is out of range: must be >= 0.01 and <= 1"));
+    CHECK_THAT(rejection(valid_spec + "[vof]\nmax_courant = 1e-12\n"),
+               Catch::Contains("vof.max_courant = 1e-12 is out of range: must be >= 0.01 and <= 5"));
+    CHECK_THAT(rejection(valid_spec + "[vof]\nmax_time_step_s = 1e-300\n"),
+               Catch::Contains("vof.max_time_step_s = 1e-300 is out of range: must be >= 1e-06 and <= 1"));
+  }
   SECTION("an output interval so short that the run would write more than 100000 outputs") {
     const auto text = replaced(valid_spec, "end_time_s = 10.0", "end_time_s = 10.0\noutput_interval_s = 1e-300");
     const auto msg = rejection(text);

@@ -284,6 +284,24 @@ TEST_CASE("SPH output outside the averaging window is reported as missing", "[co
   CHECK_THAT(c.sph.status, Catch::Contains("averaging window"));
 }
 
+TEST_CASE("A window holding fewer than two output times, or stations coarser than y1, are refused", "[compare][case]") {
+  RunFixture fx;
+  fx.write_sph(0.01, {6.5, 8.0});
+  CompareOptions options;
+  options.plots = false;
+  std::ostringstream log;
+  // One output time (8.0 s; the case writes every 0.1 s): no time mean, deviation or trend.
+  options.window_start_s = 8.0;
+  options.window_end_s = 8.05;
+  CHECK_THROWS_WITH(compare_case_directory(fx.run(), options, log),
+                    Catch::Contains("the averaging window [8, 8.05] s holds 1 output time(s) (one every 0.1 s)"));
+  options.window_start_s = 6.5;
+  options.window_end_s = 8.0;
+  options.station_spacing_m = 0.5;
+  CHECK_THROWS_WITH(compare_case_directory(fx.run(), options, log),
+                    Catch::Contains("--station-spacing 0.5 m is coarser than the inflow depth y1 = 0.0254 m"));
+}
+
 TEST_CASE("A directory without case.toml gives a clear error", "[compare][case]") {
   TempDir tmp("norun");
   std::ostringstream log;

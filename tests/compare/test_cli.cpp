@@ -295,6 +295,10 @@ TEST_CASE("options refuse nan, inf, non-positive numbers, empty paths and the wr
     CHECK(run({"sph", dir.string(), "--end-time", value, "--quiet"}, tmp.path() / "sph.log") != 0);
     CHECK_THAT(read_text(tmp.path() / "sph.log"), Catch::Contains("--end-time") && Catch::Contains("must be a finite number > 0"));
   }
+  // Finite but past what a case may run (it would never end): refused with the limit.
+  CHECK(run({"sph", dir.string(), "--end-time", "1e308", "--quiet"}, tmp.path() / "sph.log") != 0);
+  CHECK_THAT(read_text(tmp.path() / "sph.log"), Catch::Contains("--end-time 1e+308 s is out of range") &&
+                                                    Catch::Contains("must be <= "));
   CHECK_FALSE(fs::exists(dir / "checkpoint.bin"));
   // An empty --out wrote into the current directory.
   for (const std::string command : {"generate", "study"}) {

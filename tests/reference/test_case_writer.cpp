@@ -429,6 +429,13 @@ TEST_CASE("cases the VOF reference cannot run are rejected with a clear message"
   }
 }
 
+TEST_CASE("a mesh of more than ten million cells is refused with the cell size it needs", "[reference][mesh]") {
+  const cases::Study study = parse(basin_spec("", 0.02, 0.01, "sinusoidal", 1e-5, 1e-5));
+  CHECK_THROWS_WITH(reference::build_vof_case(study, study.cases.front(), "quick"),
+                    Catch::Contains("vof_cell_size_bed_m = 1e-05 m gives up to") &&
+                        Catch::Contains("cells: must be at most 10000000, i.e. vof_cell_size_bed_m >= "));
+}
+
 TEST_CASE("write_vof_case writes a complete case directory with its resolved spec", "[reference][case]") {
   const cases::Study study = parse(basin_spec());
   const hydrojump::testing::TempDir tmp("reference-write");

@@ -17,6 +17,11 @@ TEST_CASE("numbers are written so they read back exactly", "[reference][foam_dic
   CHECK(foam::format_number(0.0254) == "0.0254");
   CHECK(foam::format_number(1.0e-6) == "1e-06");
   CHECK(foam::format_number(-9.81) == "-9.81");
+  // Whole numbers as integers: a cell count "1e+05" is not a label to OpenFOAM.
+  CHECK(foam::format_number(100000.0) == "100000");
+  CHECK(foam::Value(100000).number() == 100000.0);
+  CHECK(foam::format_number(3.0e9) == "3000000000");
+  CHECK(foam::format_number(-2.0e6) == "-2000000");
   for (double x : {0.1 + 0.2, 1.0 / 3.0, 6.02214076e23, 1.0e-300, -2.5e-7}) {
     const std::string text = foam::format_number(x);
     CHECK(std::strtod(text.c_str(), nullptr) == x);

@@ -218,8 +218,10 @@ TEST_CASE("a tiny corrugated basin meshes, passes checkMesh, runs and resumes", 
   CHECK_THAT(cases::read_text_file(dir / "log.interFoam"), Catch::Contains("resumed by hydrojump"));
 
   // --end-time extends the finished run (system/controlDict's endTime rewritten, the rest kept); an end
-  // time not after the latest time directory is refused.
+  // time not after the latest time directory is refused, and so is one past what a case may run.
   reference::RunOptions extend = resume;
+  extend.end_time_s = 1e308;
+  CHECK_THROWS_WITH(reference::run_vof_case(dir, extend, refused), Catch::Contains("--end-time 1e+308 s is out of range"));
   extend.end_time_s = 0.02;
   CHECK_THROWS_WITH(reference::run_vof_case(dir, extend, refused),
                     Catch::Contains("--end-time 0.02 s: must be after the latest time 0.02 s"));
