@@ -368,6 +368,16 @@ CaseComparison compare_case(const cases::Study& study, const fs::path& run_dir, 
   try {
     const fs::path pvd = options.sph_pvd.empty() ? find_pvd(run_dir / "sph") : options.sph_pvd;
     r.sph.source = pvd.string();
+    // A series from another directory (--sph-pvd): when a case record lies beside it, it must be this
+    // case's, as the one in RUN_DIR/sph is (load_run_case). Results of other programs have none.
+    if (const fs::path other = pvd.parent_path(); !options.sph_pvd.empty() && fs::exists(cases::recorded_case_file(other))) {
+      const fs::path recorded = cases::recorded_case_file(other);
+      const auto d = cases::first_setting_difference(cases::read_text_file(recorded), cases::read_text_file(study.source_file));
+      if (d.any()) {
+        throw std::runtime_error(pvd.string() + " was made with other settings than " + study.source_file.string() + ": " +
+                                 recorded.string() + " has '" + d.a + "' where it has '" + d.b + "'");
+      }
+    }
     const auto all = read_pvd(pvd);
     const auto entries = entries_in_window(all, t0, t1, time_tolerance_s);
     if (entries.empty()) {

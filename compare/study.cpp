@@ -26,6 +26,7 @@
 #include "compare/generate.hpp"
 #include "compare/plots.hpp"
 #include "compare/study_summary.hpp"
+#include "reference/runner.hpp"
 #include "sph/cli.hpp"
 #include "hydrojump/version.hpp"
 
@@ -417,6 +418,11 @@ int run_study(const StudyOptions& given, std::ostream& log) {
   // Validate every selected case first, with what only the solvers' derivations find: nothing runs
   // (and no earlier results are moved aside) while one is invalid.
   check_cases(study, selected, options.resolution);
+  // Before hours of SPH runs: an OpenFOAM run could not start in this directory.
+  if (std::find(options.methods.begin(), options.methods.end(), "vof") != options.methods.end()) {
+    if (const auto problem = reference::openfoam_path_problem(options.out))
+      throw std::runtime_error("--out " + options.out.string() + ": " + *problem + " (or --methods sph)");
+  }
   std::filesystem::create_directories(options.out);
   // One study per output directory (its case runs lock their own directories too).
   const cases::DirectoryLock lock(options.out, "hydrojump study " + options.spec);

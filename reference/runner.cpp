@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cerrno>
 #include <chrono>
 #include <csignal>
@@ -1026,6 +1027,19 @@ double run_solver(const SolverRun& run, std::optional<double> start, double end_
 
 }  // namespace
 
+std::optional<std::string> openfoam_path_problem(const fs::path& dir) {
+  const std::string path = fs::absolute(dir).lexically_normal().string();
+  for (const char ch : path) {
+    if (std::isspace(static_cast<unsigned char>(ch)) || ch == '"' || ch == '\'') {
+      return "OpenFOAM cannot run a case in " + path + ": its path holds a " +
+             (ch == ' ' ? std::string("blank") : std::isspace(static_cast<unsigned char>(ch)) ? std::string("white-space character") : std::string("quote")) +
+             ", which OpenFOAM v1912 strips from file names (its utilities then look elsewhere); use a directory whose "
+             "path has none";
+    }
+  }
+  return std::nullopt;
+}
+
 std::optional<double> latest_time(const fs::path& case_dir) {
   const auto times = cases::time_directories(case_dir, 0.0);
   if (times.empty()) return std::nullopt;
@@ -1496,6 +1510,7 @@ void run_vof_case_steps(const fs::path& dir, const RunOptions& options, std::ost
 
 void run_vof_case(const fs::path& dir_in, const RunOptions& options, std::ostream& out) {
   const fs::path dir = fs::absolute(dir_in);
+  if (const auto problem = openfoam_path_problem(dir)) throw OpenFoamError(*problem);
   try {
     run_vof_case_steps(dir, options, out);
   } catch (const StepStopped& e) {

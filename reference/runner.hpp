@@ -70,6 +70,10 @@ struct SelfTestResult {
 // Runs the self-test in a fresh directory under `work_dir` (removed afterwards).
 SelfTestResult self_test_non_orthogonal(const std::filesystem::path& work_dir);
 
+// Why OpenFOAM cannot run a case in `dir`, or nothing: v1912 strips blanks and quotes from file
+// names (fileName::stripInvalid), so a case whose absolute path holds one fails in blockMesh.
+std::optional<std::string> openfoam_path_problem(const std::filesystem::path& dir);
+
 // The latest time directory of `case_dir` (> 0), or nothing.
 std::optional<double> latest_time(const std::filesystem::path& case_dir);
 

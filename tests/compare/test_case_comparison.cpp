@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cases/csv_table.hpp"
+#include "cases/fingerprint.hpp"
 #include "cases/geometry.hpp"
 #include "cases/hydraulics.hpp"
 #include "cases/spec_reader.hpp"
@@ -300,6 +301,31 @@ TEST_CASE("A window holding fewer than two output times, or stations coarser tha
   options.station_spacing_m = 0.5;
   CHECK_THROWS_WITH(compare_case_directory(fx.run(), options, log),
                     Catch::Contains("--station-spacing 0.5 m is coarser than the inflow depth y1 = 0.0254 m"));
+}
+
+TEST_CASE("An SPH series given with --sph-pvd is checked against the case when a case record lies beside it",
+          "[compare][case]") {
+  RunFixture fx;
+  fx.write_sph(0.01, {6.5, 8.0});
+  // The same series in another directory, made (its case.toml says) with another particle spacing.
+  const fs::path other = fx.tmp.path() / "other";
+  fs::copy(fx.run() / "sph", other, fs::copy_options::recursive);
+  std::string text = cases::read_text_file(other / "case.toml");
+  const std::string key = "particle_spacing_m = ";
+  REQUIRE(text.find(key) != std::string::npos);
+  text.replace(text.find(key), key.size(), key + "0.02 # ");
+  std::ofstream(other / "case.toml") << text;
+  CompareOptions options;
+  options.plots = false;
+  options.sph_pvd = other / "particles.pvd";
+  std::ostringstream log;
+  const CaseComparison refused = compare_case_directory(fx.run(), options, log);
+  CHECK_FALSE(refused.sph.available);
+  CHECK_THAT(refused.sph.status, Catch::Contains("was made with other settings than") &&
+                                     Catch::Contains("particle_spacing_m = 0.02"));
+  // Without a record beside it (another program's results) it is taken as it is.
+  fs::remove(other / "case.toml");
+  CHECK(compare_case_directory(fx.run(), options, log).sph.available);
 }
 
 TEST_CASE("A directory without case.toml gives a clear error", "[compare][case]") {

@@ -429,6 +429,17 @@ TEST_CASE("cases the VOF reference cannot run are rejected with a clear message"
   }
 }
 
+TEST_CASE("a case path with a blank or a quote is refused for OpenFOAM, naming it", "[reference][case]") {
+  CHECK_FALSE(reference::openfoam_path_problem("/tmp/runs/A/vof").has_value());
+  CHECK_THAT(*reference::openfoam_path_problem("/tmp/my runs/A/vof"),
+             Catch::Contains("/tmp/my runs/A/vof: its path holds a blank"));
+  CHECK(reference::openfoam_path_problem("/tmp/it's/A/vof").has_value());
+  CHECK(reference::openfoam_path_problem("/tmp/tab\there").has_value());
+  std::ostringstream out;
+  CHECK_THROWS_WITH(reference::run_vof_case("/tmp/no such dir/vof", reference::RunOptions{}, out),
+                    Catch::Contains("OpenFOAM cannot run a case in /tmp/no such dir/vof"));
+}
+
 TEST_CASE("a mesh of more than ten million cells is refused with the cell size it needs", "[reference][mesh]") {
   const cases::Study study = parse(basin_spec("", 0.02, 0.01, "sinusoidal", 1e-5, 1e-5));
   CHECK_THROWS_WITH(reference::build_vof_case(study, study.cases.front(), "quick"),

@@ -450,3 +450,17 @@ TEST_CASE("Study runner: a stop request stops the running stage with its state w
   CHECK_THAT(report, Catch::Contains("| A | sph | stopped |") && Catch::Contains("| A | vof | skipped |") &&
                          Catch::Contains("| B | setup | skipped |"));
 }
+
+TEST_CASE("Study runner: an output directory OpenFOAM cannot run in is refused before anything runs", "[study]") {
+  const TempDir tmp("study-blank");
+  StudyOptions options = mini_study_with_stand_in(tmp.path(), "exit 0\n");
+  options.out = tmp.path() / "my study";
+  std::ostringstream log;
+  CHECK_THROWS_WITH(run_study(options, log), Catch::Contains("--out " + options.out.string()) &&
+                                                 Catch::Contains("its path holds a blank") &&
+                                                 Catch::Contains("--methods sph"));
+  CHECK_FALSE(fs::exists(options.out));
+  // The SPH solver has no such limit.
+  options.methods = {"sph"};
+  CHECK(run_study(options, log) == 0);
+}
