@@ -948,10 +948,17 @@ Study load_study(const std::filesystem::path& file, SpecPurpose purpose) {
     throw SpecError(file.string() + ": is a directory, not a study file (a .toml spec or a generated case.toml)");
   std::ifstream in(file, std::ios::binary);
   if (!in) throw SpecError(file.string() + ": cannot open the study file");
-  std::ostringstream text;
-  text << in.rdbuf();
+  // At most max_spec_bytes: a study file is a few kB (and /dev/zero would be read until memory ran out).
+  constexpr std::size_t max_spec_bytes = 16u << 20;
+  std::string text;
+  char buffer[65536];
+  while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
+    text.append(buffer, static_cast<std::size_t>(in.gcount()));
+    if (text.size() > max_spec_bytes)
+      throw SpecError(file.string() + ": is larger than 16 MiB, not a study file (a .toml spec or a generated case.toml)");
+  }
   const auto base = file.has_parent_path() ? file.parent_path() : std::filesystem::path(".");
-  Study study = parse_study(text.str(), file.string(), base, purpose);
+  Study study = parse_study(text, file.string(), base, purpose);
   study.source_file = file;
   return study;
 }

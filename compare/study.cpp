@@ -423,7 +423,15 @@ int run_study(const StudyOptions& given, std::ostream& log) {
     if (const auto problem = reference::openfoam_path_problem(options.out))
       throw std::runtime_error("--out " + options.out.string() + ": " + *problem + " (or --methods sph)");
   }
-  std::filesystem::create_directories(options.out);
+  {
+    std::error_code ec;
+    std::filesystem::create_directories(options.out, ec);
+    if (ec || !std::filesystem::is_directory(options.out))
+      throw std::runtime_error("--out " + options.out.string() + ": cannot be made a study directory (" +
+                               (std::filesystem::exists(options.out) ? std::string("a file of that name is there")
+                                                                     : ec.message()) +
+                               ")");
+  }
   // One study per output directory (its case runs lock their own directories too).
   const cases::DirectoryLock lock(options.out, "hydrojump study " + options.spec);
   log << "study \"" << study.name << "\": " << selected.size() << " case(s) at resolution \""

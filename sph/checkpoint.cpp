@@ -121,7 +121,8 @@ void check_contents(const Checkpoint& c, const std::filesystem::path& file) {
   const auto& k = c.clock;
   if (!std::isfinite(k.time) || k.time < 0.0) damaged("its time is " + seconds(k.time));
   if (!std::isfinite(k.last_dt) || k.last_dt < 0.0) damaged("its last time step is " + seconds(k.last_dt));
-  if (k.steps < 0) damaged("its step count is negative");
+  // Negative, or beyond any run (1e15 steps: thousands of years at a million steps a second).
+  if (k.steps < 0 || k.steps > 1'000'000'000'000'000) damaged("its step count " + std::to_string(k.steps) + " is impossible");
   if (!std::isfinite(k.inflow_mass) || !std::isfinite(k.outflow_mass)) damaged("its inflow/outflow mass is not finite");
   if (!std::isfinite(k.outflow_target_depth) || k.outflow_target_depth < 0.0)
     damaged("its outflow target depth is " + std::to_string(k.outflow_target_depth) + " m");

@@ -141,6 +141,8 @@ TEST_CASE("A missing study file, a directory in its place and a directory as the
   CHECK_THROWS_WITH(load_study(tmp.path() / "absent.toml"), Catch::Contains("absent.toml: cannot open the study file"));
   fs::create_directories(tmp.path() / "case.toml");
   CHECK_THROWS_WITH(load_study(tmp.path() / "case.toml"), Catch::Contains("case.toml: is a directory, not a study file"));
+  // An endless stream is not read until memory runs out.
+  CHECK_THROWS_WITH(load_study("/dev/zero"), Catch::Contains("/dev/zero: is larger than 16 MiB, not a study file"));
 
   std::string dam = read_text_file(source_dir + "/cases/dam_break.toml");
   const auto at = dam.find("front_file = \"");

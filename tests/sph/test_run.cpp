@@ -133,6 +133,9 @@ TEST_CASE("a checkpoint whose contents are damaged is refused by name", "[sph][r
   refused([](Checkpoint& c) { c.clock.last_dt = -1.0; }, "its last time step is -1 s");
   refused([](Checkpoint& c) { c.next_output_time = std::numeric_limits<double>::quiet_NaN(); }, "its next output time");
   refused([](Checkpoint& c) { c.clock.outflow_target_depth = -0.1; }, "its outflow target depth is -0.1");
+  refused([](Checkpoint& c) { c.clock.steps = std::numeric_limits<std::int64_t>::max(); },
+          "its step count 9223372036854775807 is impossible");
+  refused([](Checkpoint& c) { c.clock.steps = -1; }, "its step count -1 is impossible");
   // A damaged string length (the fingerprint's, right after the 8-byte magic) longer than the rest of
   // the file: refused as corrupt (since session 14 from the file's size, before 3 GB are allocated).
   write_checkpoint(good, file);

@@ -463,4 +463,9 @@ TEST_CASE("Study runner: an output directory OpenFOAM cannot run in is refused b
   // The SPH solver has no such limit.
   options.methods = {"sph"};
   CHECK(run_study(options, log) == 0);
+  // A file where the study directory should be.
+  options.out = tmp.path() / "a_file";
+  write(options.out, "not a directory\n");
+  CHECK_THROWS_WITH(run_study(options, log),
+                    Catch::Contains("--out " + options.out.string() + ": cannot be made a study directory (a file of that name is there)"));
 }
