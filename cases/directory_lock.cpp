@@ -80,16 +80,17 @@ DirectoryLock::DirectoryLock(const std::filesystem::path& dir, const std::string
   bool writable = fd_ >= 0;
   // A lock file left by another user (or a root run) can still be locked through a read-only
   // descriptor; only the holder text is not written then.
-  if (fd_ < 0 && errno == EACCES) fd_ = ::open(file.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
+  if (fd_ < 0 && errno == EACCES) fd_ = ::open(file.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK);
+  // Not a FIFO or device either, nor a hard link to another file (it would be written too).
   struct stat info {};
-  if (fd_ >= 0 && (::fstat(fd_, &info) != 0 || !S_ISREG(info.st_mode))) {
+  if (fd_ >= 0 && (::fstat(fd_, &info) != 0 || !S_ISREG(info.st_mode) || info.st_nlink > 1)) {
     ::close(fd_);
     fd_ = -1;
     errno = EINVAL;
   }
   if (fd_ < 0 && (errno == ELOOP || errno == EINVAL || errno == EISDIR)) {
     throw std::runtime_error("the lock file " + file.string() +
-                             " is a symbolic link or not a regular file: remove it (hydrojump creates its own)");
+                             " is a symbolic link, a hard link or not a regular file: remove it (hydrojump creates its own)");
   }
   if (fd_ < 0) {
     throw std::runtime_error("cannot create the lock file " + file.string() + " (" + std::strerror(errno) +

@@ -16,7 +16,7 @@
 //   |-------------------------|-------------------------------------------------------------------|
 //   | output_time_tolerance_s | 1 % of the output interval (1e-9 s if the interval is unknown, 0) |
 //   | in_output_window        | whether an output at t belongs to the window [t0, t1]             |
-//   | outputs_in_window       | how many nominal output times k dt (k >= 0) the window holds       |
+//   | outputs_in_window       | how many output times k dt (k >= 1) the window holds               |
 // Example:
 //   const double tol = cases::output_time_tolerance_s(c.run.output_interval_s);
 //   for (double t : times) if (cases::in_output_window(t, 16.0, 20.0, tol)) use(t);
@@ -35,11 +35,12 @@ inline bool in_output_window(double t, double t0, double t1, double tolerance_s)
   return t >= t0 - tolerance_s && t <= t1 + tolerance_s;
 }
 
-// The output times k dt (k = 0, 1, ...) in [t0, t1], with the tolerance above. A time mean needs two.
+// The output times k dt (k = 1, 2, ...) in [t0, t1], with the tolerance above; the initial state
+// (k = 0) is not one (OpenFOAM's results start after it). A time mean needs two.
 inline long outputs_in_window(double t0, double t1, double output_interval_s) {
   if (!(output_interval_s > 0.0) || !(t1 >= t0)) return 0;
   const double eps = 0.01;  // the tolerance, in output intervals
-  const double first = std::max(0.0, std::ceil(t0 / output_interval_s - eps));
+  const double first = std::max(1.0, std::ceil(t0 / output_interval_s - eps));
   const double last = std::floor(t1 / output_interval_s + eps);
   return last >= first ? static_cast<long>(last - first) + 1 : 0;
 }

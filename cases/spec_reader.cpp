@@ -509,10 +509,16 @@ void read_run(TableReader& t, RunSettings& run) {
   run.average_end_s = t.number_or("average_end_s", run.end_time_s, Range{run.average_start_s, run.end_time_s, true, false, "s, after average_start_s and within the run"});
   // A time mean (and a standard deviation, a trend) needs two outputs at least.
   if (const long n = outputs_in_window(run.average_start_s, run.average_end_s, run.output_interval_s); n < 2) {
-    const toml::node* at = t.raw().get("average_end_s") ? t.raw().get("average_end_s") : t.raw().get("average_start_s");
-    const bool end_given = at == t.raw().get("average_end_s");
-    t.fail_at(at, end_given ? "average_end_s" : "average_start_s",
-              "= " + number_text(end_given ? run.average_end_s : run.average_start_s) + " leaves the averaging window [" +
+    // Named by the key the file gives (the window's, else the output interval or the end time).
+    std::string key = "end_time_s";
+    for (const char* k : {"output_interval_s", "average_start_s", "average_end_s"})
+      if (t.raw().get(k)) key = k;
+    const double value = key == "average_end_s"       ? run.average_end_s
+                          : key == "average_start_s"   ? run.average_start_s
+                          : key == "output_interval_s" ? run.output_interval_s
+                                                       : run.end_time_s;
+    t.fail_at(t.raw().get(key), key,
+              "= " + number_text(value) + " leaves the averaging window [" +
                   number_text(run.average_start_s) + ", " + number_text(run.average_end_s) + "] s with " +
                   number_text(static_cast<double>(n)) + " output time(s) (one every output_interval_s = " +
                   number_text(run.output_interval_s) + " s): it must hold at least 2");

@@ -33,18 +33,27 @@
 namespace hydrojump::compare {
 namespace {
 
-// A stop request to the study (Ctrl-C, SIGTERM, a hangup): its signal number, 0 while none came.
-volatile std::sig_atomic_t study_stop_signal = 0;
-void request_study_stop(int signal) { study_stop_signal = signal; }
+// Stop requests to the study (Ctrl-C, SIGTERM, a hangup): the first one's signal number (0 while none
+// came) and how many came. Lock-free atomics: safe in a signal handler and read by the worker threads.
+std::atomic<int> study_stop_signal{0};
+std::atomic<int> study_stop_requests{0};
+static_assert(std::atomic<int>::is_always_lock_free);
+void request_study_stop(int signal) {
+  int none = 0;
+  study_stop_signal.compare_exchange_strong(none, signal);
+  study_stop_requests.fetch_add(1);
+}
 
 // The study's handlers for SIGINT, SIGTERM and SIGHUP (unless SIGHUP is ignored, as under nohup)
 // while it runs. Its stages run in their own process groups, so a request reaches them once, from
 // the study (a SIGTERM: the SPH run writes a checkpoint, the OpenFOAM run its current time), and no
-// further stage starts; the next study resumes them.
+// further stage starts; the next study resumes them. A second request stops them at once (SIGTERM,
+// then SIGKILL to their process groups).
 class StudyStopSignals {
  public:
   StudyStopSignals() {
     study_stop_signal = 0;
+    study_stop_requests = 0;
     struct sigaction sa {};
     sa.sa_handler = request_study_stop;
     sigemptyset(&sa.sa_mask);
@@ -229,7 +238,8 @@ class StudyRunner {
       else if (std::filesystem::exists(started) && method == "sph") args.push_back("--restart");
       const auto stage = run_stage(c.id, method, args, dir, run_fingerprint, started);
       any_solver_ok = any_solver_ok || stage.state == "done" || stage.state == "cached";
-      any_solver_ran = any_solver_ran || stage.state == "done" || stage.state == "failed";
+      // A stopped run wrote new outputs too: the comparison is stale.
+      any_solver_ran = any_solver_ran || stage.state == "done" || stage.state == "failed" || stage.state == "stopped";
       result.stages.push_back(stage);
     }
     // A comparison is only as current as the solver results it read.
@@ -252,6 +262,9 @@ class StudyRunner {
       return {stage, "cached", 0.0, 0, {}};
     }
     const auto log_file = dir / (stage + ".log");
+    // A request that came since the caller looked: nothing starts (a child stopped before its own
+    // handlers are set would die without writing its state).
+    if (study_stopping()) return {stage, "skipped", 0.0, 0, "the study was stopped"};
     if (!started_marker.empty()) cases::write_file_atomically(started_marker, fingerprint);
     say(id + ": " + stage + " started (log: " + log_file.string() + ")");
     const auto t0 = std::chrono::steady_clock::now();
@@ -265,8 +278,12 @@ class StudyRunner {
       std::optional<cases::ChildExit> ended;
       while (!(ended = cases::poll_child(pid))) {
         if (study_stopping() && !stopped) {
-          ::kill(pid, SIGTERM);  // it stops with its state written
+          ::kill(-pid, SIGTERM);  // its process group: it stops with its state written
           stopped = true;
+        }
+        if (study_stop_requests.load() >= 2) {
+          ended = cases::stop_child(pid, std::chrono::seconds(2));  // asked again: at once
+          break;
         }
         std::this_thread::sleep_for(std::chrono::milliseconds(100));
       }
@@ -387,8 +404,10 @@ void write_study_report(const StudyOptions& options, const cases::Study& study,
     for (const auto& s : r.stages) {
       const bool has_report = std::filesystem::exists(options.out / r.id / "report.md");
       md << "| " << r.id << " | " << s.stage << " | " << s.state
-         << (s.state == "failed" ? (s.message.empty() ? " (exit " + std::to_string(s.exit_status) + ")" : ": " + s.message) : "") << " | "
-         << (s.state == "done" || s.state == "failed" ? duration_text(s.seconds) : "-") << " | "
+         << (s.state == "failed" ? (s.message.empty() ? " (exit " + std::to_string(s.exit_status) + ")" : ": " + s.message)
+             : s.message.empty() ? std::string()
+                                 : " (" + s.message + ")")
+         << " | " << (s.state == "done" || s.state == "failed" || s.state == "stopped" ? duration_text(s.seconds) : "-") << " | "
          << (has_report && s.stage == "compare" ? "[" + r.id + "/report.md](" + r.id + "/report.md)" : "")
          << " |\n";
     }
@@ -459,14 +478,14 @@ int run_study(const StudyOptions& given, std::ostream& log) {
   log << "study report: " << (options.out / "study_report.md").string() << "; " << failed << " of "
       << results.size() << " case(s) had a failed stage" << std::endl;
   if (study_stopping()) {
-    const int signal = study_stop_signal;
+    const int signal = study_stop_signal.load();
     log << "study stopped by " << (signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : "SIGHUP")
         << ": the stages that were running stopped with their state written, no other stage started; run the "
            "same command again to go on from there"
         << std::endl;
     return 128 + signal;
   }
-  return failed;
+  return std::min(failed, 127);  // 128 and above: stopped by a signal
 }
 
 void register_study_command(CLI::App& app) {

@@ -43,7 +43,7 @@ struct StudyOptions {
 // on two cores; else 0 (the solver's own default: OMP_NUM_THREADS or all cores).
 int sph_threads_per_job(int requested, int jobs, int cores);
 
-// Runs the study; returns the number of cases with a failed stage (0: all good), or 128 + the signal
+// Runs the study; returns the number of cases with a failed stage (0: all good; at most 127), or 128 + the signal
 // number when a stop request (SIGINT, SIGTERM, SIGHUP) stopped it: the running stages are stopped
 // with their state written and no other stage starts.
 int run_study(const StudyOptions& options, std::ostream& log);

@@ -1225,9 +1225,9 @@ void run_vof_case_steps(const fs::path& dir, const RunOptions& options, std::ost
                           " is missing (regenerate it with `hydrojump generate`)");
     }
   }
-  // The dictionaries were written from the case.toml `generate` wrote: a new run of an edited one
-  // would record settings its dictionaries do not have (a resumed run is checked against its record).
-  if (const fs::path generated = dir / generated_case_file_name; !cases::holds_results(dir) && fs::exists(generated)) {
+  // The dictionaries were written from the case.toml `generate` wrote (it rewrites both together): a
+  // run of an edited one would record, or be checked against, settings its dictionaries do not have.
+  if (const fs::path generated = dir / generated_case_file_name; fs::exists(generated)) {
     const auto d = cases::first_setting_difference(cases::read_text_file(generated), cases::read_text_file(spec_file));
     if (d.any()) {
       throw OpenFoamError(spec_file.string() + " was edited after `hydrojump generate` wrote the OpenFOAM dictionaries "

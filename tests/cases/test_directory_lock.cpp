@@ -150,7 +150,7 @@ TEST_CASE("A lock held by the child of a holder that has ended says so and shows
   stop_child(solver);
 }
 
-TEST_CASE("A lock file that is a symbolic link or a directory is refused, and its target left alone", "[cases][lock]") {
+TEST_CASE("A lock file that is a symbolic link, a hard link or a directory is refused, and its target left alone", "[cases][lock]") {
   const hydrojump::testing::TempDir tmp("lock");
   const fs::path dir = tmp.path() / "run";
   fs::create_directories(dir);
@@ -158,7 +158,7 @@ TEST_CASE("A lock file that is a symbolic link or a directory is refused, and it
   std::ofstream(target) << "keep me\n";
   fs::create_symlink(target, dir / DirectoryLock::file_name);
   CHECK_THROWS_WITH(DirectoryLock(dir, "hydrojump sph"),
-                    Catch::Contains((dir / DirectoryLock::file_name).string() + " is a symbolic link or not a regular file"));
+                    Catch::Contains((dir / DirectoryLock::file_name).string() + " is a symbolic link, a hard link or not a regular file"));
   std::string text;
   std::getline(std::ifstream(target), text);
   CHECK(text == "keep me");
@@ -168,5 +168,12 @@ TEST_CASE("A lock file that is a symbolic link or a directory is refused, and it
   CHECK_FALSE(fs::exists(target));
   fs::remove(dir / DirectoryLock::file_name);
   fs::create_directory(dir / DirectoryLock::file_name);
-  CHECK_THROWS_WITH(DirectoryLock(dir, "hydrojump sph"), Catch::Contains("is a symbolic link or not a regular file"));
+  CHECK_THROWS_WITH(DirectoryLock(dir, "hydrojump sph"), Catch::Contains("is a symbolic link, a hard link or not a regular file"));
+  // A hard link to another file would write that file too.
+  fs::remove(dir / DirectoryLock::file_name);
+  std::ofstream(target) << "keep me\n";
+  fs::create_hard_link(target, dir / DirectoryLock::file_name);
+  CHECK_THROWS_WITH(DirectoryLock(dir, "hydrojump sph"), Catch::Contains("a hard link"));
+  std::getline(std::ifstream(target), text);
+  CHECK(text == "keep me");
 }

@@ -487,6 +487,10 @@ TEST_CASE("a case.toml edited after generate is refused before a new run, naming
                         Catch::Contains("velocity_m_s = 3") && Catch::Contains("Run `hydrojump generate` again"));
   CHECK_FALSE(fs::exists(dir / "results_case.toml"));
   CHECK_FALSE(fs::exists(dir / "log.blockMesh"));
+  // Also after a first run that failed before writing a time (its log is there, no time directory).
+  std::ofstream(dir / "log.interFoam") << "Time = 0.001\n";
+  CHECK_THROWS_WITH(reference::run_vof_case(dir, reference::RunOptions{}, out),
+                    Catch::Contains("was edited after `hydrojump generate`"));
 }
 
 TEST_CASE("SPH-only cases get a note instead of an OpenFOAM case and the runner refuses them",

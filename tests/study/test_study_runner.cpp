@@ -447,8 +447,9 @@ TEST_CASE("Study runner: a stop request stops the running stage with its state w
   REQUIRE(called.size() == 1);
   CHECK(called.front().rfind("sph ", 0) == 0);
   const std::string report = hydrojump::cases::read_text_file(options.out / "study_report.md");
-  CHECK_THAT(report, Catch::Contains("| A | sph | stopped |") && Catch::Contains("| A | vof | skipped |") &&
-                         Catch::Contains("| B | setup | skipped |"));
+  CHECK_THAT(report, Catch::Contains("| A | sph | stopped |") &&
+                         Catch::Contains("| A | vof | skipped (the study was stopped) |") &&
+                         Catch::Contains("| B | setup | skipped (the study was stopped) |"));
 }
 
 TEST_CASE("Study runner: an output directory OpenFOAM cannot run in is refused before anything runs", "[study]") {
@@ -468,4 +469,29 @@ TEST_CASE("Study runner: an output directory OpenFOAM cannot run in is refused b
   write(options.out, "not a directory\n");
   CHECK_THROWS_WITH(run_study(options, log),
                     Catch::Contains("--out " + options.out.string() + ": cannot be made a study directory (a file of that name is there)"));
+}
+
+TEST_CASE("Study runner: a second stop request stops a stage that does not stop on the first", "[study]") {
+  const TempDir tmp("study-stop-twice");
+  const fs::path& dir = tmp.path();
+  // The stand-in's SPH run ignores SIGTERM (a stage stuck while writing its state).
+  StudyOptions options = mini_study_with_stand_in(
+      dir, "case \"$1\" in\n  sph) trap '' TERM\n    touch \"$2/running\"\n    while true; do sleep 0.05; done ;;\nesac\nexit 0\n");
+  options.cases = {"A"};
+  std::ostringstream log;
+  int status = -1;
+  std::thread study([&] { status = run_study(options, log); });
+  const fs::path running = options.out / "A" / "sph" / "running";
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (!fs::exists(running) && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  const bool started = fs::exists(running);
+  ::kill(::getpid(), SIGINT);
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  ::kill(::getpid(), SIGINT);  // as a second Ctrl-C
+  study.join();
+  REQUIRE(started);
+  INFO(log.str());
+  CHECK(status == 128 + SIGINT);
+  CHECK_THAT(log.str(), Catch::Contains("A: sph stopped on request") && Catch::Contains("study stopped by SIGINT"));
 }
