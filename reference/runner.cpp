@@ -1226,8 +1226,11 @@ void run_vof_case_steps(const fs::path& dir, const RunOptions& options, std::ost
     }
   }
   // The dictionaries were written from the case.toml `generate` wrote (it rewrites both together): a
-  // run of an edited one would record, or be checked against, settings its dictionaries do not have.
-  if (const fs::path generated = dir / generated_case_file_name; fs::exists(generated)) {
+  // run starting afresh from an edited one would record settings its dictionaries do not have. (A
+  // first run that failed before its first output starts afresh too; a resumed one is checked
+  // against its record below.)
+  const bool starts_afresh = !latest_time(dir) && !latest_time(dir / "processor0");
+  if (const fs::path generated = dir / generated_case_file_name; starts_afresh && fs::exists(generated)) {
     const auto d = cases::first_setting_difference(cases::read_text_file(generated), cases::read_text_file(spec_file));
     if (d.any()) {
       throw OpenFoamError(spec_file.string() + " was edited after `hydrojump generate` wrote the OpenFOAM dictionaries "

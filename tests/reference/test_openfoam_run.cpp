@@ -542,7 +542,7 @@ TEST_CASE("the tailwater control resumed between two control times integrates fr
 
 TEST_CASE("a tiny basin runs with the k-epsilon turbulence model", "[reference][openfoam]") {
   require_openfoam();
-  const std::string spec = basin_spec("turbulence_model = \"kEpsilon\"", 0.01, 0.01);
+  const std::string spec = basin_spec("turbulence_model = \"kEpsilon\"", 0.02, 0.01);
   const cases::Study study = parse(spec);
   const reference::VofCase vof = reference::build_vof_case(study, study.cases.front(), "quick");
   const TempDir tmp("openfoam-kepsilon");
@@ -550,7 +550,7 @@ TEST_CASE("a tiny basin runs with the k-epsilon turbulence model", "[reference][
   std::ostringstream out;
   reference::run_vof_case(dir, reference::RunOptions{}, out);
   INFO(out.str());
-  CHECK_THAT(out.str(), Catch::Contains("reached t = 0.01"));
+  CHECK_THAT(out.str(), Catch::Contains("reached t = 0.02"));
   CHECK_THAT(cases::read_text_file(dir / "log.interFoam"), Catch::Contains("Selecting RAS turbulence model kEpsilon"));
   CHECK(fs::exists(dir / "0.01/epsilon.gz"));
   const auto inlet = rows_of(dir / "postProcessing/discharge_inlet/0/surfaceFieldValue.dat");
@@ -561,13 +561,13 @@ TEST_CASE("a tiny basin runs with the k-epsilon turbulence model", "[reference][
 TEST_CASE("a tiny basin runs with the multiphase turbulence stabilization", "[reference][openfoam]") {
   require_openfoam();
   const std::string spec =
-      basin_spec("turbulence_model = \"RNGkEpsilon\"\nturbulence_stabilization = \"nut_limiter_and_buoyancy\"", 0.01, 0.01);
+      basin_spec("turbulence_model = \"RNGkEpsilon\"\nturbulence_stabilization = \"nut_limiter_and_buoyancy\"", 0.02, 0.01);
   const TempDir tmp("openfoam-stabilized");
   const fs::path dir = generate(spec, tmp.path() / "case");
   std::ostringstream out;
   reference::run_vof_case(dir, reference::RunOptions{}, out);
   INFO(out.str());
-  CHECK_THAT(out.str(), Catch::Contains("reached t = 0.01"));
+  CHECK_THAT(out.str(), Catch::Contains("reached t = 0.02"));
   // interFoam read constant/fvOptions (a wrong file class or unknown type would be a warning or an error)
   // and applied both corrections in every step.
   const std::string log = cases::read_text_file(dir / "log.interFoam");
