@@ -113,6 +113,26 @@ StudyOptions mini_study_failing_b_sph(const fs::path& dir, const fs::path& calls
                                            on_failure + " ; exit 3 ;;\nesac\nexit 0\n");
 }
 
+// Runs the study in a thread until its stand-in SPH run of case A has started (it touches
+// "$2/running"), then sends this process `signals` (the study's handlers take them), half a second
+// apart, and waits for the study to end. Returns its status; `log` gets its log.
+int run_study_stopped_by(const StudyOptions& options, const std::vector<int>& signals, std::ostringstream& log) {
+  int status = -1;
+  std::thread study([&] { status = run_study(options, log); });
+  const fs::path running = options.out / "A" / "sph" / "running";
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (!fs::exists(running) && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  const bool started = fs::exists(running);
+  for (std::size_t k = 0; k < signals.size(); ++k) {
+    if (k > 0) std::this_thread::sleep_for(std::chrono::milliseconds(500));
+    ::kill(::getpid(), signals[k]);
+  }
+  study.join();
+  REQUIRE(started);
+  return status;
+}
+
 }  // namespace
 
 TEST_CASE("Study runner: failures are isolated, results cached, changes re-run", "[study]") {
@@ -426,17 +446,8 @@ TEST_CASE("Study runner: a stop request stops the running stage with its state w
            "    touch \"$2/running\"\n    while true; do sleep 0.05; done ;;\nesac\nexit 0\n");
   options.cases = {"A", "B"};
   std::ostringstream log;
-  int status = -1;
-  std::thread study([&] { status = run_study(options, log); });
-  const fs::path running = options.out / "A" / "sph" / "running";
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
-  while (!fs::exists(running) && std::chrono::steady_clock::now() < deadline)
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  const bool started = fs::exists(running);
   // As `kill -TERM <study>`: the signal reaches the study alone (its stages run in their own groups).
-  ::kill(::getpid(), SIGTERM);
-  study.join();
-  REQUIRE(started);
+  const int status = run_study_stopped_by(options, {SIGTERM}, log);
   INFO(log.str());
   CHECK(status == 128 + SIGTERM);
   CHECK(fs::exists(options.out / "A" / "sph" / "term"));  // passed on to the stage
@@ -479,18 +490,7 @@ TEST_CASE("Study runner: a second stop request stops a stage that does not stop 
       dir, "case \"$1\" in\n  sph) trap '' TERM\n    touch \"$2/running\"\n    while true; do sleep 0.05; done ;;\nesac\nexit 0\n");
   options.cases = {"A"};
   std::ostringstream log;
-  int status = -1;
-  std::thread study([&] { status = run_study(options, log); });
-  const fs::path running = options.out / "A" / "sph" / "running";
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
-  while (!fs::exists(running) && std::chrono::steady_clock::now() < deadline)
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  const bool started = fs::exists(running);
-  ::kill(::getpid(), SIGINT);
-  std::this_thread::sleep_for(std::chrono::milliseconds(500));
-  ::kill(::getpid(), SIGINT);  // as a second Ctrl-C
-  study.join();
-  REQUIRE(started);
+  const int status = run_study_stopped_by(options, {SIGINT, SIGINT}, log);  // Ctrl-C twice
   INFO(log.str());
   CHECK(status == 128 + SIGINT);
   CHECK_THAT(log.str(), Catch::Contains("A: sph stopped on request") && Catch::Contains("study stopped by SIGINT"));
