@@ -23,6 +23,7 @@
 #include "cases/fingerprint.hpp"
 #include "cases/results_case.hpp"
 #include "cases/spec_reader.hpp"
+#include "cases/stop_signals.hpp"
 #include "compare/generate.hpp"
 #include "compare/plots.hpp"
 #include "compare/study_summary.hpp"
@@ -54,27 +55,10 @@ class StudyStopSignals {
   StudyStopSignals() {
     study_stop_signal = 0;
     study_stop_requests = 0;
-    struct sigaction sa {};
-    sa.sa_handler = request_study_stop;
-    sigemptyset(&sa.sa_mask);
-    sa.sa_flags = SA_RESTART;
-    ::sigaction(SIGINT, &sa, &old_int_);
-    ::sigaction(SIGTERM, &sa, &old_term_);
-    ::sigaction(SIGHUP, nullptr, &old_hup_);
-    if (old_hup_.sa_handler != SIG_IGN) ::sigaction(SIGHUP, &sa, nullptr);
   }
-  ~StudyStopSignals() {
-    ::sigaction(SIGINT, &old_int_, nullptr);
-    ::sigaction(SIGTERM, &old_term_, nullptr);
-    ::sigaction(SIGHUP, &old_hup_, nullptr);
-  }
-  StudyStopSignals(const StudyStopSignals&) = delete;
-  StudyStopSignals& operator=(const StudyStopSignals&) = delete;
 
  private:
-  struct sigaction old_int_ {};
-  struct sigaction old_term_ {};
-  struct sigaction old_hup_ {};
+  cases::StopSignalHandlers handlers_{request_study_stop, {.restart_interrupted_calls = true, .ignore_sigpipe = false}};
 };
 
 bool study_stopping() { return study_stop_signal != 0; }

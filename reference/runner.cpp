@@ -33,6 +33,7 @@
 #include "cases/geometry.hpp"
 #include "cases/results_case.hpp"
 #include "cases/spec_reader.hpp"
+#include "cases/stop_signals.hpp"
 #include "cases/time_directories.hpp"
 #include "reference/case_writer.hpp"
 #include "reference/discharge_samples.hpp"
@@ -81,36 +82,13 @@ void reference_runner_request_stop(int) { stop_requests = stop_requests + 1; }
 // (blockMesh, decomposePar, reconstructPar, ...) is stopped, and no further step starts.
 class StopRequestGuard {
  public:
-  StopRequestGuard() {
-    stop_requests = 0;
-    struct sigaction sa {};
-    sa.sa_handler = reference_runner_request_stop;
-    sigemptyset(&sa.sa_mask);
-    ::sigaction(SIGINT, &sa, &old_int_);
-    ::sigaction(SIGTERM, &sa, &old_term_);
-    ::sigaction(SIGHUP, nullptr, &old_hup_);
-    if (old_hup_.sa_handler != SIG_IGN) ::sigaction(SIGHUP, &sa, nullptr);
-    // A progress line written to a pipe whose reader a hangup ended must not kill the runner before it
-    // has stopped the solver (the write fails instead).
-    struct sigaction ignore {};
-    ignore.sa_handler = SIG_IGN;
-    sigemptyset(&ignore.sa_mask);
-    ::sigaction(SIGPIPE, &ignore, &old_pipe_);
-  }
-  ~StopRequestGuard() {
-    ::sigaction(SIGINT, &old_int_, nullptr);
-    ::sigaction(SIGTERM, &old_term_, nullptr);
-    ::sigaction(SIGHUP, &old_hup_, nullptr);
-    ::sigaction(SIGPIPE, &old_pipe_, nullptr);
-  }
-  StopRequestGuard(const StopRequestGuard&) = delete;
-  StopRequestGuard& operator=(const StopRequestGuard&) = delete;
+  StopRequestGuard() { stop_requests = 0; }
 
  private:
-  struct sigaction old_int_ {};
-  struct sigaction old_term_ {};
-  struct sigaction old_hup_ {};
-  struct sigaction old_pipe_ {};
+  // A progress line written to a pipe whose reader a hangup ended must not kill the runner before it
+  // has stopped the solver (the write fails instead).
+  cases::StopSignalHandlers handlers_{reference_runner_request_stop,
+                                      {.restart_interrupted_calls = false, .ignore_sigpipe = true}};
 };
 
 // The last `n` lines of a text file, indented.
