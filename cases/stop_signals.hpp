@@ -1,7 +1,7 @@
 // The stop requests of a long run: while a StopSignalHandlers lives, SIGINT (Ctrl-C), SIGTERM and
 // SIGHUP (unless SIGHUP is ignored, as under nohup) go to the caller's handler, and optionally
 // SIGPIPE is ignored; the previous dispositions come back when it ends. One place for the runs that
-// stop at a safe point on a request (`hydrojump vof`, `hydrojump study`).
+// stop at a safe point on a request (`hydrojump sph`, `hydrojump vof`, `hydrojump study`).
 //
 //   | option                     | meaning                                                        |
 //   |----------------------------|----------------------------------------------------------------|
@@ -14,6 +14,16 @@
 #include <csignal>
 
 namespace hydrojump::cases {
+
+// The name of a stop request's signal, for messages ("stopped by SIGTERM").
+inline const char* stop_signal_name(int signal) {
+  switch (signal) {
+    case SIGINT: return "SIGINT";
+    case SIGTERM: return "SIGTERM";
+    case SIGHUP: return "SIGHUP";
+    default: return "a signal";
+  }
+}
 
 struct StopSignalOptions {
   bool restart_interrupted_calls = false;

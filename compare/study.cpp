@@ -463,7 +463,7 @@ int run_study(const StudyOptions& given, std::ostream& log) {
       << results.size() << " case(s) had a failed stage" << std::endl;
   if (study_stopping()) {
     const int signal = study_stop_signal.load();
-    log << "study stopped by " << (signal == SIGINT ? "SIGINT" : signal == SIGTERM ? "SIGTERM" : "SIGHUP")
+    log << "study stopped by " << cases::stop_signal_name(signal)
         << ": the stages that were running stopped with their state written, no other stage started; run the "
            "same command again to go on from there"
         << std::endl;

@@ -4,6 +4,7 @@
 #include "cases/directory_lock.hpp"
 #include "cases/fingerprint.hpp"
 #include "cases/results_case.hpp"
+#include "cases/stop_signals.hpp"
 #include "hydrojump/version.hpp"
 
 #include <atomic>
@@ -49,7 +50,7 @@ std::string run_fingerprint(const std::string& case_text) {
 
 namespace {
 
-// Set by SIGINT/SIGTERM; the run loop polls it, writes a checkpoint and returns. (A signal handler
+// Set by SIGINT, SIGTERM or SIGHUP; the run loop polls it, writes a checkpoint and returns. (A signal handler
 // can only reach static storage; this flag is the one such object and only the handler writes it.)
 std::atomic<bool> g_stop_requested{false};
 std::atomic<int> g_stop_signal{0};
@@ -199,29 +200,19 @@ int run_sph_directory(const SphOptions& opt) {
   }
 
   g_stop_requested.store(false);
-  struct sigaction action {};
-  action.sa_handler = request_stop;
-  // Restart an interrupted write: a signal arriving while the progress line goes to a pipe would
-  // otherwise fail that write (EINTR) and leave std::cerr in a failed state, silencing the messages
-  // that follow ("checkpoint written"). The run loop polls the flag; nothing waits for EINTR.
-  action.sa_flags = SA_RESTART;
-  sigemptyset(&action.sa_mask);
-  struct sigaction old_int {}, old_term {};
-  sigaction(SIGINT, &action, &old_int);
-  sigaction(SIGTERM, &action, &old_term);
   RunStatus status;
-  try {
+  {
+    // Ctrl-C, SIGTERM or a hangup (unless ignored, as under nohup) stop the run at the next step
+    // with a checkpoint. An interrupted write is restarted: a signal arriving while the progress line
+    // goes to a pipe would otherwise fail that write (EINTR) and leave std::cerr in a failed state,
+    // silencing the messages that follow ("checkpoint written"). SIGPIPE is ignored, so that a reader
+    // of the progress that goes away (a closed `| tee`) cannot kill the run before its checkpoint.
+    const cases::StopSignalHandlers handlers(request_stop, {.restart_interrupted_calls = true, .ignore_sigpipe = true});
     status = run_case(*solver, ro, checkpoint);
-  } catch (...) {
-    sigaction(SIGINT, &old_int, nullptr);
-    sigaction(SIGTERM, &old_term, nullptr);
-    throw;
   }
-  sigaction(SIGINT, &old_int, nullptr);
-  sigaction(SIGTERM, &old_term, nullptr);
   if (status == RunStatus::interrupted) {
     const int sig = g_stop_signal.load();
-    std::cerr << "hydrojump sph: stopped by " << (sig == SIGTERM ? "SIGTERM" : "SIGINT") << " at t = " << solver->time()
+    std::cerr << "hydrojump sph: stopped by " << cases::stop_signal_name(sig) << " at t = " << solver->time()
               << " s; checkpoint written to " << ck.string() << " (continue with --resume)\n";
     return 128 + sig;
   }
@@ -240,7 +231,7 @@ void register_commands(CLI::App& app) {
       "at the sections and gauges), for stilling basins DIR/basin.csv (jump toe, inflow/outflow discharge,\n"
       "depth and discharge at every section per output) and DIR/summary.json (averages over the averaging\n"
       "window, y2/y1 against Belanger, mass balance, steady-state verdict), and DIR/checkpoint.bin (every sph.checkpoint_interval_wall_s seconds and\n"
-      "at exit). Ctrl-C (SIGINT) or SIGTERM writes a checkpoint and stops; continue with --resume. An unstable\n"
+      "at exit). Ctrl-C (SIGINT), SIGTERM or a hangup (SIGHUP) writes a checkpoint and stops; continue with --resume. An unstable\n"
       "run stops with a diagnosis in DIR/failure.txt and keeps its last good checkpoint. One process per DIR:\n"
       "a second one started on it stops at once, naming the first (DIR/.hydrojump.lock).");
   sph->add_option("DIR", opt->dir, "case directory holding case.toml")->required()->check(CLI::ExistingDirectory);

@@ -1,6 +1,6 @@
 // The command line as a user runs it (the real executable, HYDROJUMP_EXECUTABLE):
-// - `hydrojump sph`: SIGTERM and SIGINT stop the run with a final checkpoint (exit status 128 +
-//   signal, issue 3: "SIGINT/SIGTERM write a final checkpoint and exit cleanly"), and `--resume`
+// - `hydrojump sph`: SIGTERM, SIGINT and a hangup (SIGHUP) stop the run with a final checkpoint (exit
+//   status 128 + signal, issue 3: "SIGINT/SIGTERM write a final checkpoint and exit cleanly"), and `--resume`
 //   continues from it to the end (the dam break at the quick resolution, dx 0.02 m, 5,000 particles);
 // - `hydrojump check` prints the derived hydraulics (hand values); `generate` refuses an invalid spec
 //   and writes nothing; `bench --json` prints its figures.
@@ -66,7 +66,7 @@ int run(const std::vector<std::string>& args, const fs::path& log) { return wait
 
 }  // namespace
 
-TEST_CASE("hydrojump sph stops on SIGTERM and SIGINT with a checkpoint, and --resume finishes the run",
+TEST_CASE("hydrojump sph stops on SIGTERM, SIGINT and SIGHUP with a checkpoint, and --resume finishes the run",
           "[compare][integration][restart]") {
   hydrojump::testing::TempDir tmp("signals");
   const std::string spec = std::string(HYDROJUMP_SOURCE_DIR) + "/cases/dam_break.toml";
@@ -96,8 +96,26 @@ TEST_CASE("hydrojump sph stops on SIGTERM and SIGINT with a checkpoint, and --re
              Catch::Contains("is in use by another process (hydrojump sph, pid " + std::to_string(pid) + ")"));
   REQUIRE(::kill(pid, SIGINT) == 0);
   CHECK(wait_exit_status(pid) == 128 + SIGINT);
+  const auto second_stop = hydrojump::sph::read_checkpoint(checkpoint);
+  CHECK(second_stop.clock.steps > first.clock.steps);
+  CHECK(second_stop.clock.time < 0.8);
+
+  // Resumed, then a hangup (the terminal closed): 128 + 1, a later checkpoint. The run is started
+  // with SIGHUP at its default, as from a terminal (a test run under nohup would pass it on ignored).
+  {
+    struct sigaction default_hup {}, old_hup {};
+    default_hup.sa_handler = SIG_DFL;
+    sigemptyset(&default_hup.sa_mask);
+    ::sigaction(SIGHUP, &default_hup, &old_hup);
+    pid = start({"sph", run.string(), "--resume", "--quiet", "--threads", "1"}, tmp.path() / "run_hup.log");
+    ::sigaction(SIGHUP, &old_hup, nullptr);
+  }
+  wait_for_rows(run / "run_log.csv", second_stop.log_rows.size() + 2);
+  REQUIRE(::kill(pid, SIGHUP) == 0);
+  CHECK(wait_exit_status(pid) == 128 + SIGHUP);
+  CHECK_THAT(read_text(tmp.path() / "run_hup.log"), Catch::Contains("stopped by SIGHUP"));
   const auto second = hydrojump::sph::read_checkpoint(checkpoint);
-  CHECK(second.clock.steps > first.clock.steps);
+  CHECK(second.clock.steps > second_stop.clock.steps);
   CHECK(second.clock.time < 0.8);
 
   // Resumed to the case's end (0.8 s, past the surge's impact on the far wall at 0.68 s: the README
