@@ -56,9 +56,27 @@ std::string summary_token(const std::string& json, const std::string& key) {
   return token;
 }
 
+// The number after "\"key\": " in summary.json: nullopt when the key is absent or null; a value that
+// is not a number is named in `problems` (a damaged file) instead of ending the comparison.
+std::optional<double> summary_number(const std::string& json, const std::string& key, std::string& problems) {
+  const std::string token = summary_token(json, key);
+  if (token.empty() || token == "null") return std::nullopt;
+  char* end = nullptr;
+  const double value = std::strtod(token.c_str(), &end);
+  if (end == token.c_str() || *end != '\0') {
+    problems += (problems.empty() ? "" : ", ") + key + " = '" + token.substr(0, 40) + "'";
+    return std::nullopt;
+  }
+  return value;
+}
+
 // The named columns of a run monitor's CSV table (basin.csv), each as a vector of numbers ("nan" and
-// empty cells -> NaN); empty when the file is absent, unreadable or lacks a column.
-std::vector<std::vector<double>> csv_columns(const fs::path& file, const std::vector<std::string>& names) {
+// empty cells -> NaN); empty when the file is absent, unreadable or lacks a column. A row with another
+// number of cells than the header is left out: the last one is a line the run is still writing, any
+// other is damage, counted in `damaged_rows`.
+std::vector<std::vector<double>> csv_columns(const fs::path& file, const std::vector<std::string>& names,
+                                             std::size_t& damaged_rows) {
+  damaged_rows = 0;
   const cases::CsvTable table = cases::read_csv_table(file);
   std::vector<std::size_t> index;
   for (const auto& name : names) {
@@ -67,8 +85,12 @@ std::vector<std::vector<double>> csv_columns(const fs::path& file, const std::ve
     index.push_back(*at);
   }
   std::vector<std::vector<double>> columns(names.size());
-  for (const auto& cells : table.rows) {
-    if (cells.size() != table.header.size()) continue;  // a torn last line
+  for (std::size_t r = 0; r < table.rows.size(); ++r) {
+    const auto& cells = table.rows[r];
+    if (cells.size() != table.header.size()) {
+      if (r + 1 < table.rows.size()) ++damaged_rows;
+      continue;
+    }
     for (std::size_t c = 0; c < names.size(); ++c) columns[c].push_back(cases::csv_number(cells[index[c]]));
   }
   return columns;
@@ -80,7 +102,8 @@ std::string sph_window_balance_clause(const fs::path& basin_csv, double t0, doub
                                       double toe_drift_tolerance_m) {
   const std::string name = basin_csv.filename().string();
   if (!fs::exists(basin_csv)) return "; no " + name + " beside it to recompute them";
-  const auto c = csv_columns(basin_csv, {"t_s", "inflow_discharge_m2_s", "outflow_discharge_m2_s", "toe_x_m"});
+  std::size_t damaged_rows = 0;
+  const auto c = csv_columns(basin_csv, {"t_s", "inflow_discharge_m2_s", "outflow_discharge_m2_s", "toe_x_m"}, damaged_rows);
   if (c.empty())
     return "; " + name + " is unreadable or lacks a column of t_s, inflow_discharge_m2_s, outflow_discharge_m2_s, toe_x_m";
   const cases::WindowBalance b = cases::window_balance(c[0], c[1], c[2], c[3], t0, t1, time_tolerance_s, q);
@@ -100,7 +123,9 @@ std::string sph_window_balance_clause(const fs::path& basin_csv, double t0, doub
     o << "unknown";
   if (b.toe_missing > 0) o << ", no toe in " << b.toe_missing << " of " << b.outputs << " outputs";
   if (!b.reaches_window_end) o << "; the run has not reached " << t1 << " s";
-  const bool steady = b.toe_missing == 0 && b.reaches_window_end &&
+  if (damaged_rows > 0)
+    o << "; " << damaged_rows << " damaged row(s) of " << name << " (not as many cells as its header) left out";
+  const bool steady = damaged_rows == 0 && b.toe_missing == 0 && b.reaches_window_end &&
                       cases::steady_by_means(b.outflow_minus_inflow_over_q, b.toe_trend_m_per_s, toe_drift_tolerance_m);
   o << (steady ? " (steady by the window means)" : " (NOT steady by the window means)");
   return o.str();
@@ -111,17 +136,21 @@ std::string sph_window_balance_clause(const fs::path& basin_csv, double t0, doub
 std::string sph_run_note(const fs::path& summary_file, double window_start_s, double window_end_s,
                          double time_tolerance_s) {
   if (!fs::exists(summary_file)) return {};
+  const std::string name = summary_file.filename().string();
   std::string json;
   try {
     json = cases::read_text_file(summary_file);
-  } catch (const std::exception&) {
-    return {};
+  } catch (const std::exception& e) {
+    return "run monitor (" + name + "): unreadable (" + e.what() + "), so its verdict is not shown";
   }
   const std::string state = summary_token(json, "jump_state");
-  const std::string from = summary_token(json, "steady_from_s");
+  if (state.empty())
+    return "run monitor (" + name + "): no jump_state in it (damaged, or not written by `hydrojump sph`), so its "
+           "verdict is not shown";
+  std::string problems;  // values that are not numbers
   const std::string window = summary_token(json, "steady_over_window");
-  const std::string q_error = summary_token(json, "inflow_discharge_relative_error");
-  if (state.empty()) return {};
+  const auto from = summary_number(json, "steady_from_s", problems);
+  const auto q_error = summary_number(json, "inflow_discharge_relative_error", problems);
   // The monitor's own averaging window: its verdicts are for that window, which `compare --window` may
   // have moved.
   std::string run_window;
@@ -141,30 +170,30 @@ std::string sph_run_note(const fs::path& summary_file, double window_start_s, do
     }
   }
   std::ostringstream o;
-  o << "run monitor (" << summary_file.filename().string() << run_window << "): jump " << state
+  o << "run monitor (" << name << run_window << "): jump " << state
     << (window == "true" ? ", steady over the averaging window" : ", NOT steady over the averaging window");
-  if (!from.empty() && from != "null") o << " (steady from t = " << from << " s)";
-  if (!q_error.empty() && q_error != "null") o << "; inflow discharge error " << std::stod(q_error) * 100.0 << " %";
-  const std::string imbalance = summary_token(json, "window_outflow_minus_inflow_over_q");
-  const std::string trend = summary_token(json, "window_toe_trend_m_per_s");
+  if (from) o << " (steady from t = " << *from << " s)";
+  if (q_error) o << "; inflow discharge error " << *q_error * 100.0 << " %";
+  const auto imbalance = summary_number(json, "window_outflow_minus_inflow_over_q", problems);
+  const auto trend = summary_number(json, "window_toe_trend_m_per_s", problems);
   const std::string by_means = summary_token(json, "steady_by_window_means");
-  if (!imbalance.empty() && imbalance != "null") {
-    o << "; over the window outflow - inflow = " << std::stod(imbalance) * 100.0 << " % of q";
-    if (!trend.empty() && trend != "null") o << ", toe trend " << std::stod(trend) << " m/s";
+  if (imbalance) {
+    o << "; over the window outflow - inflow = " << *imbalance * 100.0 << " % of q";
+    if (trend) o << ", toe trend " << *trend << " m/s";
     o << (by_means == "true" ? " (steady by the window means)" : " (NOT steady by the window means)");
   }
   if (other_window) {
     o << "; these verdicts are for the run's window, not for this comparison's " << window_start_s << "-"
       << window_end_s << " s";
-    const std::string q_token = summary_token(json, "discharge_m2_s");
-    const std::string tolerance_token = summary_token(json, "toe_drift_tolerance_m");
-    if (!q_token.empty() && !tolerance_token.empty() && q_token != "null" && tolerance_token != "null")
+    const auto q = summary_number(json, "discharge_m2_s", problems);
+    const auto tolerance = summary_number(json, "toe_drift_tolerance_m", problems);
+    if (q && tolerance)
       o << sph_window_balance_clause(summary_file.parent_path() / "basin.csv", window_start_s, window_end_s,
-                                     time_tolerance_s, std::stod(q_token), std::stod(tolerance_token));
+                                     time_tolerance_s, *q, *tolerance);
     else
-      o << "; " << summary_file.filename().string()
-        << " lacks the prescribed discharge or the toe drift tolerance to recompute them";
+      o << "; " << name << " lacks the prescribed discharge or the toe drift tolerance to recompute them";
   }
+  if (!problems.empty()) o << "; " << name << " holds values that are not numbers (" << problems << "), left out";
   return o.str();
 }
 

@@ -124,7 +124,11 @@ std::string vof_run_note(const VofRunNoteInputs& in);
 // window [window_start_s, window_end_s] is another one, the line says that its verdicts are not for it
 // and gives the water balance and toe trend over the comparison's window from the run's basin.csv
 // beside summary.json (cases::window_balance, the monitor's own rule), steady by the window means or not.
-// Empty when the file is absent or unreadable. window_end_s <= window_start_s: no comparison window.
+// Empty when the file is absent; a file that cannot be read or has no jump_state gives a line saying
+// that the verdict is not shown, and values that are not numbers are named and left out (a damaged
+// file is reported, never silently dropped, and never ends the comparison); so are basin.csv's damaged
+// rows (other than a torn last line, which a running run writes). window_end_s <= window_start_s: no
+// comparison window.
 // basin.csv's outputs within time_tolerance_s of the window are in it (cases/output_times.hpp).
 std::string sph_run_note(const std::filesystem::path& summary_file, double window_start_s = 0.0,
                          double window_end_s = 0.0, double time_tolerance_s = 1e-9);

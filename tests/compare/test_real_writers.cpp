@@ -114,6 +114,51 @@ TEST_CASE("The comparator reads the SPH run monitor's verdict from its summary.j
   CHECK(hydrojump::compare::sph_run_note(dir.path() / "absent.json").empty());
 }
 
+TEST_CASE("A damaged SPH summary.json or basin.csv is reported in the comparator's note, not dropped", "[compare][sph]") {
+  hydrojump::testing::TempDir dir("sph_note_damaged");
+  const auto monitor = stationary_jump_monitor([](double t) { return t; });
+  const std::filesystem::path summary = dir.path() / "summary.json";
+  // Truncated to nothing (a disk that filled up): the note says that the verdict is missing.
+  std::ofstream(summary) << "{\n";
+  CHECK_THAT(hydrojump::compare::sph_run_note(summary),
+             Catch::Contains("summary.json): no jump_state in it") && Catch::Contains("verdict is not shown"));
+  // A value that is not a number: named and left out, the rest of the verdict still given.
+  std::string json = monitor.summary_json();
+  const std::string key = "\"inflow_discharge_relative_error\": ";
+  const auto at = json.find(key);
+  REQUIRE(at != std::string::npos);
+  json.replace(at + key.size(), json.find_first_of(",}\n", at + key.size()) - at - key.size(), "1.2.3x");
+  std::ofstream(summary) << json;
+  std::string note;
+  REQUIRE_NOTHROW(note = hydrojump::compare::sph_run_note(summary));
+  CHECK_THAT(note, Catch::Contains("jump in_basin"));
+  CHECK_THAT(note, !Catch::Contains("inflow discharge error"));
+  CHECK_THAT(note, Catch::Contains("holds values that are not numbers (inflow_discharge_relative_error = '1.2.3x')"));
+
+  // basin.csv with a short row in its middle (damage) and a torn last line (a run still writing): the
+  // damaged row is counted and the window not called steady; the torn last line is not damage.
+  std::ofstream(summary) << monitor.summary_json();
+  std::istringstream csv(monitor.csv());
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(csv, line);) lines.push_back(line);
+  REQUIRE(lines.size() > 10);
+  const auto write_basin = [&](bool damage_middle) {
+    std::ofstream out(dir.path() / "basin.csv");
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+      if (damage_middle && i == lines.size() / 2) out << lines[i].substr(0, lines[i].find(',')) << "\n";
+      else out << lines[i] << "\n";
+    }
+    out << lines.back().substr(0, lines.back().size() / 2);  // torn last line
+  };
+  write_basin(false);
+  CHECK_THAT(hydrojump::compare::sph_run_note(summary, 0.5, 1.0), !Catch::Contains("damaged row"));
+  write_basin(true);
+  const std::string damaged = hydrojump::compare::sph_run_note(summary, 0.5, 1.0);
+  INFO(damaged);
+  CHECK_THAT(damaged, Catch::Contains("1 damaged row(s) of basin.csv (not as many cells as its header) left out"));
+  CHECK_THAT(damaged, Catch::Contains("(NOT steady by the window means)"));
+}
+
 TEST_CASE("Over another window the comparator recomputes the SPH water balance from basin.csv", "[compare][sph]") {
   hydrojump::testing::TempDir dir("sph_note_window");
   // The outflow carries 10 % more than q until t = 1 s (the basin drains), then exactly q; the toe
