@@ -156,16 +156,28 @@ class StepStopped : public OpenFoamError {
   using OpenFoamError::OpenFoamError;
 };
 
+// Where a run's utilities run: the case directory, the stream their command lines are shown on, and
+// the directory's lock, which each utility inherits, so that one still writing when hydrojump dies
+// (killed) keeps the directory from a second run until it ends, as the solver does.
+struct StepPlace {
+  const fs::path& dir;
+  std::ostream& out;
+  const cases::DirectoryLock& lock;
+};
+
 // Runs one utility to completion; a non-zero exit stops the run with the tail of its log. A stop
 // request stops it (what it wrote is not used: the next run starts the step again).
-void run_step(const fs::path& dir, const std::vector<std::string>& argv, const std::string& log_name,
-              std::ostream& out, AfterStopRequest after_request = AfterStopRequest::skip) {
+void run_step(const StepPlace& place, const std::vector<std::string>& argv, const std::string& log_name,
+              AfterStopRequest after_request = AfterStopRequest::skip) {
+  const fs::path& dir = place.dir;
+  std::ostream& out = place.out;
   const std::sig_atomic_t requests_before = after_request == AfterStopRequest::run ? stop_requests : 0;
   const std::string interrupted = "interrupted: " + argv.front() + " in " + dir.string() + " was stopped on request.";
   if (stop_requests != requests_before) throw StepStopped(interrupted);
   out << "  " << command_text(argv) << "  (log: " << log_name << ")\n" << std::flush;
   const fs::path log = dir / log_name;
-  const auto ended = wait_unless_stop_requested(spawn(argv, dir, log, false), requests_before);
+  const auto ended =
+      wait_unless_stop_requested(spawn(argv, dir, log, false, {place.lock.descriptor()}), requests_before);
   if (!ended) throw StepStopped(interrupted);
   if (ended->status() != 0) {
     throw OpenFoamError(argv.front() + " failed (it " + ended->describe() + ") in " + dir.string() +
@@ -615,7 +627,9 @@ std::string field_name(const fs::path& file) {
 // where the target mesh reaches beyond the source's (a taller air layer, a longer basin) those cells
 // hold no value, so writing the field stops mapFields with a floating-point exception. Restricted to
 // the case's own fields, cells outside the source keep setFields' initial state.
-void map_initial_state(const fs::path& dir, const MapSource& source, std::ostream& out) {
+void map_initial_state(const StepPlace& place, const MapSource& source) {
+  const fs::path& dir = place.dir;
+  std::ostream& out = place.out;
   out << "Initial state from " << source.dir.string() << " at t = " << source.time_name << " s\n";
   // Mapping across resolutions is the purpose; across other settings (a longer basin, a taller air
   // layer) it is allowed, but said, so that a wrong source is not taken silently.
@@ -639,7 +653,7 @@ void map_initial_state(const fs::path& dir, const MapSource& source, std::ostrea
       fs::create_symlink(entry.path(), view / source.time_name / entry.path().filename());
     }
   }
-  run_step(dir, {"mapFields", view.string(), "-sourceTime", source.time_name, "-consistent"}, "log.mapFields", out);
+  run_step(place, {"mapFields", view.string(), "-sourceTime", source.time_name, "-consistent"}, "log.mapFields");
 }
 
 // ------------------------------------------------------------ legs on the output grid
@@ -1155,15 +1169,15 @@ void tailwater_control_after_leg(const fs::path& dir, const TailwaterControlLaw&
 // complete times the processors wrote reconstructed into `dir` (reconstructPar -newTimes), so that
 // `compare`, ParaView and a serial resume see them; processor*/ stay for `--resume --np N`. Returns a
 // sentence for the error message (empty when there was nothing to reconstruct).
-std::string reconstruct_written_times(const fs::path& dir, int np, std::ostream& out) {
+std::string reconstruct_written_times(const StepPlace& place, int np) {
+  const fs::path& dir = place.dir;
   auto times = cases::time_directories(dir / "processor0", 0.0);
   while (!times.empty() && !time_directory_complete(times.back().path)) times.pop_back();
   const auto reconstructed = latest_time(dir);
   if (times.empty() || (reconstructed && *reconstructed >= times.back().time_s - 1e-12)) return "";
   const std::string last = times.back().path.filename().string();
   try {
-    run_step(dir, {"reconstructPar", "-newTimes", "-time", ":" + last}, "log.reconstructPar", out,
-             AfterStopRequest::run);
+    run_step(place, {"reconstructPar", "-newTimes", "-time", ":" + last}, "log.reconstructPar", AfterStopRequest::run);
   } catch (const OpenFoamError& e) {
     const std::string why = e.what();
     return "\nThe times written so far are only in processor*/: reconstructPar failed (" +
@@ -1186,6 +1200,7 @@ void run_vof_case_steps(const fs::path& dir, const RunOptions& options, std::ost
   }
   // One process per case directory (a second one stops here, naming the first).
   const cases::DirectoryLock lock(dir, "hydrojump vof");
+  const StepPlace place{dir, out, lock};
   // Ctrl-C, SIGTERM or a hangup from here on stop the run at its next safe point.
   const StopRequestGuard stop_guard;
   restore_control_dict_left_behind(dir, out);
@@ -1365,10 +1380,10 @@ void run_vof_case_steps(const fs::path& dir, const RunOptions& options, std::ost
       std::vector<std::string> argv = {step.application};
       argv.insert(argv.end(), step.arguments.begin(), step.arguments.end());
       const int k = used[step.application]++;
-      run_step(dir, argv, "log." + step.application + (k > 0 ? "." + std::to_string(k + 1) : ""), out);
+      run_step(place, argv, "log." + step.application + (k > 0 ? "." + std::to_string(k + 1) : ""));
     }
     out << "Checking the mesh\n";
-    run_step(dir, {"checkMesh"}, "log.checkMesh", out);
+    run_step(place, {"checkMesh"}, "log.checkMesh");
     {
       const std::string text = cases::read_text_file(dir / "log.checkMesh");
       if (text.find("Mesh OK.") == std::string::npos) {
@@ -1388,8 +1403,8 @@ void run_vof_case_steps(const fs::path& dir, const RunOptions& options, std::ost
     std::error_code ec;
     fs::remove_all(dir / "0", ec);
     fs::copy(dir / "0.orig", dir / "0", fs::copy_options::recursive);
-    run_step(dir, {"setFields"}, "log.setFields", out);
-    if (map_source) map_initial_state(dir, *map_source, out);
+    run_step(place, {"setFields"}, "log.setFields");
+    if (map_source) map_initial_state(place, *map_source);
   } else {
     out << "Resuming from t = " << format_seconds(*start) << " s"
         << (mesh_exists ? "" : " (no mesh found: run without --resume)") << "\n";
@@ -1409,7 +1424,7 @@ void run_vof_case_steps(const fs::path& dir, const RunOptions& options, std::ost
       // Until it has finished, processor*/ are not a decomposition to resume from.
       if (stop_requests > 0) throw StepStopped("interrupted: stopped on request before decomposePar.");
       cases::write_file_atomically(dir / decomposing_marker, "decomposePar started by hydrojump vof\n");
-      run_step(dir, argv, "log.decomposePar", out);
+      run_step(place, argv, "log.decomposePar");
       fs::remove(dir / decomposing_marker);
     }
     solver = {"mpirun"};
@@ -1474,12 +1489,12 @@ void run_vof_case_steps(const fs::path& dir, const RunOptions& options, std::ost
     }
   } catch (const OpenFoamError& e) {
     if (!parallel) throw;
-    throw OpenFoamError(e.what() + reconstruct_written_times(dir, options.np, out));
+    throw OpenFoamError(e.what() + reconstruct_written_times(place, options.np));
   }
   if (parallel) {
     std::vector<std::string> argv = {"reconstructPar"};
     if (start) argv.push_back("-newTimes");
-    run_step(dir, argv, "log.reconstructPar", out);
+    run_step(place, argv, "log.reconstructPar");
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_begin).count();
   out << "Done: case \"" << c.id << "\" reached t = " << format_seconds(reached) << " s in "
