@@ -19,8 +19,9 @@ namespace {
 // above the free surface) and the boundary particle keeps rho0 (zero pressure); at or above it the
 // first-order extrapolation is used unless the matrix is singular.
 constexpr double kSomeSupport = 0.5;
-// The matrix is dimensionless (its length and inverse-length entries pair up) and close to
-// diag(1, -1, -1) inside the fluid; below this |det| it is treated as singular.
+// The matrix is dimensionless (its length and inverse-length entries pair up) and close to the
+// identity inside the fluid (sum_j V_j (r_j - r_g) (x) grad_g W_gj = +I for a full support); below
+// this |det| it is treated as singular.
 constexpr double kMinDeterminant = 1e-3;
 
 // For every wall particle b with ghost node g (boundary_mdbc.hpp):

@@ -225,8 +225,9 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
       max_visc = std::max(max_visc, visc_rate);
     }
   }
+  double max_nu_t = 0.0;
   if (sps) {
-#pragma omp parallel for schedule(static) if (threads)
+#pragma omp parallel for schedule(static) reduction(max : max_nu_t) if (threads)
     for (Eigen::Index i = 0; i < n; ++i) {
       if (type[i] != kFluid) {
         ps.tau_xx[i] = ps.tau_xz[i] = ps.tau_zz[i] = 0.0;
@@ -238,9 +239,10 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
       ps.tau_xx[i] = t.xx;
       ps.tau_xz[i] = t.xz;
       ps.tau_zz[i] = t.zz;
+      max_nu_t = std::max(max_nu_t, t.eddy_viscosity);
     }
   }
-  return InteractionSummary{std::sqrt(max_acc2), max_visc};
+  return InteractionSummary{std::sqrt(max_acc2), max_visc, max_nu_t};
 }
 
 }  // namespace

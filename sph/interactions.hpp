@@ -16,7 +16,8 @@ namespace hydrojump::sph {
 // What the time-step conditions need from an interaction.
 struct InteractionSummary {
   double max_acceleration = 0.0;   // max |a_i| over fluid particles (m/s^2)
-  double max_viscous_rate = 0.0;   // max_ij |h v_ij.r_ij / (r_ij^2 + eta^2)| (m/s)
+  double max_viscous_rate = 0.0;   // max over approaching pairs of h |v_ij.r_ij| / (r_ij^2 + eta^2) (m/s)
+  double max_eddy_viscosity = 0.0; // max nu_t of the SPS stress computed in this call (m^2/s; 0 without SPS)
 };
 
 // p_i = Tait(rho_i) for every particle.

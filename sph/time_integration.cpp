@@ -14,15 +14,21 @@ namespace {
 inline bool is_wall(const ParticleSet& ps, Eigen::Index i) { return is_wall_type(ps.type[i]); }
 }  // namespace
 
-// dt = CFL min(dt_f, dt_cv),  dt_f = sqrt(h / max|a_i|),  dt_cv = h / (c0 + max_ij |h v_ij.r_ij / (r_ij^2 + eta^2)|);
-// with laminar viscosity also dt <= 0.125 h^2 / nu0.
+// Monaghan & Kos (1999), as in DualSPHysics:
+//   dt = CFL min(dt_f, dt_cv),  dt_f = sqrt(h / max|a_i|),  dt_cv = h / (c0 + max_ij h |v_ij.r_ij| / (r_ij^2 + eta^2)),
+// the max over approaching pairs (v_ij.r_ij < 0), the only ones the artificial viscosity acts on.
+// With laminar + SPS viscosity also the explicit-diffusion bound of Morris, Fox & Zhu (1997), with the
+// eddy viscosity of the SPS stress in it (the stress acts as a diffusion of momentum with nu0 + nu_t):
+//   dt <= 0.125 h^2 / (nu0 + max nu_t).
 double variable_time_step(const InteractionSummary& summary, const SolverSettings& s) {
   const double dt_f = summary.max_acceleration > 0.0 ? std::sqrt(s.h / summary.max_acceleration)
                                                      : std::numeric_limits<double>::infinity();
   const double dt_cv = s.h / (s.eos.c0 + summary.max_viscous_rate);
   double dt = s.cfl * std::min(dt_f, dt_cv);
-  if (s.viscosity == Viscosity::laminar_sps && s.kinematic_viscosity > 0.0)
-    dt = std::min(dt, 0.125 * s.h * s.h / s.kinematic_viscosity);
+  if (s.viscosity == Viscosity::laminar_sps) {
+    const double diffusivity = s.kinematic_viscosity + summary.max_eddy_viscosity;
+    if (diffusivity > 0.0) dt = std::min(dt, 0.125 * s.h * s.h / diffusivity);
+  }
   return dt;
 }
 

@@ -13,8 +13,9 @@
 //
 // Variable time step (Monaghan & Kos 1999; DualSPHysics):
 //   dt = CFL min(dt_f, dt_cv),  dt_f = min_i sqrt(h / |a_i|),
-//   dt_cv = h / (c0 + max_ij |h v_ij.r_ij / (r_ij^2 + eta^2)|),
-// and with laminar viscosity also dt <= 0.125 h^2 / nu0.
+//   dt_cv = h / (c0 + max_ij h |v_ij.r_ij| / (r_ij^2 + eta^2))  (over approaching pairs),
+// and with laminar + SPS viscosity also dt <= 0.125 h^2 / (nu0 + max_i nu_t,i) (Morris, Fox & Zhu
+// 1997; nu_t the SPS eddy viscosity, which diffuses momentum as nu0 does).
 //
 // Usage:
 //   | sph.time_integrator | interactions per step | notes                                        |

@@ -90,6 +90,7 @@ inline double mixing_length_wall_reach(double length, double dx) { return length
 
 struct SpsStress {
   double xx = 0.0, xz = 0.0, zz = 0.0;  // tau/rho (m^2/s^2)
+  double eddy_viscosity = 0.0;          // nu_t (m^2/s), for the time-step bound
 };
 
 // tau/rho from the velocity gradient (du/dx, du/dz, dw/dx, dw/dz), Dalrymple & Rogers (2006):
@@ -102,7 +103,7 @@ inline SpsStress sps_stress(double dudx, double dudz, double dwdx, double dwdz, 
   const double s2 = 2.0 * (sxx * sxx + szz * szz + 2.0 * sxz * sxz);  // |S|^2
   const double nu_t = length * length * std::sqrt(s2);
   const double iso = -(2.0 / 3.0) * nu_t * (sxx + szz) - (2.0 / 3.0) * blin * dx * dx * s2;
-  return {2.0 * nu_t * sxx + iso, 2.0 * nu_t * sxz, 2.0 * nu_t * szz + iso};
+  return {2.0 * nu_t * sxx + iso, 2.0 * nu_t * sxz, 2.0 * nu_t * szz + iso, nu_t};
 }
 
 }  // namespace hydrojump::sph

@@ -14,6 +14,7 @@
 #include "sph/boundary_mdbc.hpp"
 #include "sph/cell_list.hpp"
 #include "sph/interactions.hpp"
+#include "sph/time_integration.hpp"
 #include "sph/wall_function.hpp"
 #include "sph_test_support.hpp"
 
@@ -98,7 +99,55 @@ TEST_CASE("SPS stress of a simple shear: Smagorinsky's length C_s dx or a mixing
     CHECK(t.xz == Approx(length * length * gamma * gamma).epsilon(1e-12));
     CHECK(t.xx == Approx(-2.0 / 3.0 * blin * dx * dx * gamma * gamma).epsilon(1e-12));
     CHECK(t.zz == Approx(t.xx).epsilon(1e-12));
+    CHECK(t.eddy_viscosity == Approx(length * length * gamma).epsilon(1e-12));
   }
+}
+
+// The SPS stress diffuses momentum with nu0 + nu_t, so the explicit step must keep
+// dt <= 0.125 h^2 / (nu0 + max nu_t) (Morris, Fox & Zhu 1997), not only 0.125 h^2 / nu0.
+TEST_CASE("with SPS the time step is bounded by 0.125 h^2 / (nu0 + max nu_t)", "[sph][viscosity]") {
+  auto c = sph_test::load_case("still_water.toml", 0.02, [](cases::Case& k) {
+    k.sph.viscosity = "laminar_sps";
+    k.sph.sps_mixing_length_m = 0.05;
+    k.sph.boundary = "mdbc";
+  });
+  const sph::SolverSettings& s = c.settings;
+  const double acoustic = s.cfl * s.h / s.eos.c0;  // no acceleration, no approaching pair
+  // nu_t = 0: the molecular bound 0.125 h^2 / 1e-6 is far above the acoustic step.
+  CHECK(sph::variable_time_step({0.0, 0.0, 0.0}, s) == Approx(acoustic).epsilon(1e-12));
+  // A large eddy viscosity binds: 0.125 h^2 / (nu0 + nu_t).
+  const double nu_t = 1.0;
+  const double diffusive = 0.125 * s.h * s.h / (s.kinematic_viscosity + nu_t);
+  REQUIRE(diffusive < acoustic);
+  CHECK(sph::variable_time_step({0.0, 0.0, nu_t}, s) == Approx(diffusive).epsilon(1e-12));
+  // Not with the artificial viscosity, which has no eddy viscosity.
+  auto a = sph_test::load_case("still_water.toml", 0.02, [](cases::Case& k) { k.sph.viscosity = "artificial"; });
+  CHECK(sph::variable_time_step({0.0, 0.0, 0.0}, a.settings) ==
+        Approx(a.settings.cfl * a.settings.h / a.settings.eos.c0).epsilon(1e-12));
+}
+
+// The interactions report the largest eddy viscosity of the stress they computed: in a simple shear
+// u = gamma (z - z_bed) away from the walls and the free surface, nu_t = l_m^2 gamma.
+TEST_CASE("the interactions report the SPS stress's largest eddy viscosity, l_m^2 gamma in a simple shear",
+          "[sph][viscosity]") {
+  const double gamma = 2.0, lm = 0.03;
+  auto c = sph_test::load_case("still_water.toml", 0.02, [&](cases::Case& k) {
+    k.sph.viscosity = "laminar_sps";
+    k.sph.sps_mixing_length_m = lm;
+    k.sph.boundary = "mdbc";
+  });
+  sph::ParticleSet ps = c.particles;
+  sph::CellList cells;
+  slide_and_sort(ps, cells, c.settings, 0.0);
+  for (Eigen::Index i = 0; i < ps.size(); ++i)
+    if (ps.is_fluid(i)) ps.u[i] = gamma * (ps.z[i] - c.geometry.bed.elevation(ps.x[i]));
+  sph::mdbc_boundary_density(ps, cells, c.settings);
+  sph::compute_pressure(ps, c.settings);
+  const sph::InteractionSummary summary = sph::compute_interactions(ps, cells, c.settings);
+  INFO("max nu_t " << summary.max_eddy_viscosity << " m^2/s, l_m^2 gamma " << lm * lm * gamma);
+  // Interior particles see the shear exactly on the lattice; rows near the surface or a wall see less
+  // (a truncated kernel, a shorter mixing length): the maximum is the interior's.
+  CHECK(summary.max_eddy_viscosity == Approx(lm * lm * gamma).epsilon(0.05));
 }
 
 TEST_CASE("the SPS length is C_s dx, or the mixing length at every resolution", "[sph][viscosity]") {
