@@ -13,20 +13,11 @@
 #include "cases/fingerprint.hpp"
 #include "cases/geometry.hpp"
 #include "cases/hydraulics.hpp"
+#include "cases/number_text.hpp"
 #include "cases/output_times.hpp"
 
 namespace hydrojump::cases {
 namespace {
-
-// Shortest decimal text that reads back to the same double.
-std::string number_text(double v) {
-  char buffer[64];
-  for (int precision = 6; precision <= 17; ++precision) {
-    std::snprintf(buffer, sizeof buffer, "%.*g", precision, v);
-    if (std::strtod(buffer, nullptr) == v) break;
-  }
-  return buffer;
-}
 
 // v to `digits` significant digits (for derived values in messages).
 std::string rounded_text(double v, int digits) {

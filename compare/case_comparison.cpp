@@ -17,6 +17,7 @@
 #include "cases/geometry.hpp"
 #include "cases/hydraulics.hpp"
 #include "cases/jump_toe.hpp"
+#include "cases/number_text.hpp"
 #include "cases/output_times.hpp"
 #include "cases/results_case.hpp"
 #include "cases/spec_reader.hpp"
@@ -290,12 +291,6 @@ std::string window_text(double t0, double t1) {
   return s.str();
 }
 
-std::string number_text(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
 // "ok", or "ok; N unreadable frame(s) skipped, the first: ..."
 std::string skipped_status(const std::vector<std::string>& skipped) {
   if (skipped.empty()) return "ok";
@@ -342,7 +337,7 @@ CaseComparison compare_case(const cases::Study& study, const fs::path& run_dir, 
   if (const long n = cases::outputs_in_window(r.window_start_s, r.window_end_s, c.run.output_interval_s); n < 2)
     throw std::runtime_error("case \"" + c.id + "\": the averaging window " + window_text(r.window_start_s, r.window_end_s) +
                              " holds " + std::to_string(n) + " output time(s) (one every " +
-                             number_text(c.run.output_interval_s) + " s): give a window with at least 2");
+                             cases::number_text(c.run.output_interval_s) + " s): give a window with at least 2");
   const cases::JumpHydraulics jh = cases::jump_hydraulics(r.inflow_depth_m, r.inflow_velocity_m_s, r.tailwater_depth_m, g);
   r.belanger_y2_m = jh.belanger_y2_m;
   r.eta_smooth_theory_percent = 100.0 * jh.eta_smooth;
@@ -364,8 +359,8 @@ CaseComparison compare_case(const cases::Study& study, const fs::path& run_dir, 
   double ds = options.station_spacing_m;
   // The toe, the lengths and the surface are found on the stations: they must be finer than y1.
   if (ds > r.inflow_depth_m)
-    throw std::runtime_error("--station-spacing " + number_text(ds) + " m is coarser than the inflow depth y1 = " +
-                             number_text(r.inflow_depth_m) + " m of case \"" + c.id +
+    throw std::runtime_error("--station-spacing " + cases::number_text(ds) + " m is coarser than the inflow depth y1 = " +
+                             cases::number_text(r.inflow_depth_m) + " m of case \"" + c.id +
                              "\": the toe and the jump's lengths need stations finer than y1 (default: the finer of the "
                              "SPH particle spacing and the VOF bed cell)");
   if (!(ds > 0.0)) {
