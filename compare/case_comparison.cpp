@@ -297,6 +297,17 @@ std::string skipped_status(const std::vector<std::string>& skipped) {
   return "ok; " + std::to_string(skipped.size()) + " unreadable frame(s) skipped, the first: " + skipped.front();
 }
 
+// When the results end before the window does (a run stopped early, or still running): the clause
+// saying that the averages cover only part of the window; empty otherwise. `last_output_s` is the
+// last output of the whole series (a window may end between two outputs).
+std::string window_coverage_clause(double last_output_s, double first_in_window_s, double last_in_window_s, double t1,
+                                   double tolerance_s) {
+  if (last_output_s >= t1 - tolerance_s) return {};
+  return "; PART OF THE WINDOW ONLY: the results end at t = " + cases::number_text(last_output_s) +
+         " s, before the window's end " + cases::number_text(t1) + " s, so the averages are over the outputs of " +
+         window_text(first_in_window_s, last_in_window_s) + " (run on, or give --window)";
+}
+
 }  // namespace
 
 CaseComparison compare_case(const cases::Study& study, const fs::path& run_dir, const CompareOptions& options,
@@ -431,7 +442,8 @@ CaseComparison compare_case(const cases::Study& study, const fs::path& run_dir, 
       if (acc.frame_count() == 0) throw std::runtime_error("no readable frame: " + skipped.front());
       r.sph.stats = acc.finish(options.section_points);
       r.sph.available = true;
-      r.sph.status = skipped_status(skipped);
+      r.sph.status = skipped_status(skipped) + window_coverage_clause(all.back().time_s, entries.front().time_s,
+                                                                      entries.back().time_s, t1, time_tolerance_s);
     }
   } catch (const std::exception& e) {
     r.sph.status = std::string("missing: ") + e.what();
@@ -468,7 +480,8 @@ CaseComparison compare_case(const cases::Study& study, const fs::path& run_dir, 
         if (acc.frame_count() == 0) throw std::runtime_error("no readable time: " + skipped.front());
         r.vof.stats = acc.finish(options.section_points);
         r.vof.available = true;
-        r.vof.status = skipped_status(skipped);
+        r.vof.status = skipped_status(skipped) + window_coverage_clause(foam.times().back(), times.front(), times.back(), t1,
+                                                                        time_tolerance_s);
       }
     }
   } catch (const std::exception& e) {

@@ -16,11 +16,15 @@
 #include <vtkCompositeDataIterator.h>
 #include <vtkDataArray.h>
 #include <vtkDoubleArray.h>
+#include <vtkLogger.h>
 #include <vtkMultiBlockDataSet.h>
+#include <vtkNew.h>
 #include <vtkOpenFOAMReader.h>
+#include <vtkOutputWindow.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
+#include <vtkStringOutputWindow.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLPolyDataReader.h>
 
@@ -92,16 +96,102 @@ static std::string array_names(vtkFieldData* fd) {
   return s.empty() ? "none" : s;
 }
 
+namespace {
+
+// Collects VTK's own messages while a file is read, instead of letting VTK print them (in colour,
+// with object dumps) on the terminal: a damaged file then gives one line naming it, with VTK's first
+// message. Not for concurrent use (VTK's output window is one per process); frames are read one by one.
+class VtkMessagesCollected {
+ public:
+  // VTK 9 also logs errors to stderr through vtkLogger: that is off meanwhile (the verbosity cutoff
+  // in force, that of stderr when nothing else logs, comes back after).
+  VtkMessagesCollected()
+      : previous_(vtkOutputWindow::GetInstance()), previous_stderr_(vtkLogger::GetCurrentVerbosityCutoff()) {
+    vtkOutputWindow::SetInstance(window_);
+    vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+  }
+  ~VtkMessagesCollected() {
+    vtkLogger::SetStderrVerbosity(previous_stderr_);
+    vtkOutputWindow::SetInstance(previous_);
+  }
+  VtkMessagesCollected(const VtkMessagesCollected&) = delete;
+  VtkMessagesCollected& operator=(const VtkMessagesCollected&) = delete;
+
+  // VTK's first message, shortened to its text (without the source location VTK puts first).
+  std::string first_message() const {
+    std::string text = window_->GetOutput();
+    std::istringstream lines(text);
+    // VTK writes "ERROR: In <file>, line <n>" and then "<class> (<address>): <message>".
+    for (std::string line; std::getline(lines, line);) {
+      if (line.rfind("ERROR:", 0) == 0 || line.rfind("Warning:", 0) == 0 || line.rfind("Generic Warning:", 0) == 0)
+        continue;
+      const auto object = line.find("): ");
+      std::string message = object == std::string::npos ? line : line.substr(object + 3);
+      while (!message.empty() && std::isspace(static_cast<unsigned char>(message.back()))) message.pop_back();
+      if (!message.empty()) return message.substr(0, 200);
+    }
+    return {};
+  }
+
+ private:
+  vtkSmartPointer<vtkOutputWindow> previous_;
+  vtkLogger::Verbosity previous_stderr_;
+  vtkNew<vtkStringOutputWindow> window_;
+};
+
+// The largest speed a particle of a readable frame may have (m/s): a hydraulic flow in a flume moves
+// at a few m/s, and the SPH solver stops a run as unstable long before 1 km/s; beyond it the frame is
+// damaged (or its run diverged), not data.
+constexpr double max_particle_speed_m_s = 1e3;
+// The largest coordinate (m) of a particle of a readable frame, for the same reason.
+constexpr double max_particle_coordinate_m = 1e6;
+
+// Refuses a frame whose values cannot be a particle state: a non-finite or absurd position or velocity,
+// a non-positive density, an unknown particle type, or no fluid particle at all. Such a frame (a
+// damaged file) would otherwise enter the averages as if it were data.
+void check_particle_values(const ParticleFrame& f, const fs::path& vtp_file) {
+  const auto bad = [&](std::size_t k, const std::string& what, double value) {
+    std::ostringstream o;
+    o << vtp_file.string() << ": particle " << k << " has " << what << " " << value
+      << ", which no particle state has (a damaged file, or a diverged run): frame refused";
+    throw std::runtime_error(o.str());
+  };
+  std::size_t fluid = 0;
+  for (std::size_t k = 0; k < f.x.size(); ++k) {
+    if (!std::isfinite(f.x[k]) || std::abs(f.x[k]) > max_particle_coordinate_m) bad(k, "the x coordinate", f.x[k]);
+    if (!std::isfinite(f.z[k]) || std::abs(f.z[k]) > max_particle_coordinate_m) bad(k, "the vertical coordinate", f.z[k]);
+    if (!(std::abs(f.u[k]) <= max_particle_speed_m_s)) bad(k, "the horizontal velocity (m/s)", f.u[k]);
+    if (!(std::abs(f.w[k]) <= max_particle_speed_m_s)) bad(k, "the vertical velocity (m/s)", f.w[k]);
+    if (!(f.density[k] > 0.0) || !std::isfinite(f.density[k])) bad(k, "the density (kg/m^3)", f.density[k]);
+    if (f.type[k] < 0 || f.type[k] > 4) bad(k, "the type", f.type[k]);
+    if (!f.mass.empty() && !(f.mass[k] > 0.0 && std::isfinite(f.mass[k]))) bad(k, "the mass (kg/m)", f.mass[k]);
+    if (f.type[k] == 0) ++fluid;
+  }
+  if (fluid == 0 && !f.x.empty())
+    throw std::runtime_error(vtp_file.string() + ": no fluid particle (type 0) among its " + std::to_string(f.x.size()) +
+                             " particles: frame refused");
+}
+
+}  // namespace
+
 ParticleFrame read_vtp_particles(const fs::path& vtp_file, double time_s) {
   if (!fs::exists(vtp_file)) throw std::runtime_error(vtp_file.string() + ": particle file does not exist");
   auto reader = vtkSmartPointer<vtkXMLPolyDataReader>::New();
   if (!reader->CanReadFile(vtp_file.string().c_str()))  // checked quietly, before VTK logs parse errors
     throw std::runtime_error(vtp_file.string() + ": not a VTK XML PolyData (.vtp) file");
   reader->SetFileName(vtp_file.string().c_str());
-  reader->Update();
-  vtkPolyData* pd = reader->GetOutput();
-  if (reader->GetErrorCode() != 0 || pd == nullptr || pd->GetPoints() == nullptr)
-    throw std::runtime_error(vtp_file.string() + ": not a readable VTK XML PolyData (.vtp) file");
+  vtkPolyData* pd = nullptr;
+  {
+    const VtkMessagesCollected messages;
+    reader->Update();
+    pd = reader->GetOutput();
+    // (A read that succeeds with warnings goes on: the values are checked below.)
+    if (reader->GetErrorCode() != 0 || pd == nullptr || pd->GetPoints() == nullptr) {
+      const std::string vtk = messages.first_message();
+      throw std::runtime_error(vtp_file.string() + ": not a readable VTK XML PolyData (.vtp) file" +
+                               (vtk.empty() ? std::string() : " (VTK: " + vtk + ")"));
+    }
+  }
   vtkPointData* pt = pd->GetPointData();
   auto require = [&](const char* name, int comps) -> vtkDataArray* {
     vtkDataArray* a = pt->GetArray(name);
@@ -151,6 +241,7 @@ ParticleFrame read_vtp_particles(const fs::path& vtp_file, double time_s) {
     if (p) f.pressure[k] = p->GetComponent(i, 0);
     if (mass) f.mass[k] = mass->GetComponent(i, 0);
   }
+  check_particle_values(f, vtp_file);
   return f;
 }
 

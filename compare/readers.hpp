@@ -31,7 +31,10 @@ std::vector<PvdEntry> read_pvd(const std::filesystem::path& pvd_file);
 // The entries in the window [t0, t1] within `tolerance_s` (cases/output_times.hpp: outputs come late).
 std::vector<PvdEntry> entries_in_window(const std::vector<PvdEntry>& entries, double t0, double t1, double tolerance_s);
 
-// One particle file. Throws std::runtime_error naming the file and the missing array.
+// One particle file. Throws std::runtime_error naming the file and the missing array, or the particle
+// and the value when a value cannot be a particle state (non-finite, |x| or |z| > 1e6 m, a speed
+// component > 1e3 m/s, density <= 0, an unknown type) or the frame has no fluid particle. VTK's own
+// messages about a damaged file are collected into that error, not printed.
 ParticleFrame read_vtp_particles(const std::filesystem::path& vtp_file, double time_s);
 
 // An OpenFOAM case read through vtkOpenFOAMReader. Keeps the reader (and its mesh cache) alive.

@@ -347,6 +347,30 @@ TEST_CASE("The plot scripts are found from the source tree", "[compare][report]"
   CHECK(fs::exists(dir / "plot_eta_bars.py"));
 }
 
+// Results that end inside the window (a run stopped early or still running) are compared, but the
+// status says that the averages cover part of the window only (run A's window is 6-10 s).
+TEST_CASE("Results that end before the window's end are flagged as covering part of the window", "[compare][case]") {
+  CompareOptions options;
+  options.plots = false;
+  {
+    RunFixture fx;
+    fx.write_sph(0.01, {6.5, 7.0, 7.5});
+    std::ostringstream log;
+    const CaseComparison c = compare_case_directory(fx.run(), options, log);
+    REQUIRE(c.sph.available);
+    CHECK_THAT(c.sph.status, Catch::StartsWith("ok; PART OF THE WINDOW ONLY: the results end at t = 7.5 s, before the "
+                                               "window's end 10 s, so the averages are over the outputs of [6.5, 7.5] s"));
+  }
+  {
+    RunFixture fx;
+    fx.write_sph(0.01, {6.0, 8.0, 10.0});
+    std::ostringstream log;
+    const CaseComparison c = compare_case_directory(fx.run(), options, log);
+    REQUIRE(c.sph.available);
+    CHECK(c.sph.status == "ok");
+  }
+}
+
 TEST_CASE("An unreadable frame is skipped and reported and the other frames are used", "[compare][case]") {
   RunFixture fx;
   fx.write_sph(0.01, {7.0, 8.0, 9.0});

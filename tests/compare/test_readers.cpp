@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <functional>
+#include <iterator>
 #include <limits>
 #include <vector>
 
@@ -94,6 +96,49 @@ TEST_CASE("PVD/VTP errors name the file and what is wrong", "[compare][readers][
   CHECK_THROWS_WITH(read_vtp_particles(tmp.path() / "nodensity.vtp", 0.0),
                     Catch::Contains("nodensity.vtp") && Catch::Contains("\"density\""));
   CHECK_THROWS_WITH(find_pvd(tmp.path() / "empty"), Catch::Contains("no .pvd"));
+}
+
+// A damaged frame must not enter the averages as data: a NaN or absurd velocity (the comparison's
+// section energy would be wrong and still look fine), a NaN position, no fluid at all.
+TEST_CASE("A frame whose values cannot be a particle state is refused, naming the particle", "[compare][readers][sph]") {
+  TempDir tmp("vtp-values");
+  const ParticleFrame good = lattice_particles(0.1, 0.05, 0.01, 1, [](double, double) { return 0.5; },
+                                               [](double, double) { return 0.0; });
+  write_vtp(tmp.path() / "good.vtp", good);
+  CHECK(read_vtp_particles(tmp.path() / "good.vtp", 0.0).x.size() == good.x.size());
+  const auto refused = [&](const std::string& name, const std::function<void(ParticleFrame&)>& damage) {
+    ParticleFrame f = good;
+    damage(f);
+    write_vtp(tmp.path() / name, f);
+    std::string message;
+    try {
+      read_vtp_particles(tmp.path() / name, 0.0);
+    } catch (const std::exception& e) {
+      message = e.what();
+    }
+    INFO(name << ": " << message);
+    CHECK_THAT(message, Catch::Contains(name));
+    return message;
+  };
+  const std::size_t k = good.x.size() - 3;  // a fluid particle
+  REQUIRE(good.type[k] == 0);
+  CHECK_THAT(refused("nan_u.vtp", [&](ParticleFrame& f) { f.u[k] = std::numeric_limits<double>::quiet_NaN(); }),
+             Catch::Contains("particle " + std::to_string(k) + " has the horizontal velocity (m/s) nan") &&
+                 Catch::Contains("frame refused"));
+  CHECK_THAT(refused("huge_w.vtp", [&](ParticleFrame& f) { f.w[k] = 1e300; }), Catch::Contains("the vertical velocity"));
+  CHECK_THAT(refused("nan_x.vtp", [&](ParticleFrame& f) { f.x[k] = std::numeric_limits<double>::quiet_NaN(); }),
+             Catch::Contains("the x coordinate"));
+  CHECK_THAT(refused("zero_rho.vtp", [&](ParticleFrame& f) { f.density[k] = 0.0; }), Catch::Contains("the density"));
+  CHECK_THAT(refused("type9.vtp", [&](ParticleFrame& f) { f.type[k] = 9; }), Catch::Contains("the type 9"));
+  CHECK_THAT(refused("no_fluid.vtp", [&](ParticleFrame& f) { std::fill(f.type.begin(), f.type.end(), 1); }),
+             Catch::Contains("no fluid particle (type 0)"));
+  // A truncated file: one line with VTK's reason, not VTK's own messages on the terminal.
+  {
+    std::ifstream in(tmp.path() / "good.vtp");
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    std::ofstream(tmp.path() / "cut.vtp") << text.substr(0, text.size() * 2 / 3);
+  }
+  CHECK_THROWS_WITH(read_vtp_particles(tmp.path() / "cut.vtp", 0.0), Catch::Contains("cut.vtp"));
 }
 
 TEST_CASE("An OpenFOAM case written by hand gives its times and cells and fields and exact section values",
