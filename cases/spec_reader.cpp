@@ -4,12 +4,16 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <limits>
+#include <optional>
 #include <set>
 #include <sstream>
+#include <vector>
 
 #include <toml++/toml.h>
 
 #include "cases/atomic_file.hpp"
+#include "cases/csv_table.hpp"
 #include "cases/fingerprint.hpp"
 #include "cases/geometry.hpp"
 #include "cases/hydraulics.hpp"
@@ -18,6 +22,52 @@
 
 namespace hydrojump::cases {
 namespace {
+
+// The measured surge front (measured.front_file) is a table of the front against time: '#' comment
+// lines, a header naming t_s and x_front_over_L, then at least two rows with finite numbers there
+// and t_s increasing. What is wrong with `file` as such a table, or "" when nothing is. At most
+// 16 MiB and a regular file (a device or a pipe would be read for ever).
+std::string front_file_problem(const std::filesystem::path& file) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(file, ec)) return "is not a regular file";
+  const auto size = std::filesystem::file_size(file, ec);
+  if (ec || size > (16u << 20)) return "is larger than 16 MiB, not a table of the surge front";
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return "cannot be read";
+  std::vector<std::string> header;
+  std::optional<std::size_t> t_column, x_column;
+  std::size_t rows = 0;
+  double last_t = -std::numeric_limits<double>::infinity();
+  std::size_t line_number = 0;
+  for (std::string line; std::getline(in, line);) {
+    ++line_number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty() || line.front() == '#') continue;
+    const std::vector<std::string> cells = split_csv_line(line);
+    if (header.empty()) {
+      header = cells;
+      for (std::size_t k = 0; k < header.size(); ++k) {
+        if (header[k] == "t_s") t_column = k;
+        if (header[k] == "x_front_over_L") x_column = k;
+      }
+      if (!t_column || !x_column)
+        return "has no header line with the columns t_s and x_front_over_L (its first line that is not a '#' "
+               "comment is line " + std::to_string(line_number) + ")";
+      continue;
+    }
+    const double t = cells.size() == header.size() ? csv_number(cells[*t_column]) : std::nan("");
+    const double x = cells.size() == header.size() ? csv_number(cells[*x_column]) : std::nan("");
+    if (!std::isfinite(t) || !std::isfinite(x))
+      return "line " + std::to_string(line_number) + " is not a row of " + std::to_string(header.size()) +
+             " cells with numbers for t_s and x_front_over_L";
+    if (!(t > last_t)) return "line " + std::to_string(line_number) + ": t_s does not increase";
+    last_t = t;
+    ++rows;
+  }
+  if (header.empty()) return "has no header line with the columns t_s and x_front_over_L (it is empty or only comments)";
+  if (rows < 2) return "holds " + std::to_string(rows) + " row(s) of the front; at least 2 are needed";
+  return {};
+}
 
 // v to `digits` significant digits (for derived values in messages).
 std::string rounded_text(double v, int digits) {
@@ -630,6 +680,8 @@ DamBreakCase read_dam_break(TableReader& c, const std::filesystem::path& base_di
         measured->fail_at(measured->raw().get("front_file"), "front_file", "= \"" + file + "\": no such file (looked for '" + p.string() + "')");
       } else if (std::filesystem::is_directory(p, ec)) {
         measured->fail_at(measured->raw().get("front_file"), "front_file", "= \"" + file + "\": '" + p.string() + "' is a directory, not a CSV file");
+      } else if (const std::string problem = front_file_problem(p); !problem.empty()) {
+        measured->fail_at(measured->raw().get("front_file"), "front_file", "= \"" + file + "\": '" + p.string() + "' " + problem);
       }
       d.measured_front_file = std::filesystem::absolute(p).lexically_normal();
     }
@@ -943,6 +995,10 @@ Study load_study(const std::filesystem::path& file, SpecPurpose purpose) {
   std::error_code ec;
   if (std::filesystem::is_directory(file, ec))
     throw SpecError(file.string() + ": is a directory, not a study file (a .toml spec or a generated case.toml)");
+  // A pipe or a device would block the open or be read for ever.
+  if (std::filesystem::exists(file, ec) && !std::filesystem::is_regular_file(file, ec))
+    throw SpecError(file.string() + ": is not a regular file (a pipe or a device?), not a study file (a .toml spec "
+                    "or a generated case.toml)");
   std::ifstream in(file, std::ios::binary);
   if (!in) throw SpecError(file.string() + ": cannot open the study file");
   // At most max_spec_bytes: a study file is a few kB (and /dev/zero would be read until memory ran out).

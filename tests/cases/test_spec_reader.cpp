@@ -2,6 +2,8 @@
 // message naming file, line and key, and a resolved case reproduces the original.
 #include <catch2/catch.hpp>
 
+#include <sys/stat.h>
+
 #include <filesystem>
 #include <regex>
 #include <string>
@@ -141,8 +143,10 @@ TEST_CASE("A missing study file, a directory in its place and a directory as the
   CHECK_THROWS_WITH(load_study(tmp.path() / "absent.toml"), Catch::Contains("absent.toml: cannot open the study file"));
   fs::create_directories(tmp.path() / "case.toml");
   CHECK_THROWS_WITH(load_study(tmp.path() / "case.toml"), Catch::Contains("case.toml: is a directory, not a study file"));
-  // An endless stream is not read until memory runs out.
-  CHECK_THROWS_WITH(load_study("/dev/zero"), Catch::Contains("/dev/zero: is larger than 16 MiB, not a study file"));
+  // A device (an endless stream) or a named pipe (whose open would wait for a writer) is refused.
+  CHECK_THROWS_WITH(load_study("/dev/zero"), Catch::Contains("/dev/zero: is not a regular file"));
+  REQUIRE(::mkfifo((tmp.path() / "pipe.toml").c_str(), 0600) == 0);
+  CHECK_THROWS_WITH(load_study(tmp.path() / "pipe.toml"), Catch::Contains("pipe.toml: is not a regular file"));
 
   std::string dam = read_text_file(source_dir + "/cases/dam_break.toml");
   const auto at = dam.find("front_file = \"");
@@ -155,6 +159,21 @@ TEST_CASE("A missing study file, a directory in its place and a directory as the
                     Catch::Contains("front_file") && Catch::Contains("is a directory, not a CSV file"));
   fs::remove(tmp.path() / "front");
   CHECK_THROWS_WITH(load_study(tmp.path() / "dam.toml"), Catch::Contains("front_file") && Catch::Contains("no such file"));
+  // Not a table of the front: another file, too few rows, a damaged row, time going back, a device.
+  const auto refused_front = [&](const std::string& text, const std::string& reason) {
+    write_file_atomically(tmp.path() / "front", text);
+    CHECK_THROWS_WITH(load_study(tmp.path() / "dam.toml"), Catch::Contains("front_file") && Catch::Contains(reason));
+  };
+  refused_front("root:x:0:0:root:/root:/bin/bash\n", "has no header line with the columns t_s and x_front_over_L");
+  refused_front("", "has no header line");
+  refused_front("# comment\nt_s,x_front_over_L\n0,1\n", "holds 1 row(s) of the front; at least 2 are needed");
+  refused_front("t_s,x_front_over_L\n0,1\n0.1,abc\n", "line 3 is not a row of 2 cells with numbers");
+  refused_front("t_s,x_front_over_L\n0.2,1\n0.1,1.5\n", "line 3: t_s does not increase");
+  write_file_atomically(tmp.path() / "front", "# the front\nt_s,x_front_over_L\n0,1\n0.1,1.2\n");
+  CHECK_NOTHROW(load_study(tmp.path() / "dam.toml"));
+  fs::remove(tmp.path() / "front");
+  fs::create_symlink("/dev/zero", tmp.path() / "front");
+  CHECK_THROWS_WITH(load_study(tmp.path() / "dam.toml"), Catch::Contains("front_file") && Catch::Contains("is not a regular file"));
 }
 
 TEST_CASE("A resolved dam-break case carries its measured front and can be moved", "[cases][spec]") {
