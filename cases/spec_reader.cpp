@@ -948,6 +948,14 @@ Study parse_study(std::string_view toml_text, const std::string& source_name,
 
   auto head = top.required_table("study");
   study.name = head.string("name");
+  // The name goes into the comments of the generated OpenFOAM dictionaries and into reports: one line.
+  if (study.name.empty() || study.name.size() > 200 ||
+      std::any_of(study.name.begin(), study.name.end(),
+                  [](char ch) { return static_cast<unsigned char>(ch) < 0x20 || ch == 0x7f; }))
+    head.fail_at(head.raw().get("name"), "name",
+                 "is not usable: a study name is 1 to 200 characters on one line, with no control characters "
+                 "(newlines, tabs), since it is written into the comments of the generated OpenFOAM files (here " +
+                 std::to_string(study.name.size()) + " characters)");
   study.description = head.string_or("description", "");
   study.citations = head.string_array("citations");
   head.reject_unknown_keys();

@@ -485,6 +485,19 @@ TEST_CASE("Case ids and resolution names are plain directory names", "[cases][sp
   CHECK_THAT(msg, Catch::Contains("resolution.v1.2 is not usable as a resolution name"));
 }
 
+// The study name is written into the generated OpenFOAM dictionaries' comments: a newline in it would
+// start a live dictionary line there.
+TEST_CASE("A study name is one line of at most 200 characters", "[cases][spec][reject]") {
+  for (const std::string& name : {std::string("ead\\nFoamFile { bogus 1; }"), std::string("a\\tb"), std::string(),
+                                 std::string(201, 'x')}) {
+    INFO("name '" << name << "'");
+    const auto msg = rejection(replaced(valid_spec, "name = \"mini\"", "name = \"" + name + "\""));
+    CHECK_THAT(msg, Catch::Contains("study.name is not usable: a study name is 1 to 200 characters on one line"));
+  }
+  CHECK_NOTHROW(parse_study(replaced(valid_spec, "name = \"mini\"", "name = \"Ead & Rajaratnam (2002), runs A-E\""),
+                            "spec.toml", "."));
+}
+
 TEST_CASE("A resolved case reloads to the same case", "[cases][spec]") {
   const Study s = load_study(source_dir + "/cases/ead2002.toml");
   const hydrojump::testing::TempDir tmp("resolved");
