@@ -74,7 +74,8 @@ std::optional<double> summary_number(const std::string& json, const std::string&
 // The named columns of a run monitor's CSV table (basin.csv), each as a vector of numbers ("nan" and
 // empty cells -> NaN); empty when the file is absent, unreadable or lacks a column. A row with another
 // number of cells than the header is left out: the last one is a line the run is still writing, any
-// other is damage, counted in `damaged_rows`.
+// other is damage, counted in `damaged_rows`; so is a row with text that is not a number in one of the
+// columns, or without a finite value in the first (the time).
 std::vector<std::vector<double>> csv_columns(const fs::path& file, const std::vector<std::string>& names,
                                              std::size_t& damaged_rows) {
   damaged_rows = 0;
@@ -92,7 +93,18 @@ std::vector<std::vector<double>> csv_columns(const fs::path& file, const std::ve
       if (r + 1 < table.rows.size()) ++damaged_rows;
       continue;
     }
-    for (std::size_t c = 0; c < names.size(); ++c) columns[c].push_back(cases::csv_number(cells[index[c]]));
+    std::vector<double> values(names.size());
+    bool damaged = false;
+    for (std::size_t c = 0; c < names.size(); ++c) {
+      const std::string& cell = cells[index[c]];
+      values[c] = cases::csv_number(cell);
+      if (std::isnan(values[c]) && !cell.empty() && cell != "nan") damaged = true;  // text, not a number
+    }
+    if (damaged || !std::isfinite(values[0])) {
+      ++damaged_rows;
+      continue;
+    }
+    for (std::size_t c = 0; c < names.size(); ++c) columns[c].push_back(values[c]);
   }
   return columns;
 }

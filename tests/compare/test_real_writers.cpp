@@ -157,6 +157,14 @@ TEST_CASE("A damaged SPH summary.json or basin.csv is reported in the comparator
   INFO(damaged);
   CHECK_THAT(damaged, Catch::Contains("1 damaged row(s) of basin.csv (not as many cells as its header) left out"));
   CHECK_THAT(damaged, Catch::Contains("(NOT steady by the window means)"));
+  // A time that is not a number (t_s = "abc") is damage too, not a row at an unknown time.
+  {
+    std::ofstream out(dir.path() / "basin.csv");
+    for (std::size_t i = 0; i < lines.size(); ++i)
+      out << (i == lines.size() / 2 ? "abc" + lines[i].substr(lines[i].find(',')) : lines[i]) << "\n";
+  }
+  CHECK_THAT(hydrojump::compare::sph_run_note(summary, 0.5, 1.0),
+             Catch::Contains("1 damaged row(s) of basin.csv") && Catch::Contains("(NOT steady by the window means)"));
 }
 
 TEST_CASE("Over another window the comparator recomputes the SPH water balance from basin.csv", "[compare][sph]") {
