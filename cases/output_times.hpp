@@ -42,7 +42,8 @@ inline long outputs_in_window(double t0, double t1, double output_interval_s) {
   const double eps = 0.01;  // the tolerance, in output intervals
   const double first = std::max(1.0, std::ceil(t0 / output_interval_s - eps));
   const double last = std::floor(t1 / output_interval_s + eps);
-  return last >= first ? static_cast<long>(last - first) + 1 : 0;
+  // Counted in double and capped, so that a window of 1e18 s is not an overflow (a negative count).
+  return last >= first ? static_cast<long>(std::min(last - first + 1.0, 1e15)) : 0;
 }
 
 }  // namespace hydrojump::cases

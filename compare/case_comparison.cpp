@@ -356,6 +356,13 @@ CaseComparison compare_case(const cases::Study& study, const fs::path& run_dir, 
   if (!(r.window_end_s >= r.window_start_s))
     throw std::runtime_error("case \"" + c.id + "\": averaging window " + window_text(r.window_start_s, r.window_end_s) +
                              " is empty (end before start)");
+  // No run of the case reaches beyond its latest end time (sph and vof --end-time are bounded by it).
+  if (r.window_end_s > c.run.latest_end_time_s())
+    throw std::runtime_error("case \"" + c.id + "\": the averaging window " + window_text(r.window_start_s, r.window_end_s) +
+                             " ends after " + cases::number_text(c.run.latest_end_time_s()) +
+                             " s, the latest time a run of this case can reach (at most " +
+                             cases::number_text(cases::max_outputs_per_run) + " outputs, one every " +
+                             cases::number_text(c.run.output_interval_s) + " s): give --window within it");
   // A time mean, its standard deviation and trend need two outputs at least.
   if (const long n = cases::outputs_in_window(r.window_start_s, r.window_end_s, c.run.output_interval_s); n < 2)
     throw std::runtime_error("case \"" + c.id + "\": the averaging window " + window_text(r.window_start_s, r.window_end_s) +

@@ -14,6 +14,7 @@
 #include "cases/geometry.hpp"
 #include "cases/hydraulics.hpp"
 #include "cases/spec_reader.hpp"
+#include "cases/output_times.hpp"
 #include "compare/case_comparison.hpp"
 #include "compare/plots.hpp"
 #include "compare/report.hpp"
@@ -296,6 +297,14 @@ TEST_CASE("A window holding fewer than two output times, or stations coarser tha
   options.window_end_s = 8.05;
   CHECK_THROWS_WITH(compare_case_directory(fx.run(), options, log),
                     Catch::Contains("the averaging window [8, 8.05] s holds 1 output time(s) (one every 0.1 s)"));
+  // A window beyond any run of the case (0.1 s x 100,000 outputs = 10,000 s) is refused, not counted
+  // into an overflow.
+  options.window_start_s = 0.0;
+  options.window_end_s = 1e18;
+  CHECK_THROWS_WITH(compare_case_directory(fx.run(), options, log),
+                    Catch::Contains("the averaging window [0, 1e+18] s ends after 10000 s, the latest time a run of "
+                                    "this case can reach (at most 100000 outputs, one every 0.1 s)"));
+  CHECK(cases::outputs_in_window(0.0, 1e18, 0.1) == 1000000000000000L);  // capped, positive
   options.window_start_s = 6.5;
   options.window_end_s = 8.0;
   options.station_spacing_m = 0.5;
