@@ -1,5 +1,7 @@
 #include "compare/discrepancy.hpp"
 
+#include "cases/hydraulics.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -73,6 +75,12 @@ std::vector<MetricRow> metric_table(const JumpMetrics* sph, const JumpMetrics* v
     return m ? m->*f * scale : not_a_number;
   };
   auto o = [](const std::optional<double>& x) { return x ? *x : not_a_number; };
+  // The smooth-bed column: eta of a classical jump at this inflow (Belanger's y2*), as the report's
+  // "smooth bed (theory)" (the study's listed smooth-bed value, rounded from it, is lab.eta_smooth_percent).
+  const double smooth_theory = inflow_depth_m > 0.0 && inflow_velocity_m_s > 0.0 && gravity_m_s2 > 0.0
+                                   ? 100.0 * cases::jump_hydraulics(inflow_depth_m, inflow_velocity_m_s, inflow_depth_m,
+                                                                    gravity_m_s2).eta_smooth
+                                   : not_a_number;
   std::vector<MetricRow> rows;
   rows.push_back({"upstream_depth", "m", v(sph, &JumpMetrics::upstream_depth_m), v(vof, &JumpMetrics::upstream_depth_m),
                   inflow_depth_m, not_a_number, not_a_number});
@@ -91,12 +99,12 @@ std::vector<MetricRow> metric_table(const JumpMetrics* sph, const JumpMetrics* v
   rows.push_back({"roller_length", "m", v(sph, &JumpMetrics::roller_length_m), v(vof, &JumpMetrics::roller_length_m),
                   o(lab.roller_length_m), not_a_number, not_a_number});
   rows.push_back({"eta", "%", v(sph, &JumpMetrics::eta, 100.0), v(vof, &JumpMetrics::eta, 100.0), o(lab.eta_percent),
-                  o(lab.published_sph_eta_percent), o(lab.eta_smooth_percent)});
+                  o(lab.published_sph_eta_percent), smooth_theory});
   rows.push_back({"eta_alpha1", "%", v(sph, &JumpMetrics::eta_alpha1, 100.0), v(vof, &JumpMetrics::eta_alpha1, 100.0),
-                  o(lab.eta_percent), o(lab.published_sph_eta_percent), o(lab.eta_smooth_percent)});
+                  o(lab.eta_percent), o(lab.published_sph_eta_percent), smooth_theory});
   rows.push_back({"eta_crest_depth", "%", v(sph, &JumpMetrics::eta_crest_depth, 100.0),
                   v(vof, &JumpMetrics::eta_crest_depth, 100.0), o(lab.eta_percent), o(lab.published_sph_eta_percent),
-                  o(lab.eta_smooth_percent)});
+                  smooth_theory});
   // M = h^2/2 + q^2/(g h) of uniform sections at y1 and at the measured y2
   double lab_bed_force = not_a_number;
   if (lab.sequent_depth_m && inflow_depth_m > 0.0 && gravity_m_s2 > 0.0) {

@@ -354,7 +354,7 @@ void write_csvs(const CaseComparison& c, const fs::path& dir) {
     std::ostringstream s;
     s << "case,smooth_theory_percent,experiment_percent,published_sph_percent,sph_percent,vof_percent,"
          "sph_crest_depth_percent,vof_crest_depth_percent\n"
-      << c.case_id << "," << num(c.lab.eta_smooth_percent.value_or(c.eta_smooth_theory_percent)) << ","
+      << c.case_id << "," << num(c.eta_smooth_theory_percent) << ","
       << num(c.lab.eta_percent.value_or(not_a_number)) << "," << num(c.lab.published_sph_eta_percent.value_or(not_a_number))
       << "," << num(sph) << "," << num(vof) << "," << num(sph_crest) << "," << num(vof_crest) << "\n";
     cases::write_file_atomically(dir / "eta.csv", s.str());

@@ -159,6 +159,19 @@ TEST_CASE("The experiment's bed force from y1, U1 and the measured y2", "[compar
   CHECK(std::isnan(bed_row(MeasuredReference{}).experiment));
 }
 
+TEST_CASE("The smooth-bed column of the eta rows is Belanger's theory, not the study's listed value", "[compare][metrics]") {
+  // Run B: y1 = 25.4 mm, U1 = 3.0 m/s. By hand: Fr1 = 3 / sqrt(9.81 0.0254) = 6.009937,
+  // y2* = y1/2 (sqrt(1 + 8 Fr1^2) - 1) = 0.203556 m, E1 = 0.0254 + 9/19.62 = 0.484116 m,
+  // E2* = 0.203556 + 0.0762^2 / (19.62 0.203556^2) = 0.210699 m, eta* = (E1 - E2*)/E1 = 56.4776 %.
+  MeasuredReference lab;
+  lab.eta_smooth_percent = 56.0;  // a listed value, rounded differently: not what the column holds
+  const auto rows = metric_table(nullptr, nullptr, lab, 0.0254, 3.0, 9.81);
+  for (const char* quantity : {"eta", "eta_alpha1", "eta_crest_depth"}) {
+    INFO(quantity);
+    CHECK(metric_row(rows, quantity).smooth_theory == Approx(56.4776).margin(1e-3));
+  }
+}
+
 TEST_CASE("The metric table reports both toe positions: of the mean surface and the frames' mean", "[compare][metrics]") {
   JumpMetrics sph;
   sph.toe_x_m = 0.17;                 // an oscillating toe: the mean surface rises upstream of
