@@ -441,17 +441,42 @@ std::string comparison_json(const CaseComparison& c) {
   return j.str() + "\n";
 }
 
+namespace {
+
+// Puts the directory `staged` in the place of `target` (same parent): the old one is moved aside first
+// and removed after, so that csv/ and figures/ always hold one comparison's files, never a mixture
+// of this one's and an earlier one's (a figure of an earlier run beside a report without it).
+void replace_directory(const fs::path& staged, const fs::path& target) {
+  std::string old_name = target.filename().string();  // (built step by step: GCC 12 warns falsely on "." + string&&)
+  old_name.insert(0, 1, '.');
+  old_name += ".old";
+  const fs::path old = target.parent_path() / old_name;
+  fs::remove_all(old);
+  if (fs::exists(target)) fs::rename(target, old);
+  fs::create_directories(staged);
+  fs::rename(staged, target);
+  fs::remove_all(old);
+}
+
+}  // namespace
+
 void write_report(const CaseComparison& c, const fs::path& out, bool plots, std::ostream& log) {
   const fs::path csv = out / "csv";
   const fs::path figs = out / "figures";
-  fs::create_directories(csv);
-  write_csvs(c, csv);
-  cases::write_file_atomically(out / "comparison.json", comparison_json(c));
+  // This comparison's tables and figures are made beside the previous ones and then take their place.
+  const fs::path staged_csv = out / ".csv.new", staged_figs = out / ".figures.new";
+  fs::remove_all(staged_csv);
+  fs::remove_all(staged_figs);
+  fs::create_directories(staged_csv);
+  write_csvs(c, staged_csv);
   std::string plot_problem;
   if (plots && (c.sph.available || c.vof.available)) {
-    plot_problem = plot_case_figures(csv, figs);
+    plot_problem = plot_case_figures(staged_csv, staged_figs);
     if (!plot_problem.empty()) log << "plots: " << plot_problem << std::endl;
   }
+  replace_directory(staged_csv, csv);
+  replace_directory(staged_figs, figs);
+  cases::write_file_atomically(out / "comparison.json", comparison_json(c));
 
   Doc d;
   d.heading(1, "Case " + c.case_id + ": SPH vs VOF vs experiment");

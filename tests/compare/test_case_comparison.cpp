@@ -380,6 +380,31 @@ TEST_CASE("Results that end before the window's end are flagged as covering part
   }
 }
 
+// A comparison's csv/ and figures/ hold its own files only: what an earlier comparison left there (a
+// figure of a method that is now missing, say) does not stay beside the new report.
+TEST_CASE("A new comparison replaces the previous one's tables and figures instead of mixing with them",
+          "[compare][case]") {
+  RunFixture fx;
+  fx.write_sph(0.01, {6.0, 8.0, 10.0});
+  const fs::path out = fx.run();
+  fs::create_directories(out / "figures");
+  fs::create_directories(out / "csv");
+  std::ofstream(out / "figures" / "surface.png") << "a figure of an earlier comparison";
+  std::ofstream(out / "csv" / "snapshot_vof.csv") << "a table of an earlier comparison";
+  CompareOptions options;
+  options.plots = false;
+  std::ostringstream log;
+  const CaseComparison c = compare_case_directory(fx.run(), options, log);
+  REQUIRE(c.sph.available);
+  CHECK(fs::exists(out / "csv" / "eta.csv"));
+  CHECK_FALSE(fs::exists(out / "csv" / "snapshot_vof.csv"));
+  CHECK_FALSE(fs::exists(out / "figures" / "surface.png"));
+  CHECK(cases::read_text_file(out / "report.md").find("surface.png") == std::string::npos);
+  CHECK_FALSE(fs::exists(out / ".csv.new"));
+  CHECK_FALSE(fs::exists(out / ".csv.old"));
+  CHECK_FALSE(fs::exists(out / ".figures.old"));
+}
+
 TEST_CASE("An unreadable frame is skipped and reported and the other frames are used", "[compare][case]") {
   RunFixture fx;
   fx.write_sph(0.01, {7.0, 8.0, 9.0});
