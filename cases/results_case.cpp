@@ -28,6 +28,25 @@ bool assigns_one_of(std::string_view line, std::initializer_list<std::string_vie
   return false;
 }
 
+// A line of a case file as it may be quoted in a message: bytes outside printable ASCII as \xNN (a
+// damaged file must not put raw binary on the terminal), at most 120 characters.
+std::string quotable(std::string_view line) {
+  std::string out;
+  for (const char ch : line) {
+    const auto byte = static_cast<unsigned char>(ch);
+    if (byte >= 0x20 && byte < 0x7f) {
+      out += ch;
+    } else {
+      static const char* const hex = "0123456789abcdef";
+      out += "\\x";
+      out += hex[byte >> 4];
+      out += hex[byte & 0xf];
+    }
+    if (out.size() > 120) return out.substr(0, 120) + "...";
+  }
+  return out;
+}
+
 }  // namespace
 
 bool is_run_control_line(std::string_view line) {
@@ -89,11 +108,15 @@ void require_results_of(const fs::path& solver_dir, const fs::path& case_toml) {
   if (recorded_text.empty())
     throw std::runtime_error(recorded.string() + " is empty or not a readable file, so the results in " + solver_dir.string() +
                              " cannot be told apart from another case's (restore it, or generate the case again and rerun it)");
-  const auto d = first_setting_difference(recorded_text, read_text_file(case_toml));
+  const std::string case_text = fs::is_regular_file(case_toml, ec) ? read_text_file(case_toml) : std::string();
+  if (case_text.empty())
+    throw std::runtime_error(case_toml.string() + " is empty or not a readable file, so the results in " +
+                             solver_dir.string() + " cannot be checked against it (restore it, or generate the case again)");
+  const auto d = first_setting_difference(recorded_text, case_text);
   if (!d.any()) return;
   throw std::runtime_error(solver_dir.string() + " holds results made with other settings than " + case_toml.string() +
-                           ": " + recorded.filename().string() + " has '" + d.a + "' where " + case_toml.string() +
-                           " has '" + d.b + "' (generate the case again and rerun it, or restore the case.toml)");
+                           ": " + recorded.filename().string() + " has '" + quotable(d.a) + "' where " + case_toml.string() +
+                           " has '" + quotable(d.b) + "' (generate the case again and rerun it, or restore the case.toml)");
 }
 
 }  // namespace hydrojump::cases

@@ -85,6 +85,14 @@ TEST_CASE("results_case: results are refused under a case.toml other than the on
                     Catch::Contains(sph.string() + " holds results made with other settings") &&
                         Catch::Contains("results_case.toml has 'cfl_number = 0.2' where") &&
                         Catch::Contains("has 'cfl_number = 0.1'"));
+  // A case.toml damaged into binary: its line is quoted with \xNN escapes, not as raw bytes; an emptied
+  // one says so (it read as "has '[sph]' where ... has '(end)'").
+  write(sph / "case.toml", std::string("\x01\xff\x1b[31mgarbage\n", 14));
+  CHECK_THROWS_WITH(require_results_of(sph, sph / "case.toml"),
+                    Catch::Contains("has '\\x01\\xff\\x1b[31mgarbage'"));
+  write(sph / "case.toml", "");
+  CHECK_THROWS_WITH(require_results_of(sph, sph / "case.toml"),
+                    Catch::Contains("case.toml is empty or not a readable file, so the results in"));
   // A relaxed stability limit is not another case.
   std::string relaxed = resolved_case;
   relaxed.replace(relaxed.find("0.3"), 3, "0.45");
