@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include <pthread.h>
+#include <signal.h>
 #include <stdlib.h>
 
 #include "cases/geometry.hpp"
@@ -114,25 +116,45 @@ void write_trial_case(const cases::Study& study, const cases::Case& c, const std
 }
 
 // A fresh directory under the system's temporary directory, removed with its contents at scope exit.
+// Ctrl-C, SIGTERM and a hangup are held back (blocked in this thread) while it exists and act once it
+// is removed, so that an interrupted `check` or `generate` leaves no scratch directory behind; a long
+// loop polls stop_requested() and ends early (its exception unwinds through the removal).
 class ScratchDirectory {
  public:
   ScratchDirectory() {
+    sigset_t stops;
+    sigemptyset(&stops);
+    for (const int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&stops, sig);
+    ::pthread_sigmask(SIG_BLOCK, &stops, &previous_mask_);
     std::string name = (std::filesystem::temp_directory_path() / "hydrojump-generate-XXXXXX").string();
-    if (::mkdtemp(name.data()) == nullptr)
+    if (::mkdtemp(name.data()) == nullptr) {
+      const int error = errno;
+      ::pthread_sigmask(SIG_SETMASK, &previous_mask_, nullptr);
       throw std::runtime_error("cannot create a scratch directory under " + std::filesystem::temp_directory_path().string() +
-                               ": " + std::strerror(errno));
+                               ": " + std::strerror(error));
+    }
     path_ = name;
   }
   ~ScratchDirectory() {
     std::error_code ignored;
     std::filesystem::remove_all(path_, ignored);
+    ::pthread_sigmask(SIG_SETMASK, &previous_mask_, nullptr);  // a stop request held back acts now
   }
   ScratchDirectory(const ScratchDirectory&) = delete;
   ScratchDirectory& operator=(const ScratchDirectory&) = delete;
   const std::filesystem::path& path() const { return path_; }
 
+  // Whether a stop request is waiting (held back since this directory was made).
+  bool stop_requested() const {
+    sigset_t pending;
+    sigemptyset(&pending);
+    ::sigpending(&pending);
+    return sigismember(&pending, SIGINT) == 1 || sigismember(&pending, SIGTERM) == 1 || sigismember(&pending, SIGHUP) == 1;
+  }
+
  private:
   std::filesystem::path path_;
+  sigset_t previous_mask_{};
 };
 
 // The spec's rules for every selected case at `resolution`, then what only the solvers' derivations
@@ -232,8 +254,10 @@ void register_case_commands(CLI::App& app) {
     // once, as `generate` would, into a scratch directory that is removed again.
     const ScratchDirectory scratch;
     for (const auto& c : study.cases)
-      for (const auto& [resolution, level] : c.resolutions)
+      for (const auto& [resolution, level] : c.resolutions) {
+        if (scratch.stop_requested()) throw std::runtime_error("check interrupted (its scratch directory was removed)");
         write_trial_case(study, c, resolution, scratch.path() / resolution / c.id);
+      }
     std::cout << "every case generates at every resolution (" << study.cases.size() << " cases)\n";
   });
 

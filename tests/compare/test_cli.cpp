@@ -181,6 +181,33 @@ TEST_CASE("hydrojump check prints run A's derived hydraulics", "[compare][integr
   CHECK(f[12] == "48.43");  // the experiment's, from the spec
 }
 
+// `check` writes every case into a scratch directory under TMPDIR and removes it again, also when it
+// is stopped meanwhile (the stop request is held back until the directory is gone).
+TEST_CASE("hydrojump check stopped by SIGTERM or SIGHUP leaves no scratch directory", "[compare][integration][cli]") {
+  hydrojump::testing::TempDir tmp("check_stop");
+  for (const int sig : {SIGTERM, SIGHUP}) {
+    const fs::path scratch_parent = tmp.path() / ("tmp" + std::to_string(sig));
+    fs::create_directories(scratch_parent);
+    hydrojump::cases::ChildCommand command({HYDROJUMP_EXECUTABLE, "check", std::string(HYDROJUMP_SOURCE_DIR) + "/cases/ead2002.toml"},
+                                           tmp.path() / "check.log");
+    command.environment = {"TMPDIR=" + scratch_parent.string()};
+    const pid_t pid = hydrojump::cases::start_child(command);
+    // Stopped once its scratch directory exists (within 60 s).
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    bool made = false;
+    while (!made && std::chrono::steady_clock::now() < deadline) {
+      made = fs::directory_iterator(scratch_parent) != fs::directory_iterator();
+      if (!made) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    REQUIRE(made);
+    REQUIRE(::kill(pid, sig) == 0);
+    const hydrojump::cases::ChildExit e = hydrojump::cases::wait_child(pid);
+    INFO("signal " << sig << ": " << e.describe() << "\n" << read_text(tmp.path() / "check.log"));
+    CHECK(e.status() != 0);
+    CHECK(fs::directory_iterator(scratch_parent) == fs::directory_iterator());  // nothing left
+  }
+}
+
 TEST_CASE("hydrojump generate refuses an invalid spec, names the key and writes nothing", "[compare][integration][cli]") {
   hydrojump::testing::TempDir tmp("invalid");
   std::string spec = read_text(std::string(HYDROJUMP_SOURCE_DIR) + "/cases/dam_break.toml");
