@@ -472,8 +472,8 @@ CaseComparison compare_case(const cases::Study& study, const fs::path& run_dir, 
   const fs::path vof_dir = run_dir / "vof";
   r.vof.source = vof_dir.string();
   try {
-    if (!has_openfoam_results(vof_dir)) {
-      r.vof.status = "missing: " + vof_dir.string() + " has no OpenFOAM results (no time directory after 0 with alpha.water)";
+    if (const std::string lack = missing_openfoam_results(vof_dir); !lack.empty()) {
+      r.vof.status = "missing: " + vof_dir.string() + " has no OpenFOAM results (" + lack + ")";
       if (fs::exists(vof_dir / "processor0"))
         r.vof.status += "; it holds a decomposed run: reconstruct it first (reconstructPar)";
     } else {

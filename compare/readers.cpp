@@ -346,14 +346,16 @@ fs::path find_pvd(const fs::path& sph_dir) {
   throw std::runtime_error(sph_dir.string() + ": several .pvd files, none named *particles* or *fluid*:" + list);
 }
 
-bool has_openfoam_results(const fs::path& vof_dir) {
-  if (!fs::exists(vof_dir / "system" / "controlDict")) return false;
+std::string missing_openfoam_results(const fs::path& vof_dir) {
+  if (!fs::exists(vof_dir / "system" / "controlDict")) return "no system/controlDict (not an OpenFOAM case)";
   if (!fs::exists(vof_dir / "constant" / "polyMesh" / "owner") &&
       !fs::exists(vof_dir / "constant" / "polyMesh" / "owner.gz"))
-    return false;
+    return "no mesh (constant/polyMesh/owner): it was not meshed, or its mesh was removed";
   for (const auto& [t, time_dir] : cases::time_directories(vof_dir, 0.0))
-    if (fs::exists(time_dir / "alpha.water") || fs::exists(time_dir / "alpha.water.gz")) return true;
-  return false;
+    if (fs::exists(time_dir / "alpha.water") || fs::exists(time_dir / "alpha.water.gz")) return {};
+  return "no time directory after 0 with alpha.water (not run yet)";
 }
+
+bool has_openfoam_results(const fs::path& vof_dir) { return missing_openfoam_results(vof_dir).empty(); }
 
 }  // namespace hydrojump::compare

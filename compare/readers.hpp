@@ -66,5 +66,7 @@ std::filesystem::path find_pvd(const std::filesystem::path& sph_dir);
 
 // True when `vof_dir` holds an OpenFOAM case with at least one written time after 0.
 bool has_openfoam_results(const std::filesystem::path& vof_dir);
+// What `vof_dir` lacks to hold such results (no controlDict, no mesh, no written time), or "".
+std::string missing_openfoam_results(const std::filesystem::path& vof_dir);
 
 }  // namespace hydrojump::compare

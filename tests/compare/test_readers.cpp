@@ -188,7 +188,14 @@ TEST_CASE("An OpenFOAM case written by hand gives its times and cells and fields
 TEST_CASE("OpenFOAM reader errors name the directory", "[compare][readers][vof]") {
   TempDir tmp("foam-bad");
   CHECK_FALSE(has_openfoam_results(tmp.path()));
+  CHECK(missing_openfoam_results(tmp.path()) == "no system/controlDict (not an OpenFOAM case)");
   CHECK_THROWS_WITH(OpenFoamResults(tmp.path()), Catch::Contains("controlDict") && Catch::Contains(tmp.path().string()));
+  // A written time but no mesh: the reason is the mesh, not the times.
+  std::filesystem::create_directories(tmp.path() / "system");
+  std::ofstream(tmp.path() / "system" / "controlDict") << "FoamFile {}\n";
+  std::filesystem::create_directories(tmp.path() / "0.2");
+  std::ofstream(tmp.path() / "0.2" / "alpha.water") << "FoamFile {}\n";
+  CHECK_THAT(missing_openfoam_results(tmp.path()), Catch::StartsWith("no mesh (constant/polyMesh/owner)"));
 }
 
 TEST_CASE("water leaving the VOF domain through its top is read over restarts and noted above 1 % of q",
