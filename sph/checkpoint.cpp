@@ -6,17 +6,23 @@
 #include <filesystem>
 #include <fstream>
 #include <istream>
+#include <iterator>
 #include <ostream>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 
 #include "cases/atomic_file.hpp"
+#include "cases/fingerprint.hpp"
 
 namespace hydrojump::sph {
 
 namespace {
 
-constexpr char kMagic[8] = {'H', 'J', 'S', 'P', 'H', 'C', 'K', '4'};
+// Format 5: the payload (magic ... magic) and then its FNV-1a checksum as 16 hex digits, so that a
+// byte changed after the write (a damaged disk, an edit) is found, not resumed from.
+constexpr char kMagic[8] = {'H', 'J', 'S', 'P', 'H', 'C', 'K', '5'};
+constexpr std::size_t kChecksumBytes = 16;
 
 template <class T>
 void put(std::ostream& out, const T& v) {
@@ -76,7 +82,8 @@ class Reader {
 }  // namespace
 
 void write_checkpoint(const Checkpoint& c, const std::filesystem::path& file) {
-  cases::write_file_atomically(file, [&](std::ostream& out) {
+  std::ostringstream out(std::ios::binary);
+  {
     out.write(kMagic, sizeof kMagic);
     put_string(out, c.fingerprint);
     put(out, c.clock.time);
@@ -100,8 +107,11 @@ void write_checkpoint(const Checkpoint& c, const std::filesystem::path& file) {
       put<std::uint64_t>(out, rows->size());
       for (const auto& r : *rows) put_string(out, r);
     }
-    out.write(kMagic, sizeof kMagic);  // trailer: a complete file ends with the magic again
-  });
+    out.write(kMagic, sizeof kMagic);  // trailer: a complete payload ends with the magic again
+  }
+  std::string bytes = std::move(out).str();
+  bytes += cases::fingerprint(bytes);
+  cases::write_file_atomically(file, bytes);
 }
 
 namespace {
@@ -145,17 +155,29 @@ void check_contents(const Checkpoint& c, const std::filesystem::path& file) {
 }  // namespace
 
 Checkpoint read_checkpoint(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot open checkpoint '" + file.string() + "'");
+  std::error_code kind_error;
+  if (std::filesystem::is_directory(file, kind_error))
+    throw std::runtime_error("checkpoint '" + file.string() + "' is a directory, not a checkpoint file");
+  std::ifstream file_in(file, std::ios::binary);
+  if (!file_in) throw std::runtime_error("cannot open checkpoint '" + file.string() + "'");
+  std::string bytes((std::istreambuf_iterator<char>(file_in)), std::istreambuf_iterator<char>());
+  // The magic first (another version's file is named as such), then the checksum over the payload.
+  if (bytes.size() >= sizeof kMagic && std::memcmp(bytes.data(), kMagic, 7) == 0 && bytes[7] != kMagic[7])
+    throw std::runtime_error("'" + file.string() + "' is a checkpoint of another hydrojump version (format " +
+                             bytes.substr(0, sizeof kMagic) + ", this version reads " +
+                             std::string(kMagic, sizeof kMagic) + "): start the run again with --restart");
+  if (bytes.size() < 2 * sizeof kMagic + kChecksumBytes || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
+    throw std::runtime_error("'" + file.string() + "' is not a hydrojump SPH checkpoint");
+  const std::string_view payload(bytes.data(), bytes.size() - kChecksumBytes);
+  if (cases::fingerprint(payload) != std::string_view(bytes).substr(payload.size()))
+    throw std::runtime_error("checkpoint '" + file.string() + "' is truncated or corrupt (its checksum does not match "
+                             "its contents: it was changed or damaged after it was written); start the run again "
+                             "with --restart");
+  bytes.resize(payload.size());
+  std::istringstream in(std::move(bytes), std::ios::binary);
   Reader r(in, file);
   char magic[8];
-  r.read(magic, sizeof magic);
-  if (std::memcmp(magic, kMagic, 7) == 0 && magic[7] != kMagic[7])
-    throw std::runtime_error("'" + file.string() + "' is a checkpoint of another hydrojump version (format " +
-                             std::string(magic, sizeof magic) + ", this version reads " +
-                             std::string(kMagic, sizeof kMagic) + "): start the run again with --restart");
-  if (std::memcmp(magic, kMagic, sizeof magic) != 0)
-    throw std::runtime_error("'" + file.string() + "' is not a hydrojump SPH checkpoint");
+  r.read(magic, sizeof magic);  // checked above
   Checkpoint c;
   c.fingerprint = r.get_string();
   c.clock.time = r.get<double>();

@@ -146,6 +146,26 @@ TEST_CASE("a checkpoint whose contents are damaged is refused by name", "[sph][r
     f.write(reinterpret_cast<const char*>(&huge), sizeof huge);
   }
   CHECK_THROWS_WITH(read_checkpoint(file), Catch::Contains("is truncated or corrupt"));
+  // One byte changed in the particle data (a value that is still finite), or junk appended: the
+  // checksum does not match.
+  const auto size = fs::file_size([&] { write_checkpoint(good, file); return file; }());
+  {
+    std::fstream f(file, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekg(static_cast<std::streamoff>(size / 2));
+    char byte = 0;
+    f.read(&byte, 1);
+    f.seekp(static_cast<std::streamoff>(size / 2));
+    byte = static_cast<char>(byte ^ 0x01);
+    f.write(&byte, 1);
+  }
+  CHECK_THROWS_WITH(read_checkpoint(file), Catch::Contains("its checksum does not match its contents"));
+  write_checkpoint(good, file);
+  std::ofstream(file, std::ios::app | std::ios::binary) << "junk";
+  CHECK_THROWS_WITH(read_checkpoint(file), Catch::Contains("its checksum does not match its contents"));
+  // A directory in its place is named as such.
+  fs::remove(file);
+  fs::create_directory(file);
+  CHECK_THROWS_WITH(read_checkpoint(file), Catch::Contains("is a directory, not a checkpoint file"));
 }
 
 TEST_CASE("the pvd series loads back with vtkXMLPolyDataReader", "[sph][output]") {
