@@ -5,9 +5,10 @@
 //
 // Two resolved cases are the same run when their setting lines agree: comments (which name the spec
 // file however it was spelt), the descriptive texts (`description`, `citations`, `source`: readers
-// take them from the case.toml beside the results, never from the record) and the run-control
-// settings a resumed run may change (sph.max_density_variation, sph.checkpoint_interval_wall_s) are
-// left out.
+// take them from the case.toml beside the results, never from the record), the laboratory's values
+// ([case.measured]: what the results are compared with, not how they were made; a corrected lab value
+// re-runs the comparison only) and the run-control settings a resumed run may change
+// (sph.max_density_variation, sph.checkpoint_interval_wall_s) are left out.
 #pragma once
 
 #include <filesystem>
@@ -29,8 +30,8 @@ bool is_run_control_line(std::string_view line);
 // `citations`, the measurements' `source`): words about the run, not settings of it.
 bool is_descriptive_line(std::string_view line);
 
-// The lines of a resolved case text that define its run: every line but comments, descriptive texts
-// and run-control settings.
+// The lines of a resolved case text that define its run: every line but comments, descriptive texts,
+// the [case.measured] table and run-control settings.
 std::vector<std::string> setting_lines(std::string_view case_text);
 
 // The first setting line where two case texts differ, as {line of a, line of b} ("(end)" past the

@@ -62,6 +62,17 @@ TEST_CASE("results_case: run-control lines and comments do not define a run, eve
   const auto shorter = first_setting_difference(resolved_case, "[sph]\ncfl_number = 0.2\n");
   CHECK(shorter.a == "[case.run]");
   CHECK(shorter.b == "(end)");
+  // The laboratory's values ([case.measured]) are what results are compared with, not how they were
+  // made: a corrected lab value is the same run; the table after it counts again.
+  const std::string measured = resolved_case + "[case.measured]\nsequent_depth_m = 0.104\neta_percent = 48.43\n"
+                                               "[[case.sections]]\nx_m = 0.3\n";
+  std::string corrected = measured;
+  corrected.replace(corrected.find("0.104"), 5, "0.106");
+  CHECK_FALSE(first_setting_difference(measured, corrected).any());
+  CHECK(setting_lines(measured).back() == "x_m = 0.3");
+  std::string moved = measured;
+  moved.replace(moved.find("x_m = 0.3"), 9, "x_m = 0.4");
+  CHECK(first_setting_difference(measured, moved).b == "x_m = 0.4");
 }
 
 TEST_CASE("results_case: results are refused under a case.toml other than the one they were made with", "[cases][results_case]") {
