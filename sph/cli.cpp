@@ -133,8 +133,13 @@ int run_sph_directory(const SphOptions& opt) {
     checkpoint = read_checkpoint(ck);
     if (checkpoint->fingerprint != ro.fingerprint)
       throw std::runtime_error("--resume: '" + case_file.string() +
-                               "' changed since the checkpoint was written (other than sph.max_density_variation and "
-                               "sph.checkpoint_interval_wall_s, which may change); run with --restart to start over");
+                               "' changed since the checkpoint was written (beyond descriptive texts, the laboratory's "
+                               "values and sph.max_density_variation and sph.checkpoint_interval_wall_s, which may "
+                               "change); run with --restart to start over");
+    if (checkpoint->clock.time >= ro.end_time_s - 1e-12)
+      std::cerr << "hydrojump sph: the checkpoint is at t = " << checkpoint->clock.time
+                << " s, already at or past the end time " << ro.end_time_s
+                << " s: nothing to run (give a later --end-time to go on)\n";
   } else if (std::filesystem::exists(ck) && !opt.restart) {
     throw std::runtime_error("'" + dir.string() +
                              "' already holds a run (checkpoint.bin): use --resume to continue it or --restart to "

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iostream>
 #include <limits>
 #include <regex>
 #include <sstream>
@@ -303,6 +304,16 @@ TEST_CASE("hydrojump sph runs a generated dam-break directory and resumes it", "
   edit_case(std::regex("# Resolved[^\\n]*"), "# Resolved from ./elsewhere/ead2002.toml");
   opt.end_time = 0.05;
   CHECK(run_sph_directory(opt) == 0);
+  // Resumed with an end time the checkpoint has passed: nothing runs, and it says so.
+  {
+    std::ostringstream captured;
+    std::streambuf* const previous = std::cerr.rdbuf(captured.rdbuf());
+    opt.end_time = 0.03;
+    const int status = run_sph_directory(opt);
+    std::cerr.rdbuf(previous);
+    CHECK(status == 0);
+    CHECK_THAT(captured.str(), Catch::Contains("already at or past the end time 0.03 s: nothing to run"));
+  }
   edit_case(std::regex("cfl_number = [^\\n]*"), "cfl_number = 0.1");
   opt.end_time = 0.06;
   CHECK_THROWS_WITH(run_sph_directory(opt), Catch::Contains("changed since the checkpoint"));
