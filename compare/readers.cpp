@@ -1,5 +1,6 @@
 #include "compare/readers.hpp"
 
+#include "cases/number_text.hpp"
 #include "cases/output_times.hpp"
 #include "cases/time_directories.hpp"
 
@@ -55,6 +56,7 @@ std::vector<PvdEntry> read_pvd(const fs::path& pvd_file) {
   if (text.find("</Collection>") == std::string::npos)
     throw std::runtime_error(pvd_file.string() + ": ends before </Collection>: the file is damaged (cut short)");
   std::vector<PvdEntry> out;
+  std::vector<std::string> parts;  // each data set's part attribute ("" when it has none)
   const std::regex tag_re("<DataSet\\b[^>]*>");
   for (auto it = std::sregex_iterator(text.begin(), text.end(), tag_re); it != std::sregex_iterator(); ++it) {
     const std::string tag = it->str();
@@ -74,8 +76,23 @@ std::vector<PvdEntry> read_pvd(const fs::path& pvd_file) {
     }
     e.file = fs::path(f).is_absolute() ? fs::path(f) : pvd_file.parent_path() / f;
     out.push_back(e);
+    parts.push_back(attribute(tag, "part"));
   }
   if (out.empty()) throw std::runtime_error(pvd_file.string() + ": the collection lists no <DataSet>");
+  // One data set per time (and part): a time listed twice would count its frame twice in every mean,
+  // or mix two runs' frames (an edited or merged file).
+  std::vector<std::size_t> order(out.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return out[a].time_s != out[b].time_s ? out[a].time_s < out[b].time_s : parts[a] < parts[b];
+  });
+  for (std::size_t k = 1; k < order.size(); ++k) {
+    const std::size_t i = order[k - 1], j = order[k];
+    if (out[i].time_s == out[j].time_s && parts[i] == parts[j])
+      throw std::runtime_error(pvd_file.string() + ": the time " + cases::number_text(out[i].time_s) +
+                               " s is listed twice (" + out[i].file.filename().string() + " and " +
+                               out[j].file.filename().string() + "): the collection is damaged or merged");
+  }
   std::stable_sort(out.begin(), out.end(), [](const PvdEntry& a, const PvdEntry& b) { return a.time_s < b.time_s; });
   return out;
 }

@@ -88,6 +88,15 @@ TEST_CASE("PVD/VTP errors name the file and what is wrong", "[compare][readers][
   CHECK_THROWS_WITH(read_pvd(tmp.path() / "cut.pvd"), Catch::Contains("cut.pvd: ends before </Collection>"));
   write_pvd("nan.pvd", "<VTKFile type=\"Collection\"><Collection><DataSet timestep=\"nan\" file=\"p.vtp\"/></Collection></VTKFile>");
   CHECK_THROWS_WITH(read_pvd(tmp.path() / "nan.pvd"), Catch::Contains("nan.pvd") && Catch::Contains("timestep=\"nan\""));
+  // A time listed twice for the same part (a merged or edited file); two parts at one time are fine.
+  write_pvd("twice.pvd", "<VTKFile type=\"Collection\"><Collection><DataSet timestep=\"0.1\" part=\"0\" file=\"a.vtp\"/>"
+                         "<DataSet timestep=\"0.2\" part=\"0\" file=\"b.vtp\"/><DataSet timestep=\"0.1\" part=\"0\" "
+                         "file=\"c.vtp\"/></Collection></VTKFile>");
+  CHECK_THROWS_WITH(read_pvd(tmp.path() / "twice.pvd"),
+                    Catch::Contains("twice.pvd: the time 0.1 s is listed twice (a.vtp and c.vtp)"));
+  write_pvd("parts.pvd", "<VTKFile type=\"Collection\"><Collection><DataSet timestep=\"0.1\" part=\"0\" file=\"a.vtp\"/>"
+                         "<DataSet timestep=\"0.1\" part=\"1\" file=\"b.vtp\"/></Collection></VTKFile>");
+  CHECK(read_pvd(tmp.path() / "parts.pvd").size() == 2u);
   write_pvd("untimed.pvd", "<VTKFile type=\"Collection\"><Collection><DataSet file=\"p.vtp\"/></Collection></VTKFile>");
   CHECK_THROWS_WITH(read_pvd(tmp.path() / "untimed.pvd"), Catch::Contains("untimed.pvd: a <DataSet> has no timestep"));
   const ParticleFrame f = lattice_particles(0.1, 0.05, 0.01, 1, [](double, double) { return 0.0; },
