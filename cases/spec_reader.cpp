@@ -846,6 +846,9 @@ Case read_case(TableReader& c, const Study& study, const SphSettings& sph,
   if (!is_plain_name(result.id)) {
     c.fail_at(c.raw().get("id"), "id", "= \"" + result.id + "\" is not usable as a directory name: " + std::string(plain_name_rule));
   }
+  // "all" is what `--case all` selects every case with; a case of that name would make it ambiguous.
+  if (result.id == "all")
+    c.fail_at(c.raw().get("id"), "id", "= \"all\" is reserved: `--case all` selects every case; choose another id");
   result.kind = c.choice("kind", "", {"stilling_basin", "dam_break", "still_water", "poiseuille"}, true);
   result.description = c.string_or("description", "");
   result.sph = sph;
@@ -1030,6 +1033,13 @@ Study load_embedded_default_study() {
 }
 
 void validate_for_resolution(const Study& study, const Case& c, const std::string& resolution) {
+  if (c.resolutions.count(resolution) == 0) {
+    try {
+      (void)c.resolution(resolution);  // its message lists the resolutions the case has
+    } catch (const SpecError& e) {
+      throw SpecError(study.source_file.string() + ": " + e.what());
+    }
+  }
   check_resolution(c, c.resolution(resolution), study.fluid.gravity_m_s2, study.source_file.string());
 }
 

@@ -171,8 +171,11 @@ void write_trial_cases(const cases::Study& study, const std::vector<const cases:
 std::vector<const cases::Case*> select_cases(const cases::Study& study,
                                              const std::vector<std::string>& ids) {
   std::vector<const cases::Case*> selected;
-  // "all" (alone, in a study without a case of that name) is every case, as no ids are.
-  const bool all = ids.size() == 1 && ids.front() == "all" && study.find_case("all") == nullptr;
+  // "all" (alone; no case may be called so) is every case, as no ids are.
+  const bool all = std::find(ids.begin(), ids.end(), "all") != ids.end();
+  if (all && ids.size() > 1)
+    throw cases::SpecError(study.source_file.string() + ": --case \"all\" selects every case and cannot be combined "
+                           "with other case ids; give either \"all\" or the ids");
   if (ids.empty() || all) {
     for (const auto& c : study.cases) selected.push_back(&c);
     return selected;

@@ -480,6 +480,9 @@ TEST_CASE("Case ids and resolution names are plain directory names", "[cases][sp
     CHECK_THAT(msg, Catch::Contains("is not usable as a directory name: use 1 to 64 letters, digits, '_' or '-'"));
   }
   CHECK_NOTHROW(parse_study(replaced(valid_spec, "id = \"A\"", "id = \"run_A-2\""), "spec.toml", "."));
+  // "all" selects every case on the command line (--case all): not a case id.
+  CHECK_THAT(rejection(replaced(valid_spec, "id = \"A\"", "id = \"all\"")),
+             Catch::Contains("id = \"all\" is reserved: `--case all` selects every case"));
   const auto text = replaced(valid_spec, "[resolution.quick]", "[resolution.\"v1.2\"]");
   const auto msg = rejection(text);
   CHECK_THAT(msg, Catch::Contains("resolution.v1.2 is not usable as a resolution name"));
