@@ -36,8 +36,13 @@ int main(int argc, char** argv) {
 
   try {
     app.parse(argc, argv);
+  } catch (const CLI::RuntimeError& e) {
+    return app.exit(e);  // a command's own exit status (128 + signal after a stop, a study's failures)
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // --help and --version exit 0; a command-line mistake exits 2, the usage-error status (as an
+    // invalid spec does), instead of CLI11's own codes (104-114).
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
   } catch (const hydrojump::cases::SpecError& e) {
     std::cerr << "hydrojump: invalid spec: " << e.what() << "\n";
     return 2;

@@ -181,6 +181,19 @@ TEST_CASE("hydrojump check prints run A's derived hydraulics", "[compare][integr
   CHECK(f[12] == "48.43");  // the experiment's, from the spec
 }
 
+// Exit statuses: 0 for --help and --version, 2 for a command-line mistake (as for an invalid spec),
+// not CLI11's own 104-114.
+TEST_CASE("hydrojump exits with 2 on a command-line mistake and 0 on --help", "[compare][integration][cli]") {
+  hydrojump::testing::TempDir tmp("exit_codes");
+  CHECK(run({"--help"}, tmp.path() / "help.log") == 0);
+  CHECK(run({"--version"}, tmp.path() / "version.log") == 0);
+  CHECK(run({"no-such-command"}, tmp.path() / "unknown.log") == 2);
+  CHECK(run({"compare", "--window", "1"}, tmp.path() / "window.log") == 2);
+  CHECK(run({"bench", "--threads", "0"}, tmp.path() / "threads.log") == 2);
+  CHECK(run({"sph", (tmp.path() / "absent").string()}, tmp.path() / "absent.log") == 2);
+  CHECK_THAT(read_text(tmp.path() / "threads.log"), Catch::Contains("--threads"));
+}
+
 // `check` writes every case into a scratch directory under TMPDIR and removes it again, also when it
 // is stopped meanwhile (the stop request is held back until the directory is gone).
 TEST_CASE("hydrojump check stopped by SIGTERM or SIGHUP leaves no scratch directory", "[compare][integration][cli]") {
