@@ -398,6 +398,12 @@ CaseComparison compare_case(const cases::Study& study, const fs::path& run_dir, 
                   res.vof_cell_size_bed_m > 0 ? res.vof_cell_size_bed_m : 1e9);
     if (ds > 1e8) ds = length / 500.0;
   }
+  // At most 3,000 stations (a finer spacing costs time and adds nothing at the kernel's or the cells'
+  // scale); a finer --station-spacing is said, not silently coarsened.
+  if (options.station_spacing_m > 0.0 && ds < length / 3000.0)
+    log << "compare: --station-spacing " << cases::number_text(ds) << " m is finer than the limit of 3000 stations over "
+        << cases::number_text(length) << " m: using " << std::setprecision(4) << length / 3000.0 << std::setprecision(6)
+        << " m" << std::endl;
   ds = std::max(ds, length / 3000.0);
   const int n_stations = std::max(3, static_cast<int>(std::floor(length / ds)));
   std::vector<ColumnSpec> stations;

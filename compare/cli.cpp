@@ -44,7 +44,7 @@ void register_commands(CLI::App& app) {
   cmd->add_option("--sph-pvd", o->sph_pvd, "the SPH .pvd series (default: the one found under RUN_DIR/sph)")
       ->check(CLI::ExistingFile);
   cmd->add_option("--station-spacing", o->station_spacing_m,
-                  "spacing of the columns along the channel in m (default: the finer of SPH dx and the VOF bed cell)")
+                  "spacing of the columns along the channel in m, at most y1 (default: the finer of SPH dx and the VOF bed cell; at most 3000 columns)")
       ->check(cases::positive_finite_number());
   cmd->add_flag("--no-plots", o->no_plots, "skip the matplotlib figures");
   cmd->callback([o] {
