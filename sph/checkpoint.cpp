@@ -98,6 +98,7 @@ void write_checkpoint(const Checkpoint& c, const std::filesystem::path& file) {
     put_array(out, c.particles.id);
     put_array(out, c.particles.type);
     put(out, c.next_output_time);
+    put<std::uint8_t>(out, c.last_output_is_end_state ? 1 : 0);
     put<std::uint64_t>(out, c.series.size());
     for (const auto& [t, f] : c.series) {
       put(out, t);
@@ -200,6 +201,9 @@ Checkpoint read_checkpoint(const std::filesystem::path& file) {
   r.read(c.particles.id.data(), static_cast<std::size_t>(n) * sizeof(std::int64_t));
   r.read(c.particles.type.data(), static_cast<std::size_t>(n));
   c.next_output_time = r.get<double>();
+  const auto end_state = r.get<std::uint8_t>();
+  if (end_state > 1) r.fail();
+  c.last_output_is_end_state = end_state == 1;
   const auto n_series = r.get<std::uint64_t>();
   if (n_series > (1ull << 32)) r.fail();
   for (std::uint64_t k = 0; k < n_series; ++k) {

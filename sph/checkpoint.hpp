@@ -27,6 +27,9 @@ struct Checkpoint {
   SolverClock clock;
   ParticleSet particles;
   double next_output_time = 0.0;
+  // The last output is the end state of a run that ended between two output times (not on the
+  // output grid): a run extended from here drops it, as an uninterrupted run never wrote it.
+  bool last_output_is_end_state = false;
   std::vector<std::pair<double, std::string>> series;    // .pvd entries
   std::vector<std::string> log_rows;                     // run_log.csv rows (without header)
   std::vector<std::string> gauge_rows;                   // gauges.csv rows (without header)

@@ -51,15 +51,34 @@ class RunState {
     if (o.basin) basin_.emplace(*o.basin);
   }
 
-  void restore(const Checkpoint& c) {
+  // `extending`: the run goes on past the checkpoint's time. An end-state output between two output
+  // times (the last run's --end-time off the grid) is then dropped, so that the extended run's series,
+  // logs and window means are those of an uninterrupted run (its file is overwritten by the next output).
+  void restore(const Checkpoint& c, bool extending) {
     next_output_ = c.next_output_time;
-    series_.restore(c.series);
-    log_rows_ = c.log_rows;
-    gauge_rows_ = c.gauge_rows;
-    if (basin_) basin_->restore(c.basin_rows);
+    auto series = c.series;
+    auto log_rows = c.log_rows, gauge_rows = c.gauge_rows, basin_rows = c.basin_rows;
+    end_state_output_ = c.last_output_is_end_state;
+    if (extending && end_state_output_) {
+      for (auto* rows : {&log_rows, &gauge_rows, &basin_rows})
+        if (!rows->empty()) rows->pop_back();
+      if (!series.empty()) series.pop_back();
+      end_state_output_ = false;
+    }
+    series_.restore(std::move(series));
+    log_rows_ = std::move(log_rows);
+    gauge_rows_ = std::move(gauge_rows);
+    if (basin_) basin_->restore(basin_rows);
+  }
+
+  // The end state of a run that stops between two output times (not on the grid).
+  void write_end_state_output() {
+    write_output();
+    end_state_output_ = true;
   }
 
   void write_output() {
+    end_state_output_ = false;
     solver_.update_pressure();
     const ParticleSet& ps = solver_.particles();
     const double t = solver_.time();
@@ -132,6 +151,7 @@ class RunState {
     c.clock = solver_.clock();
     c.particles = solver_.particles();
     c.next_output_time = next_output_;
+    c.last_output_is_end_state = end_state_output_;
     c.series = series_.entries();
     c.log_rows = log_rows_;
     c.gauge_rows = gauge_rows_;
@@ -144,6 +164,7 @@ class RunState {
   double next_output_ = 0.0;
 
  private:
+  bool end_state_output_ = false;  // the last output is an off-grid end state (Checkpoint)
   static std::string join(const std::string& header, const std::vector<std::string>& rows) {
     std::string out = header + "\n";
     for (const auto& r : rows) out += r + "\n";
@@ -277,7 +298,7 @@ RunStatus run_case(Solver& solver, const RunOptions& o, const std::optional<Chec
   std::filesystem::create_directories(o.dir);
   RunState state(solver, o);
   if (resume) {
-    state.restore(*resume);
+    state.restore(*resume, o.end_time_s > solver.time() + 1e-12);
   } else {
     state.write_output();
     state.next_output_ = o.output_interval_s;
@@ -349,7 +370,7 @@ RunStatus run_case(Solver& solver, const RunOptions& o, const std::optional<Chec
       last_progress = Clock::now();
     }
   }
-  if (state.last_output_time() < solver.time() - 1e-12) state.write_output();  // the final state
+  if (state.last_output_time() < solver.time() - 1e-12) state.write_end_state_output();  // the final state
   state.write_checkpoint_now();
   progress(true);
   return RunStatus::finished;

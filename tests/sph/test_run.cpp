@@ -108,6 +108,40 @@ TEST_CASE("a run interrupted and resumed ends as the uninterrupted run", "[sph][
   }
 }
 
+// A run given an end time between two output times writes its end state as a last output; extended
+// later (--resume with a later --end-time), it drops that output, so that its series, logs and window
+// means are those of a run that went to the later end at once.
+TEST_CASE("a run that ended between two output times and is extended has the uninterrupted run's outputs",
+          "[sph][restart]") {
+  auto loaded = sph_test::load_case("dam_break.toml", 0.04);
+  const hydrojump::testing::TempDir tmp_a("extend_a"), tmp_b("extend_b");
+  Solver whole(loaded.settings, loaded.particles);
+  REQUIRE(run_case(whole, options_for(tmp_a.path(), "extend")) == RunStatus::finished);  // to 0.06 s
+  {
+    Solver first(loaded.settings, loaded.particles);
+    RunOptions o = options_for(tmp_b.path(), "extend");
+    o.end_time_s = 0.05;  // between the outputs of 0.04 and 0.06 s
+    REQUIRE(run_case(first, o) == RunStatus::finished);
+  }
+  Checkpoint ck = read_checkpoint(checkpoint_path(tmp_b.path()));
+  CHECK(ck.last_output_is_end_state);
+  REQUIRE(ck.series.size() == 4u);  // 0, 0.02, 0.04 and the end state at 0.05 s
+  CHECK(ck.series.back().first >= 0.05);
+  Solver resumed(loaded.settings, ck.particles, ck.clock);
+  REQUIRE(run_case(resumed, options_for(tmp_b.path(), "extend"), ck) == RunStatus::finished);
+  CHECK(resumed.clock().steps == whole.clock().steps);
+  CHECK(pvd_files(tmp_a.path() / "particles.pvd") == pvd_files(tmp_b.path() / "particles.pvd"));
+  for (const char* name : {"run_log.csv", "gauges.csv"}) {
+    INFO(name);
+    std::ifstream la(tmp_a.path() / name), lb(tmp_b.path() / name);
+    std::stringstream sa, sb;
+    sa << la.rdbuf();
+    sb << lb.rdbuf();
+    CHECK(sa.str() == sb.str());
+  }
+  CHECK_FALSE(read_checkpoint(checkpoint_path(tmp_b.path())).last_output_is_end_state);
+}
+
 TEST_CASE("a checkpoint whose contents are damaged is refused by name", "[sph][restart][robustness]") {
   // Structure intact (magic, sizes, trailer), values no run writes: --resume must not run on them.
   auto loaded = sph_test::load_case("dam_break.toml", 0.05);
