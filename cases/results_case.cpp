@@ -57,19 +57,25 @@ bool is_descriptive_line(std::string_view line) {
   return assigns_one_of(line, {"description", "citations", "source"});
 }
 
+bool is_laboratory_comparison_line(std::string_view line) {
+  return assigns_one_of(line, {"eta_percent", "eta_smooth_percent", "published_sph_eta_percent", "roller_length_m",
+                               "front_file"});
+}
+
 std::vector<std::string> setting_lines(std::string_view case_text) {
   std::istringstream in{std::string(case_text)};
   std::vector<std::string> lines;
-  bool in_measurements = false;  // inside [case.measured]: the laboratory's values, not the run's
+  bool in_measurements = false;  // inside [case.measured]
   for (std::string line; std::getline(in, line);) {
     const auto start = line.find_first_not_of(" \t");
     if (start != std::string::npos && line[start] == '#') continue;
     if (start != std::string::npos && line[start] == '[') {
       const auto end = line.find_last_not_of(" \t\r");
       in_measurements = line.substr(start, end + 1 - start) == "[case.measured]";
-      if (in_measurements) continue;
     }
-    if (in_measurements) continue;
+    // The measurements the results are only compared with; jump_length_m (which shapes the initial
+    // water) and sequent_depth_m (which the SPH run monitor reports against) stay settings.
+    if (in_measurements && is_laboratory_comparison_line(line)) continue;
     if (is_run_control_line(line) || is_descriptive_line(line)) continue;
     lines.push_back(line);
   }

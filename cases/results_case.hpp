@@ -5,9 +5,11 @@
 //
 // Two resolved cases are the same run when their setting lines agree: comments (which name the spec
 // file however it was spelt), the descriptive texts (`description`, `citations`, `source`: readers
-// take them from the case.toml beside the results, never from the record), the laboratory's values
-// ([case.measured]: what the results are compared with, not how they were made; a corrected lab value
-// re-runs the comparison only) and the run-control settings a resumed run may change
+// take them from the case.toml beside the results, never from the record), the laboratory values the
+// results are only compared with ([case.measured] eta_percent, eta_smooth_percent,
+// published_sph_eta_percent, roller_length_m, front_file: a corrected one re-runs the comparison
+// only; jump_length_m shapes the initial water and sequent_depth_m is in the SPH run's summary, so
+// they stay settings) and the run-control settings a resumed run may change
 // (sph.max_density_variation, sph.checkpoint_interval_wall_s) are left out.
 #pragma once
 
@@ -30,8 +32,13 @@ bool is_run_control_line(std::string_view line);
 // `citations`, the measurements' `source`): words about the run, not settings of it.
 bool is_descriptive_line(std::string_view line);
 
+// Whether `line` assigns one of the laboratory values a run is only compared with (within
+// [case.measured]: eta_percent, eta_smooth_percent, published_sph_eta_percent, roller_length_m,
+// front_file).
+bool is_laboratory_comparison_line(std::string_view line);
+
 // The lines of a resolved case text that define its run: every line but comments, descriptive texts,
-// the [case.measured] table and run-control settings.
+// the laboratory comparison values of [case.measured] and run-control settings.
 std::vector<std::string> setting_lines(std::string_view case_text);
 
 // The first setting line where two case texts differ, as {line of a, line of b} ("(end)" past the

@@ -31,7 +31,8 @@ std::string front_file_problem(const std::filesystem::path& file) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec)) return "is not a regular file";
   const auto size = std::filesystem::file_size(file, ec);
-  if (ec || size > (16u << 20)) return "is larger than 16 MiB, not a table of the surge front";
+  if (ec) return "cannot be read (" + ec.message() + ")";
+  if (size > (16u << 20)) return "is larger than 16 MiB, not a table of the surge front";
   std::ifstream in(file, std::ios::binary);
   if (!in) return "cannot be read";
   std::vector<std::string> header;

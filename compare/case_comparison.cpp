@@ -137,7 +137,8 @@ std::string sph_window_balance_clause(const fs::path& basin_csv, double t0, doub
   if (b.toe_missing > 0) o << ", no toe in " << b.toe_missing << " of " << b.outputs << " outputs";
   if (!b.reaches_window_end) o << "; the run has not reached " << t1 << " s";
   if (damaged_rows > 0)
-    o << "; " << damaged_rows << " damaged row(s) of " << name << " (not as many cells as its header) left out";
+    o << "; " << damaged_rows << " damaged row(s) of " << name
+      << " (not as many cells as its header, text that is not a number, or no time) left out";
   const bool steady = damaged_rows == 0 && b.toe_missing == 0 && b.reaches_window_end &&
                       cases::steady_by_means(b.outflow_minus_inflow_over_q, b.toe_trend_m_per_s, toe_drift_tolerance_m);
   o << (steady ? " (steady by the window means)" : " (NOT steady by the window means)");

@@ -122,11 +122,13 @@ void write_trial_case(const cases::Study& study, const cases::Case& c, const std
 class ScratchDirectory {
  public:
   ScratchDirectory() {
+    // (The name first: temp_directory_path() throws for a TMPDIR that does not exist, and the mask
+    // must not stay blocked then.)
+    std::string name = (std::filesystem::temp_directory_path() / "hydrojump-generate-XXXXXX").string();
     sigset_t stops;
     sigemptyset(&stops);
     for (const int sig : {SIGINT, SIGTERM, SIGHUP}) sigaddset(&stops, sig);
     ::pthread_sigmask(SIG_BLOCK, &stops, &previous_mask_);
-    std::string name = (std::filesystem::temp_directory_path() / "hydrojump-generate-XXXXXX").string();
     if (::mkdtemp(name.data()) == nullptr) {
       const int error = errno;
       ::pthread_sigmask(SIG_SETMASK, &previous_mask_, nullptr);
@@ -144,12 +146,19 @@ class ScratchDirectory {
   ScratchDirectory& operator=(const ScratchDirectory&) = delete;
   const std::filesystem::path& path() const { return path_; }
 
-  // Whether a stop request is waiting (held back since this directory was made).
+  // Whether a stop request is waiting (held back since this directory was made). A signal this
+  // process ignores (SIGHUP under nohup) stays pending while blocked on Linux but is no request.
   bool stop_requested() const {
     sigset_t pending;
     sigemptyset(&pending);
     ::sigpending(&pending);
-    return sigismember(&pending, SIGINT) == 1 || sigismember(&pending, SIGTERM) == 1 || sigismember(&pending, SIGHUP) == 1;
+    for (const int sig : {SIGINT, SIGTERM, SIGHUP}) {
+      if (sigismember(&pending, sig) != 1) continue;
+      struct sigaction disposition {};
+      if (::sigaction(sig, nullptr, &disposition) == 0 && disposition.sa_handler == SIG_IGN) continue;
+      return true;
+    }
+    return false;
   }
 
  private:

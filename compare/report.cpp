@@ -451,6 +451,9 @@ void replace_directory(const fs::path& staged, const fs::path& target) {
   old_name.insert(0, 1, '.');
   old_name += ".old";
   const fs::path old = target.parent_path() / old_name;
+  // A replacement cut short (killed between the two renames) left the previous directory aside:
+  // it is put back first, so that it is replaced, not lost.
+  if (fs::exists(old) && !fs::exists(target)) fs::rename(old, target);
   fs::remove_all(old);
   if (fs::exists(target)) fs::rename(target, old);
   fs::create_directories(staged);

@@ -53,7 +53,7 @@ class RunState {
 
   // `extending`: the run goes on past the checkpoint's time. An end-state output between two output
   // times (the last run's --end-time off the grid) is then dropped, so that the extended run's series,
-  // logs and window means are those of an uninterrupted run (its file is overwritten by the next output).
+  // logs and window means are those of an uninterrupted run (its .vtp is overwritten by the next output).
   void restore(const Checkpoint& c, bool extending) {
     next_output_ = c.next_output_time;
     auto series = c.series;
@@ -65,10 +65,15 @@ class RunState {
       if (!series.empty()) series.pop_back();
       end_state_output_ = false;
     }
+    const bool dropped = extending && c.last_output_is_end_state;
     series_.restore(std::move(series));
     log_rows_ = std::move(log_rows);
     gauge_rows_ = std::move(gauge_rows);
     if (basin_) basin_->restore(basin_rows);
+    if (dropped) {  // the files without it at once, not only at the next output
+      series_.rewrite_pvd();
+      write_tables();
+    }
   }
 
   // The end state of a run that stops between two output times (not on the grid).
@@ -100,11 +105,6 @@ class RunState {
         << ',' << kinetic << ',' << potential << ',' << max_var << ',' << ps.fluid_count() << ','
         << solver_.clock().inflow_mass << ',' << solver_.clock().outflow_mass;
     log_rows_.push_back(row.str());
-    cases::write_file_atomically(
-        o_.dir / "run_log.csv",
-        join("t_s,step,dt_s,fluid_mass_kg_per_m,kinetic_energy_J_per_m,potential_energy_J_per_m,max_density_variation,"
-             "fluid_particles,inflow_mass_kg_per_m,outflow_mass_kg_per_m",
-             log_rows_));
     // Gauges.
     std::ostringstream g;
     g << std::setprecision(10) << t;
@@ -115,16 +115,28 @@ class RunState {
     }
     if (o_.record_front) g << ',' << surge_front_x(ps, s.dx, o_.front_layer_m);
     gauge_rows_.push_back(g.str());
-    std::string header = "t_s";
-    for (const auto& gauge : o_.gauges)
-      header += ",surface_z_" + gauge.name + "_m,u_" + gauge.name + "_m_s,w_" + gauge.name + "_m_s";
-    if (o_.record_front) header += ",front_x_m";
-    cases::write_file_atomically(o_.dir / "gauges.csv", join(header, gauge_rows_));
     // Stilling basins: toe, discharges, sections, summary.
     if (basin_) {
       const double y_t = solver_.open_boundaries().outflows().empty() ? std::numeric_limits<double>::quiet_NaN()
                                                                       : solver_.open_boundaries().outflow_target_depth();
       basin_->record(ps, t, solver_.clock().inflow_mass, solver_.clock().outflow_mass, y_t);
+    }
+    write_tables();
+  }
+
+  // run_log.csv, gauges.csv and (stilling basins) basin.csv and summary.json from the rows so far.
+  void write_tables() const {
+    cases::write_file_atomically(
+        o_.dir / "run_log.csv",
+        join("t_s,step,dt_s,fluid_mass_kg_per_m,kinetic_energy_J_per_m,potential_energy_J_per_m,max_density_variation,"
+             "fluid_particles,inflow_mass_kg_per_m,outflow_mass_kg_per_m",
+             log_rows_));
+    std::string header = "t_s";
+    for (const auto& gauge : o_.gauges)
+      header += ",surface_z_" + gauge.name + "_m,u_" + gauge.name + "_m_s,w_" + gauge.name + "_m_s";
+    if (o_.record_front) header += ",front_x_m";
+    cases::write_file_atomically(o_.dir / "gauges.csv", join(header, gauge_rows_));
+    if (basin_) {
       cases::write_file_atomically(o_.dir / "basin.csv", basin_->csv());
       cases::write_file_atomically(o_.dir / "summary.json", basin_->summary_json());
     }

@@ -33,6 +33,8 @@ class ParticleSeries {
   // The entries written so far (time, file name relative to the directory); restored on resume.
   const std::vector<std::pair<double, std::string>>& entries() const { return entries_; }
   void restore(std::vector<std::pair<double, std::string>> entries) { entries_ = std::move(entries); }
+  // Writes the .pvd of the entries as they are (after a restore that left one out).
+  void rewrite_pvd() const { write_pvd(); }
   std::filesystem::path pvd_path() const { return dir_ / (stem_ + ".pvd"); }
 
  private:

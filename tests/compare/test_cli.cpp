@@ -196,7 +196,7 @@ TEST_CASE("hydrojump exits with 2 on a command-line mistake and 0 on --help", "[
 
 // `check` writes every case into a scratch directory under TMPDIR and removes it again, also when it
 // is stopped meanwhile (the stop request is held back until the directory is gone).
-TEST_CASE("hydrojump check stopped by SIGTERM or SIGHUP leaves no scratch directory", "[compare][integration][cli]") {
+TEST_CASE("hydrojump check stopped by SIGTERM or SIGHUP leaves no scratch directory, and runs on under nohup", "[compare][integration][cli]") {
   hydrojump::testing::TempDir tmp("check_stop");
   for (const int sig : {SIGTERM, SIGHUP}) {
     const fs::path scratch_parent = tmp.path() / ("tmp" + std::to_string(sig));
@@ -219,6 +219,27 @@ TEST_CASE("hydrojump check stopped by SIGTERM or SIGHUP leaves no scratch direct
     CHECK(e.status() != 0);
     CHECK(fs::directory_iterator(scratch_parent) == fs::directory_iterator());  // nothing left
   }
+  // Under nohup (SIGHUP ignored) a hangup is no stop request: the check finishes.
+  const fs::path scratch_parent = tmp.path() / "tmp_nohup";
+  fs::create_directories(scratch_parent);
+  hydrojump::cases::ChildCommand command({HYDROJUMP_EXECUTABLE, "check", std::string(HYDROJUMP_SOURCE_DIR) + "/cases/ead2002.toml"},
+                                         tmp.path() / "nohup.log");
+  command.environment = {"TMPDIR=" + scratch_parent.string()};
+  struct sigaction ignore {}, previous {};
+  ignore.sa_handler = SIG_IGN;
+  sigemptyset(&ignore.sa_mask);
+  ::sigaction(SIGHUP, &ignore, &previous);
+  const pid_t pid = hydrojump::cases::start_child(command);  // inherits SIGHUP ignored, as under nohup
+  ::sigaction(SIGHUP, &previous, nullptr);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (fs::directory_iterator(scratch_parent) == fs::directory_iterator() && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  REQUIRE(::kill(pid, SIGHUP) == 0);
+  const hydrojump::cases::ChildExit e = hydrojump::cases::wait_child(pid);
+  INFO(read_text(tmp.path() / "nohup.log"));
+  CHECK(e.status() == 0);
+  CHECK_THAT(read_text(tmp.path() / "nohup.log"), Catch::Contains("every case generates at every resolution"));
+  CHECK(fs::directory_iterator(scratch_parent) == fs::directory_iterator());
 }
 
 TEST_CASE("hydrojump generate refuses an invalid spec, names the key and writes nothing", "[compare][integration][cli]") {

@@ -127,6 +127,17 @@ TEST_CASE("a run that ended between two output times and is extended has the uni
   CHECK(ck.last_output_is_end_state);
   REQUIRE(ck.series.size() == 4u);  // 0, 0.02, 0.04 and the end state at 0.05 s
   CHECK(ck.series.back().first >= 0.05);
+  // Stopped right after the resume (before any new output), the files already lack the end state.
+  {
+    Solver resumed_briefly(loaded.settings, ck.particles, ck.clock);
+    RunOptions o = options_for(tmp_b.path(), "extend");
+    o.max_steps = 1;
+    REQUIRE(run_case(resumed_briefly, o, ck) == RunStatus::step_limit);
+    CHECK(pvd_files(tmp_b.path() / "particles.pvd").size() == 3u);
+    ck = read_checkpoint(checkpoint_path(tmp_b.path()));
+    CHECK_FALSE(ck.last_output_is_end_state);
+    CHECK(ck.series.size() == 3u);
+  }
   Solver resumed(loaded.settings, ck.particles, ck.clock);
   REQUIRE(run_case(resumed, options_for(tmp_b.path(), "extend"), ck) == RunStatus::finished);
   CHECK(resumed.clock().steps == whole.clock().steps);
@@ -340,13 +351,15 @@ TEST_CASE("hydrojump sph runs a generated dam-break directory and resumes it", "
   CHECK(run_sph_directory(opt) == 0);
   // Resumed with an end time the checkpoint has passed: nothing runs, and it says so.
   {
-    std::ostringstream captured;
-    std::streambuf* const previous = std::cerr.rdbuf(captured.rdbuf());
+    // std::cerr into `captured` while the run lasts, restored also if it throws.
+    struct CerrCapture {
+      std::ostringstream text;
+      std::streambuf* previous = std::cerr.rdbuf(text.rdbuf());
+      ~CerrCapture() { std::cerr.rdbuf(previous); }
+    } captured;
     opt.end_time = 0.03;
-    const int status = run_sph_directory(opt);
-    std::cerr.rdbuf(previous);
-    CHECK(status == 0);
-    CHECK_THAT(captured.str(), Catch::Contains("already at or past the end time 0.03 s: nothing to run"));
+    CHECK(run_sph_directory(opt) == 0);
+    CHECK_THAT(captured.text.str(), Catch::Contains("already at or past the end time 0.03 s: nothing to run"));
   }
   edit_case(std::regex("cfl_number = [^\\n]*"), "cfl_number = 0.1");
   opt.end_time = 0.06;
