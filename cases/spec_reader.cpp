@@ -23,6 +23,10 @@
 namespace hydrojump::cases {
 namespace {
 
+// The largest file read as a study or a measured table: a study file is a few kB (and /dev/zero
+// would be read until memory ran out).
+constexpr std::uintmax_t max_input_file_bytes = 16u << 20;
+
 // The measured surge front (measured.front_file) is a table of the front against time: '#' comment
 // lines, a header naming t_s and x_front_over_L, then at least two rows with finite numbers there
 // and t_s increasing. What is wrong with `file` as such a table, or "" when nothing is. At most
@@ -32,7 +36,7 @@ std::string front_file_problem(const std::filesystem::path& file) {
   if (!std::filesystem::is_regular_file(file, ec)) return "is not a regular file";
   const auto size = std::filesystem::file_size(file, ec);
   if (ec) return "cannot be read (" + ec.message() + ")";
-  if (size > (16u << 20)) return "is larger than 16 MiB, not a table of the surge front";
+  if (size > max_input_file_bytes) return "is larger than 16 MiB, not a table of the surge front";
   std::ifstream in(file, std::ios::binary);
   if (!in) return "cannot be read";
   std::vector<std::string> header;
@@ -1013,13 +1017,12 @@ Study load_study(const std::filesystem::path& file, SpecPurpose purpose) {
                     "or a generated case.toml)");
   std::ifstream in(file, std::ios::binary);
   if (!in) throw SpecError(file.string() + ": cannot open the study file");
-  // At most max_spec_bytes: a study file is a few kB (and /dev/zero would be read until memory ran out).
-  constexpr std::size_t max_spec_bytes = 16u << 20;
+  // At most max_input_file_bytes.
   std::string text;
   char buffer[65536];
   while (in.read(buffer, sizeof buffer) || in.gcount() > 0) {
     text.append(buffer, static_cast<std::size_t>(in.gcount()));
-    if (text.size() > max_spec_bytes)
+    if (text.size() > max_input_file_bytes)
       throw SpecError(file.string() + ": is larger than 16 MiB, not a study file (a .toml spec or a generated case.toml)");
   }
   const auto base = file.has_parent_path() ? file.parent_path() : std::filesystem::path(".");

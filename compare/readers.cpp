@@ -3,6 +3,7 @@
 #include "cases/number_text.hpp"
 #include "cases/output_times.hpp"
 #include "cases/time_directories.hpp"
+#include "sph/particles.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -180,9 +181,9 @@ void check_particle_values(const ParticleFrame& f, const fs::path& vtp_file) {
     if (!(std::abs(f.u[k]) <= max_particle_speed_m_s)) bad(k, "the horizontal velocity (m/s)", f.u[k]);
     if (!(std::abs(f.w[k]) <= max_particle_speed_m_s)) bad(k, "the vertical velocity (m/s)", f.w[k]);
     if (!(f.density[k] > 0.0) || !std::isfinite(f.density[k])) bad(k, "the density (kg/m^3)", f.density[k]);
-    if (f.type[k] < 0 || f.type[k] > 4) bad(k, "the type", f.type[k]);
+    if (f.type[k] < 0 || f.type[k] > static_cast<int>(sph::ParticleType::moving_wall)) bad(k, "the type", f.type[k]);
     if (!f.mass.empty() && !(f.mass[k] > 0.0 && std::isfinite(f.mass[k]))) bad(k, "the mass (kg/m)", f.mass[k]);
-    if (f.type[k] == 0) ++fluid;
+    if (f.type[k] == static_cast<int>(sph::ParticleType::fluid)) ++fluid;
   }
   if (fluid == 0 && !f.x.empty())
     throw std::runtime_error(vtp_file.string() + ": no fluid particle (type 0) among its " + std::to_string(f.x.size()) +

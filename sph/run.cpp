@@ -58,14 +58,13 @@ class RunState {
     next_output_ = c.next_output_time;
     auto series = c.series;
     auto log_rows = c.log_rows, gauge_rows = c.gauge_rows, basin_rows = c.basin_rows;
-    end_state_output_ = c.last_output_is_end_state;
-    if (extending && end_state_output_) {
+    const bool dropped = extending && c.last_output_is_end_state;
+    if (dropped) {
       for (auto* rows : {&log_rows, &gauge_rows, &basin_rows})
         if (!rows->empty()) rows->pop_back();
       if (!series.empty()) series.pop_back();
-      end_state_output_ = false;
     }
-    const bool dropped = extending && c.last_output_is_end_state;
+    end_state_output_ = c.last_output_is_end_state && !dropped;
     series_.restore(std::move(series));
     log_rows_ = std::move(log_rows);
     gauge_rows_ = std::move(gauge_rows);
