@@ -10,6 +10,7 @@
 #include <csignal>
 #include <fcntl.h>
 #include <spawn.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -106,7 +107,10 @@ pid_t start_child(const ChildCommand& command) {
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
-  std::vector<std::string> env = child_environment(command.environment);
+  std::vector<std::string> changes = command.environment;
+  if (command.stop_with_parent)
+    changes.push_back(std::string(stop_with_parent_variable) + "=" + std::to_string(::getpid()));
+  std::vector<std::string> env = child_environment(changes);
   std::vector<char*> envp;
   for (std::string& v : env) envp.push_back(v.data());
   envp.push_back(nullptr);
@@ -179,5 +183,19 @@ ChildExit stop_child(pid_t pid, std::chrono::milliseconds grace) {
 }
 
 ChildExit run_child(const ChildCommand& command) { return wait_child(start_child(command)); }
+
+void stop_with_parent_from_environment() {
+  const char* value = std::getenv(stop_with_parent_variable);
+  if (!value) return;
+  const std::string text = value;
+  ::unsetenv(stop_with_parent_variable);
+  char* end = nullptr;
+  errno = 0;
+  const long parent = std::strtol(text.c_str(), &end, 10);
+  if (text.empty() || *end != '\0' || errno != 0 || parent <= 1) return;
+  if (::prctl(PR_SET_PDEATHSIG, SIGTERM) != 0) return;
+  // The parent may have ended before the request was made: this process has a new parent then.
+  if (::getppid() != static_cast<pid_t>(parent)) ::raise(SIGTERM);
+}
 
 }  // namespace hydrojump::cases

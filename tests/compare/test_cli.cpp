@@ -18,6 +18,7 @@
 #include <signal.h>
 
 #include "cases/child_process.hpp"
+#include "cases/directory_lock.hpp"
 #include "sph/checkpoint.hpp"
 #include "tests/temp_dir.hpp"
 
@@ -128,6 +129,47 @@ TEST_CASE("hydrojump sph stops on SIGTERM, SIGINT and SIGHUP with a checkpoint, 
   CHECK(last.clock.time >= 0.8 - 1e-9);
   CHECK(last.clock.steps > second.clock.steps);
   CHECK(lines_in(run / "run_log.csv") == last.log_rows.size() + 1);
+}
+
+// A study killed outright (SIGKILL: no handler of its own runs) must not leave its running stage going
+// on unowned, holding its directory's lock: the stage asked Linux to be sent SIGTERM when the study
+// ends (ChildCommand::stop_with_parent), so it stops as on `kill -TERM`, with a checkpoint.
+TEST_CASE("hydrojump study killed by SIGKILL: its running SPH stage stops with a checkpoint", "[compare][integration][restart]") {
+  hydrojump::testing::TempDir tmp("study_killed");
+  const fs::path out = tmp.path() / "out";
+  const pid_t study = start({"study", std::string(HYDROJUMP_SOURCE_DIR) + "/cases/dam_break.toml", "--methods", "sph",
+                             "--resolution", "quick", "--out", out.string()},
+                            tmp.path() / "study.log");
+  const fs::path run = out / "dam_break" / "sph";
+  wait_for_rows(run / "run_log.csv", 2);
+  REQUIRE(::kill(study, SIGKILL) == 0);
+  const hydrojump::cases::ChildExit killed = hydrojump::cases::wait_child(study);
+  CHECK(killed.signal == SIGKILL);
+
+  // The stage (now nobody's child) ends by itself within a minute: its log says so, and the directory's
+  // lock is free again.
+  const fs::path stage_log = out / "dam_break" / "sph.log";
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  bool stopped = false;
+  bool unlocked = false;
+  while (!(stopped && unlocked) && std::chrono::steady_clock::now() < deadline) {
+    stopped = read_text(stage_log).find("checkpoint written") != std::string::npos;
+    if (stopped) {
+      try {
+        const hydrojump::cases::DirectoryLock lock(run, "the test");
+        unlocked = true;
+      } catch (const hydrojump::cases::DirectoryBusy&) {
+      }
+    }
+    if (!(stopped && unlocked)) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  INFO("study log:\n" << read_text(tmp.path() / "study.log") << "\nstage log:\n" << read_text(stage_log));
+  CHECK_THAT(read_text(stage_log), Catch::Contains("stopped by SIGTERM"));
+  REQUIRE(stopped);
+  CHECK(unlocked);
+  const auto checkpoint = hydrojump::sph::read_checkpoint(run / "checkpoint.bin");
+  CHECK(checkpoint.clock.time > 0.0);
+  CHECK(checkpoint.clock.time < 0.8);  // stopped before the end
 }
 
 TEST_CASE("hydrojump sph keeps the outputs of a run that failed before its first checkpoint unless --restart",
