@@ -5,7 +5,7 @@
 //
 // The issue asks for a mean absolute difference < 0.10 and a maximum < 0.20. This solver does NOT
 // meet that: with the gate removed instantly its front leads the measured one by about 0.2 L from
-// t = 0.2 s on (mean 0.17 / max 0.24 at dx = 0.04 m, 0.22 / 0.29 at dx = 0.02 m), the known lead of
+// t = 0.2 s on (mean 0.18 / max 0.24 at dx = 0.04 m, 0.23 / 0.29 at dx = 0.02 m), the known lead of
 // SPH (and of most solvers) over this experiment, whose gate took a finite time to lift. What is
 // asserted instead, with stated tolerances:
 //   - at the first measured time (t = 0.09 s, before the gate matters) the front is within 0.05 L;
@@ -14,6 +14,9 @@
 //   - the issue's own tolerance (mean < 0.10 L, max < 0.20 L) is asserted in a test tagged
 //     [!mayfail]: a known failure, reported as failed in every run but not failing the suite
 //     (the lead grows with resolution: max 0.24 / 0.29 / 0.34 at dx = 0.04 / 0.02 / 0.01 m).
+// A measured point counts while the measured front and the simulated one are both short of the far
+// wall (the simulated by dx): since the simulated front leads, the last measured points (x/L 3.7-4.1)
+// drop out for it first; the printed line gives how many of the measured points were compared.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -138,7 +141,8 @@ FrontError run_dam_break(double dx, const std::string& integrator, double gate_s
   std::cout << "dam break dx = " << dx << " (" << integrator << ", shifting " << shifting << ", gate "
             << (gate_speed > 0.0 ? "lifted at " + std::to_string(gate_speed) + " m/s" : std::string("instant"))
             << "): mean |x_front/L difference| = " << err.mean_abs
-            << ", max = " << err.max_abs << " over " << err.points << " points; first point " << err.first_point_error
+            << ", max = " << err.max_abs << " over " << err.points << " of " << measured.size()
+            << " measured points; first point " << err.first_point_error
             << "; late front speed ratio " << err.late_speed_ratio << "; " << solver.clock().steps << " steps\n";
   return err;
 }
@@ -206,11 +210,17 @@ TEST_CASE("dam break: a lifted gate delays the surge, a very fast one releases i
        << lifted.max_abs << " (instant: " << instant.mean_abs << " / " << instant.max_abs << "; issue target 0.10 / 0.20)");
 }
 
-TEST_CASE("dam break with the gate lifted at 5.16 m/s at dx 0.02 m and 0.01 m", "[sph][dam_break][slow]") {
+// The issue's tolerance with the lifted gate, asserted as it is: not met (mean 0.16 / 0.23, max 0.26 /
+// 0.31 at dx 0.02 / 0.01 m), so tagged [!mayfail] as the instant gate's known failure above.
+TEST_CASE("dam break with the gate lifted at 5.16 m/s at dx 0.02 m and 0.01 m within the issue's tolerance: known failure",
+          "[sph][dam_break][slow][!mayfail]") {
   for (const double dx : {0.02, 0.01}) {
+    INFO("dx = " << dx);
     const FrontError e = run_dam_break(dx, "symplectic", 5.16);
-    CHECK(e.points >= 10);
+    REQUIRE(e.points >= 10);
     WARN("dam break dx " << dx << " m, gate lifted at 5.16 m/s: mean " << e.mean_abs << ", max " << e.max_abs
          << ", late speed ratio " << e.late_speed_ratio << " (issue target 0.10 / 0.20)");
+    CHECK(e.mean_abs < 0.10);
+    CHECK(e.max_abs < 0.20);
   }
 }

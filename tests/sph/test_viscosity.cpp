@@ -250,9 +250,17 @@ TEST_CASE("the wall function's friction velocity solves the log law, or the subl
   CHECK(log_layer >= 6);  // both laws were exercised
   CHECK(sublayer >= 2);
   // Continuity at the sublayer's edge: just below and just above y+ = 11.53 give nearly the same u_tau.
-  const double d_edge = 11.53 * nu / std::sqrt(nu * 0.2 / 1.0);  // y+ of the sublayer law = 11.53 at u_t 0.2
+  // In the sublayer u_t/u_tau = y+ = d u_tau/nu, so y+ = sqrt(u_t d/nu): the edge at u_t = 0.2 m/s
+  // lies at d = 11.53^2 nu/u_t (6.6e-4 m for water).
+  const double d_edge = 11.53 * 11.53 * nu / 0.2;
   const double below = friction_velocity(0.2, d_edge * (1.0 - 1e-6), nu);
   const double above = friction_velocity(0.2, d_edge * (1.0 + 1e-6), nu);
+  // The two points lie on either side of the edge: the sublayer's law below, the log law above.
+  const double y_plus_below = d_edge * (1.0 - 1e-6) * below / nu;
+  const double y_plus_above = d_edge * (1.0 + 1e-6) * above / nu;
+  CHECK(0.2 / below == Approx(y_plus_below).epsilon(1e-12));
+  CHECK(0.2 / above == Approx(std::log(9.8 * y_plus_above) / 0.41).epsilon(1e-10));
+  CHECK(0.2 / above != Approx(y_plus_above).epsilon(1e-7));  // not the sublayer's law (the two differ by 1e-5 here)
   CHECK(above == Approx(below).epsilon(1e-4));
   CHECK(friction_velocity(0.0, 0.01, nu) == 0.0);
 }
