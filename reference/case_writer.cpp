@@ -858,6 +858,22 @@ VofCase build_vof_case(const cases::Study& study, const cases::Case& c, const st
   // ---- Allrun
   {
     std::ostringstream s;
+    const bool hold_toe = basin && c.vof.tailwater_control == "hold_toe";
+    if (hold_toe) {
+      // interFoam alone would run the outlet at the fixed Umean = q/y2, the set-up the control exists
+      // to replace (the jump drifts or swings, reference/README.md): refused, with the way to run it.
+      s << "#!/bin/sh\n"
+        << "# OpenFOAM interFoam case written by hydrojump from " << provenance << ".\n"
+        << "# vof.tailwater_control = \"hold_toe\": the outlet's Umean is set between legs of the run by\n"
+        << "# `hydrojump vof DIR [--np N]` (reference/tailwater_control.hpp); interFoam alone cannot do that,\n"
+        << "# so this case is not run by hand. Mesh: " << plan.strategy << ", " << plan.cell_count() << " cells.\n"
+        << "echo \"Allrun: this case holds its jump with the tailgate (vof.tailwater_control = \\\"hold_toe\\\"), which only\"\n"
+        << "echo \"\\`hydrojump vof <this directory>\\` drives: run it that way, or regenerate it with\"\n"
+        << "echo \"tailwater_control = \\\"none\\\" to run it by hand at the fixed outlet velocity\"\n"
+        << "exit 1\n";
+      vof.allrun = s.str();
+      return vof;
+    }
     s << "#!/bin/sh\n"
       << "# OpenFOAM interFoam case written by hydrojump from " << provenance << ".\n"
       << "# Run by hand:   ./Allrun            (serial)\n"
@@ -867,7 +883,27 @@ VofCase build_vof_case(const cases::Study& study, const cases::Case& c, const st
       << "cd \"${0%/*}\" || exit 1\n"
       << "export WM_PROJECT_DIR=\"${WM_PROJECT_DIR:-/usr/share/openfoam}\"\n"
       << "np=1\n"
-      << "if [ \"$1\" = \"-np\" ]; then np=\"$2\"; fi\n"
+      << "case \"$1\" in\n"
+      << "    \"\") ;;\n"
+      << "    -np) np=\"$2\"\n"
+      << "         case \"$np\" in\n"
+      << "             \"\"|*[!0-9]*) echo \"Allrun: -np needs a whole number of MPI ranks, 1 or more (got '$np')\"; exit 1 ;;\n"
+      << "         esac\n"
+      << "         [ \"$np\" -ge 1 ] || { echo \"Allrun: -np needs a whole number of MPI ranks, 1 or more (got '$np')\"; exit 1; } ;;\n"
+      << "    *) echo \"usage: ./Allrun [-np N]\"; exit 1 ;;\n"
+      << "esac\n";
+    s << "# A fresh start only: controlDict starts from the latest time, so the results of an earlier run\n"
+      << "# would be continued (or met by a new mesh they do not fit).\n"
+      << "for d in *; do\n"
+      << "    case \"$d\" in\n"
+      << "        0|0.orig) ;;\n"
+      << "        [0-9]*|processor*|postProcessing)\n"
+      << "            echo \"Allrun: this directory holds the results of an earlier run ($d); remove them first\"\n"
+      << "            echo \"(foamListTimes -rm; rm -rf processor* postProcessing) or continue that run with\"\n"
+      << "            echo \"\\`hydrojump vof <this directory> --resume\\`\"\n"
+      << "            exit 1 ;;\n"
+      << "    esac\n"
+      << "done\n"
       << "# run LOG APPLICATION [ARGUMENTS]: stops at the first failure with the end of its log\n"
       << "run() {\n"
       << "    log=\"$1\"; app=\"$2\"; shift 2\n"
@@ -884,15 +920,17 @@ VofCase build_vof_case(const cases::Study& study, const cases::Case& c, const st
     }
     s << "run log.checkMesh checkMesh\n"
       << "grep -q \"Mesh OK.\" log.checkMesh || { echo \"checkMesh found a bad mesh: see log.checkMesh\"; exit 1; }\n"
-      << "rm -rf 0 && cp -r 0.orig 0\n"
+      << "{ rm -rf 0 && cp -r 0.orig 0; } || { echo \"Allrun: cannot copy 0.orig to 0\"; exit 1; }\n"
       << "run log.setFields setFields\n"
       << "if [ \"$np\" -gt 1 ]; then\n"
-      << "    foamDictionary -entry numberOfSubdomains -set \"$np\" system/decomposeParDict > /dev/null\n"
-      << "    foamDictionary -entry coeffs/n -set \"($np 1 1)\" system/decomposeParDict > /dev/null\n"
+      << "    run log.foamDictionary.ranks foamDictionary -entry numberOfSubdomains -set \"$np\" system/decomposeParDict\n"
+      << "    run log.foamDictionary.split foamDictionary -entry coeffs/n -set \"($np 1 1)\" system/decomposeParDict\n"
       << "    run log.decomposePar decomposePar -force\n"
       << "    root=\"\"; [ \"$(id -u)\" = 0 ] && root=\"--allow-run-as-root\"\n"
+      << "    # Open MPI refuses more ranks than cores unless told\n"
+      << "    over=\"\"; [ \"$np\" -gt \"$(nproc)\" ] && over=\"--oversubscribe\"\n"
       << "    echo \"Running mpirun -np $np interFoam -parallel\"\n"
-      << "    mpirun $root -np \"$np\" -x WM_PROJECT_DIR interFoam -parallel > log.interFoam 2>&1 || "
+      << "    mpirun $root $over -np \"$np\" -x WM_PROJECT_DIR interFoam -parallel > log.interFoam 2>&1 || "
          "{ echo \"interFoam failed: see log.interFoam\"; tail -n 20 log.interFoam; exit 1; }\n"
       << "    run log.reconstructPar reconstructPar\n"
       << "else\n"

@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "cases/child_process.hpp"
 #include "cases/fingerprint.hpp"
 #include "cases/geometry.hpp"
 #include "cases/spec_reader.hpp"
@@ -27,6 +28,7 @@ using namespace hydrojump;
 using reference::testing::basin_spec;
 using reference::testing::dam_break_spec;
 using reference::testing::parse;
+using reference::testing::tiny_hold_toe_spec;
 
 namespace {
 
@@ -514,4 +516,50 @@ TEST_CASE("SPH-only cases get a note instead of an OpenFOAM case and the runner 
   std::ostringstream out;
   CHECK_THROWS_WITH(reference::run_vof_case(dir, reference::RunOptions{}, out),
                     Catch::Contains("no OpenFOAM reference") && Catch::Contains("poiseuille"));
+}
+
+// The generated Allrun stops with a message before any OpenFOAM program runs (so these run without
+// OpenFOAM): on a bad -np, on the results of an earlier run (controlDict starts from the latest time,
+// which a fresh mesh would not fit), and for a case under the tailgate control, which only
+// `hydrojump vof` can drive (interFoam alone would hold the outlet at a fixed velocity).
+TEST_CASE("the generated Allrun refuses a bad -np, earlier results and a tailgate case, naming the way out", "[reference][case]") {
+  const hydrojump::testing::TempDir tmp("reference-allrun-refusals");
+  const auto allrun = [&](const fs::path& dir, const std::vector<std::string>& args, const std::string& name) {
+    std::vector<std::string> argv = {"sh", (dir / "Allrun").string()};
+    argv.insert(argv.end(), args.begin(), args.end());
+    cases::ChildCommand command(argv, tmp.path() / (name + ".out"));
+    command.environment = {"PATH=/usr/bin:/bin"};  // no OpenFOAM program may be reached
+    const cases::ChildExit e = cases::run_child(command);
+    return std::make_pair(e.status(), cases::read_text_file(tmp.path() / (name + ".out")));
+  };
+  const cases::Study study = parse(basin_spec());
+  const fs::path dir = tmp.path() / "plain";
+  reference::write_vof_case(study, study.cases.front(), "quick", dir);
+  for (const std::string& bad : std::vector<std::string>{"x", "0", "-2", "1.5", ""}) {
+    INFO("-np '" << bad << "'");
+    const auto [status, out] = allrun(dir, {"-np", bad}, "np");
+    CHECK(status == 1);
+    CHECK_THAT(out, Catch::Contains("-np needs a whole number of MPI ranks, 1 or more (got '" + bad + "')"));
+  }
+  const auto [usage_status, usage] = allrun(dir, {"--parallel"}, "usage");
+  CHECK(usage_status == 1);
+  CHECK_THAT(usage, Catch::Contains("usage: ./Allrun [-np N]"));
+
+  for (const std::string& earlier : std::vector<std::string>{"0.01", "processor0", "postProcessing"}) {
+    INFO(earlier);
+    fs::create_directory(dir / earlier);
+    const auto [status, out] = allrun(dir, {}, "earlier");
+    CHECK(status == 1);
+    CHECK_THAT(out, Catch::Contains("holds the results of an earlier run (" + earlier + ")") &&
+                        Catch::Contains("hydrojump vof <this directory> --resume"));
+    fs::remove(dir / earlier);
+  }
+
+  const cases::Study held = parse(tiny_hold_toe_spec());
+  const fs::path held_dir = tmp.path() / "held";
+  reference::write_vof_case(held, held.cases.front(), "quick", held_dir);
+  const auto [held_status, held_out] = allrun(held_dir, {}, "held");
+  CHECK(held_status == 1);
+  CHECK_THAT(held_out, Catch::Contains("vof.tailwater_control = \"hold_toe\"") &&
+                           Catch::Contains("hydrojump vof <this directory>") && Catch::Contains("tailwater_control = \"none\""));
 }

@@ -842,4 +842,8 @@ TEST_CASE("the generated Allrun runs the case by hand as an OpenFOAM user would"
   CHECK(fs::exists(dir / "0.02"));
   CHECK_THAT(cases::read_text_file(dir / "log.checkMesh"), Catch::Contains("Mesh OK."));
   CHECK(fs::exists(dir / "log.topoSet.2"));  // the section zones, after the cut
+  // Run again, it refuses to mesh anew beneath the results it would continue from.
+  CHECK(std::system(command.c_str()) != 0);
+  CHECK_THAT(cases::read_text_file(dir / "allrun.out"), Catch::Contains("holds the results of an earlier run"));
+  CHECK(fs::exists(dir / "0.02"));
 }
