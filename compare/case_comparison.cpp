@@ -592,7 +592,7 @@ CaseComparison compare_case_directory(const fs::path& run_dir, const CompareOpti
   const cases::Study study = load_run_case(run_dir);
   CaseComparison r = compare_case(study, run_dir, options, log);
   const fs::path out = options.out_dir.empty() ? run_dir : options.out_dir;
-  write_report(r, out, options.plots, log);
+  r.figures_problem = write_report(r, out, options.plots, log);
   log << "summary over " << window_text(r.window_start_s, r.window_end_s) << " (experiment in brackets):\n"
       << summary_text(r) << std::flush;
   return r;

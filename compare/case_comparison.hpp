@@ -55,6 +55,8 @@ struct CaseComparison {
   MeasuredReference lab;
   std::vector<ColumnSpec> sections;
   MethodOutcome sph, vof;
+  // Set by compare_case_directory: why the figures were not made (empty when they were, or with --no-plots).
+  std::string figures_problem;
   SurfaceDifference surface;
   std::vector<ProfileDifference> profiles;
   std::vector<MetricRow> metrics;

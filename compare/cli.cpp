@@ -68,6 +68,13 @@ void register_commands(CLI::App& app) {
                 << "\n  vof: " << c.vof.status << "\n(the report lists them as missing)\n";
       throw CLI::RuntimeError(1);
     }
+    // Exit 1, so that a study does not keep this comparison as finished (it would not redraw it).
+    if (!c.figures_problem.empty()) {
+      std::cerr << "hydrojump compare: the figures were not made (the tables, comparison.json and the report "
+                   "were written): "
+                << c.figures_problem << "\n(--no-plots skips them)\n";
+      throw CLI::RuntimeError(1);
+    }
   });
 }
 

@@ -57,10 +57,11 @@ std::string run_plot_script(const std::string& script, const std::vector<std::st
   } catch (const std::exception& e) {
     return e.what();
   }
-  std::vector<std::string> argv = {python, (dir / script).string()};
+  // -s: no user site packages (~/.local) shadowing Debian's matplotlib; PYTHONPATH removed for the same
+  // reason; matplotlib without a display.
+  std::vector<std::string> argv = {python, "-s", (dir / script).string()};
   argv.insert(argv.end(), args.begin(), args.end());
   fs::create_directories(log_file.parent_path());
-  // matplotlib without a display, and no user site packages shadowing the system ones
   cases::ChildCommand command(argv, log_file);
   command.environment = {"MPLBACKEND=Agg", "PYTHONPATH"};
   cases::ChildExit ended;

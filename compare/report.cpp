@@ -463,7 +463,7 @@ void replace_directory(const fs::path& staged, const fs::path& target) {
 
 }  // namespace
 
-void write_report(const CaseComparison& c, const fs::path& out, bool plots, std::ostream& log) {
+std::string write_report(const CaseComparison& c, const fs::path& out, bool plots, std::ostream& log) {
   const fs::path csv = out / "csv";
   const fs::path figs = out / "figures";
   // This comparison's tables and figures are made beside the previous ones and then take their place.
@@ -473,12 +473,14 @@ void write_report(const CaseComparison& c, const fs::path& out, bool plots, std:
   fs::create_directories(staged_csv);
   write_csvs(c, staged_csv);
   std::string plot_problem;
-  if (plots && (c.sph.available || c.vof.available)) {
-    plot_problem = plot_case_figures(staged_csv, staged_figs);
-    if (!plot_problem.empty()) log << "plots: " << plot_problem << std::endl;
-  }
+  if (plots && (c.sph.available || c.vof.available)) plot_problem = plot_case_figures(staged_csv, staged_figs);
   replace_directory(staged_csv, csv);
   replace_directory(staged_figs, figs);
+  // The message names the log where it now is (the staged directory took the place of figures/).
+  for (auto at = plot_problem.find(staged_figs.string()); at != std::string::npos;
+       at = plot_problem.find(staged_figs.string(), at + figs.string().size()))
+    plot_problem.replace(at, staged_figs.string().size(), figs.string());
+  if (!plot_problem.empty()) log << "plots: " << plot_problem << std::endl;
   cases::write_file_atomically(out / "comparison.json", comparison_json(c));
 
   Doc d;
@@ -602,6 +604,7 @@ void write_report(const CaseComparison& c, const fs::path& out, bool plots, std:
   cases::write_file_atomically(out / "report.html", d.html("hydrojump comparison, case " + c.case_id));
   log << "report: " << (out / "report.md").string() << ", " << (out / "report.html").string() << ", "
       << (out / "comparison.json").string() << std::endl;
+  return plot_problem;
 }
 
 }  // namespace hydrojump::compare

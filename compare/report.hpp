@@ -20,7 +20,10 @@
 
 namespace hydrojump::compare {
 
-void write_report(const CaseComparison& c, const std::filesystem::path& out_dir, bool plots, std::ostream& log);
+// Writes out_dir/{csv/, figures/ (when `plots`), comparison.json, report.md, report.html}. Returns why
+// the figures could not be made (the plot script's failure, its log named), empty when they were or
+// when none were asked for; the report says so too.
+std::string write_report(const CaseComparison& c, const std::filesystem::path& out_dir, bool plots, std::ostream& log);
 
 // Pieces exposed for tests.
 std::string comparison_json(const CaseComparison& c);

@@ -375,6 +375,8 @@ void write_study_report(const StudyOptions& options, const cases::Study& study,
   } else {
     md << "(eta bars not plotted: " << plot_problem << ")\n\n";
     log << "study: eta bars not plotted: " << plot_problem << std::endl;
+    std::error_code ignored;
+    std::filesystem::remove(bars, ignored);  // an earlier study's bars would pass for this one's
   }
 
   md << "## Runs\n\n";

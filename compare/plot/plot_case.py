@@ -13,12 +13,8 @@ import sys
 
 import numpy as np
 
-from common import METHOD_STYLE, by_method, plt, read_key_values, read_rows, save
+from common import METHOD_STYLE, PlotInputError, by_method, number, plt, read_key_values, read_rows, save
 from plot_eta_bars import eta_bars
-
-
-def finite(v):
-    return isinstance(v, float) and math.isfinite(v)
 
 
 def plot_surface(csv_dir, fig_dir, case):
@@ -27,6 +23,7 @@ def plot_surface(csv_dir, fig_dir, case):
         return
     fig, ax = plt.subplots(figsize=(9, 3.6))
     bed_drawn = False
+    toe_drawn = False
     for method, rows in lon.items():
         x = np.array([r["x_m"] for r in rows])
         eta = np.array([r["surface_mean_m"] for r in rows])
@@ -38,22 +35,24 @@ def plot_surface(csv_dir, fig_dir, case):
             zb = np.array([r["z_bed_m"] for r in rows])
             ax.fill_between(x, zb.min() - 0.02, zb, color="0.55", lw=0, label="bed")
             bed_drawn = True
-        toe = case.get(method + "_toe_x_m")
-        if toe is not None and finite(float(toe)):
-            ax.axvline(float(toe), color=st["color"], ls=":", lw=0.9)
-    y1 = float(case.get("inflow_depth_m", "nan"))
-    floor = float(case.get("floor_z_m", "0"))
-    y2 = float(case.get("measured_y2_m", "nan"))
-    if math.isfinite(y1):
+        toe = number(case, method + "_toe_x_m")
+        if math.isfinite(toe):
+            ax.axvline(toe, color=st["color"], ls=":", lw=0.9)
+            toe_drawn = True
+    y1 = number(case, "inflow_depth_m")
+    floor = number(case, "floor_z_m", 0.0)
+    y2 = number(case, "measured_y2_m")
+    if math.isfinite(floor + y1):
         ax.axhline(floor + y1, color="0.3", ls="--", lw=0.8, label="experiment y1")
-    if math.isfinite(y2):
+    if math.isfinite(floor + y2):
         ax.axhline(floor + y2, color="0.1", ls="-.", lw=0.8, label="experiment y2")
     for key in ("basin_start_m", "basin_end_m"):
-        if key in case and math.isfinite(float(case[key])):
-            ax.axvline(float(case[key]), color="0.6", lw=0.6)
+        if math.isfinite(number(case, key)):
+            ax.axvline(number(case, key), color="0.6", lw=0.6)
     ax.set_xlabel("x (m)")
     ax.set_ylabel("elevation z (m)")
-    ax.set_title("Case %s: time-mean free surface (band: ±1 std; dotted: toe)" % case.get("case", ""))
+    ax.set_title("Case %s: time-mean free surface (band: ±1 std%s)"
+                 % (case.get("case", ""), "; dotted: toe" if toe_drawn else ""))
     ax.legend(fontsize=7, ncol=3, loc="upper left")
     ax.grid(alpha=0.3)
     save(fig, os.path.join(fig_dir, "surface.png"))
@@ -71,10 +70,10 @@ def plot_toe_frames(csv_dir, fig_dir, case):
         x = np.array([r["toe_x_m"] for r in rows], dtype=float)
         st = METHOD_STYLE.get(method, {"color": "k", "label": method})
         ax.plot(t, x, "o-", color=st["color"], ms=2.5, lw=0.9, label=st["label"] + ": each frame")
-        toe = case.get(method + "_toe_x_m")
-        if toe is not None and finite(float(toe)):
-            ax.axhline(float(toe), color=st["color"], ls=":", lw=0.9, label=st["label"] + ": time-mean surface")
-    start = float(case.get("basin_start_m", "nan"))
+        toe = number(case, method + "_toe_x_m")
+        if math.isfinite(toe):
+            ax.axhline(toe, color=st["color"], ls=":", lw=0.9, label=st["label"] + ": time-mean surface")
+    start = number(case, "basin_start_m")
     if math.isfinite(start):
         ax.axhline(start, color="0.4", ls="--", lw=0.8, label="basin (reach) start")
     ax.set_xlabel("t (s)")
@@ -132,16 +131,16 @@ def wavelength_mean(v, n):
 
 def plot_decay(csv_dir, fig_dir, case):
     lon = by_method(read_rows(os.path.join(csv_dir, "longitudinal.csv")))
-    u1 = float(case.get("inflow_velocity_m_s", "nan"))
+    u1 = number(case, "inflow_velocity_m_s")
     if not lon or not math.isfinite(u1) or u1 == 0:
         return
-    wavelength = float(case.get("bed_wavelength_m", "0") or 0)
+    wavelength = number(case, "bed_wavelength_m", 0.0)
     if not math.isfinite(wavelength):
         wavelength = 0.0
     fig, ax = plt.subplots(figsize=(7, 3.6))
     plotted = False
     for method, rows in lon.items():
-        toe = float(case.get(method + "_toe_x_m", "nan"))
+        toe = number(case, method + "_toe_x_m")
         if not math.isfinite(toe):
             continue
         sel = [r for r in rows if r["x_m"] >= toe]
@@ -222,15 +221,36 @@ def main(argv):
         print(__doc__, file=sys.stderr)
         return 2
     csv_dir, fig_dir = argv[1], argv[2]
+    if not os.path.isdir(csv_dir):
+        print("plot_case.py: %s is not a directory (the csv/ of a comparison)" % csv_dir, file=sys.stderr)
+        return 1
     os.makedirs(fig_dir, exist_ok=True)
-    case = read_key_values(os.path.join(csv_dir, "case.csv"))
-    plot_surface(csv_dir, fig_dir, case)
-    plot_profiles(csv_dir, fig_dir, case)
-    plot_decay(csv_dir, fig_dir, case)
-    eta_bars([os.path.join(csv_dir, "eta.csv")], os.path.join(fig_dir, "eta.png"))
-    plot_toe_frames(csv_dir, fig_dir, case)
-    for method in ("sph", "vof"):
-        plot_snapshot(csv_dir, fig_dir, case, method)
+    figures = [
+        ("surface.png", lambda case: plot_surface(csv_dir, fig_dir, case)),
+        ("profiles.png", lambda case: plot_profiles(csv_dir, fig_dir, case)),
+        ("velocity_decay.png", lambda case: plot_decay(csv_dir, fig_dir, case)),
+        ("eta.png", lambda case: eta_bars([os.path.join(csv_dir, "eta.csv")], os.path.join(fig_dir, "eta.png"))),
+        ("toe_frames.png", lambda case: plot_toe_frames(csv_dir, fig_dir, case)),
+        ("snapshot_sph.png", lambda case: plot_snapshot(csv_dir, fig_dir, case, "sph")),
+        ("snapshot_vof.png", lambda case: plot_snapshot(csv_dir, fig_dir, case, "vof")),
+    ]
+    failed = []
+    try:
+        case = read_key_values(os.path.join(csv_dir, "case.csv"))
+    except PlotInputError as e:
+        print("plot_case.py: %s" % e, file=sys.stderr)
+        return 1
+    # One figure's bad input costs that figure only; each failure is named, and the exit status says so.
+    for name, plot in figures:
+        try:
+            plot(case)
+        except (PlotInputError, ValueError, KeyError, IndexError) as e:
+            failed.append("%s (%s)" % (name, e))
+    if failed:
+        # One line, the last of the log: the caller quotes it.
+        print("plot_case.py: %d of %d figures not made: %s" % (len(failed), len(figures), "; ".join(failed)),
+              file=sys.stderr)
+        return 1
     return 0
 
 

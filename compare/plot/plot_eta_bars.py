@@ -14,7 +14,7 @@ import sys
 
 import numpy as np
 
-from common import METHOD_STYLE, plt, read_rows, save
+from common import METHOD_STYLE, PlotInputError, plt, read_rows, save
 
 SERIES = [
     ("smooth_theory_percent", "smooth bed (theory)", "0.75"),
@@ -30,24 +30,29 @@ def eta_bars(files, out):
     for f in files:
         rows.extend(read_rows(f))
     if not rows:
+        print("plot_eta_bars.py: no rows in %s" % ", ".join(files), file=sys.stderr)
         return False
-    cases = [str(r["case"]) if not isinstance(r["case"], float) else "%g" % r["case"] for r in rows]
+    cases = [r["case"] for r in rows]
     x = np.arange(len(rows))
     width = 0.8 / len(SERIES)
     fig, ax = plt.subplots(figsize=(max(4.0, 1.3 * len(rows) + 2), 3.6))
+    shown = []
     for i, (key, label, color) in enumerate(SERIES):
-        vals = np.array([r.get(key, math.nan) if isinstance(r.get(key), float) else math.nan for r in rows])
+        vals = np.array([r.get(key, math.nan) for r in rows], dtype=float)
         ok = np.isfinite(vals)
         if not ok.any():
             continue
+        shown.extend(vals[ok])
         pos = x - 0.4 + (i + 0.5) * width
         ax.bar(pos[ok], vals[ok], width, color=color, label=label)
         for p, v in zip(pos[ok], vals[ok]):
             ax.text(p, v + 0.5, "%.1f" % v, ha="center", va="bottom", fontsize=6, rotation=90)
     ax.set_xticks(x)
-    ax.set_xticklabels(cases)
+    long_labels = max(len(c) for c in cases) > 8
+    ax.set_xticklabels(cases, rotation=30 if long_labels else 0, ha="right" if long_labels else "center")
     ax.set_ylabel("η = (E1 − E2)/E1 (%)")
-    ax.set_ylim(0, 100)
+    # 0-100 %, widened to show a value outside it (a broken run's) instead of clipping it.
+    ax.set_ylim(min([0.0] + [v - 5.0 for v in shown]), max([100.0] + [v + 8.0 for v in shown]))
     ax.set_title("Energy dissipation rate")
     ax.legend(fontsize=7, loc="upper left", ncol=2)
     ax.grid(axis="y", alpha=0.3)
@@ -67,7 +72,11 @@ def main(argv):
     if missing:
         print("plot_eta_bars.py: missing input files: " + ", ".join(missing), file=sys.stderr)
         return 1
-    return 0 if eta_bars(files, out) else 1
+    try:
+        return 0 if eta_bars(files, out) else 1
+    except (PlotInputError, ValueError) as e:
+        print("plot_eta_bars.py: %s" % e, file=sys.stderr)
+        return 1
 
 
 if __name__ == "__main__":

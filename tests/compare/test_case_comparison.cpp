@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include <sys/wait.h>
+
 #include "cases/csv_table.hpp"
 #include "cases/fingerprint.hpp"
 #include "cases/geometry.hpp"
@@ -256,6 +258,60 @@ TEST_CASE("compare_case_directory on a synthetic jump gives both methods with me
   std::stringstream hs;
   hs << html.rdbuf();
   CHECK_THAT(hs.str(), Catch::Contains("data:image/png;base64,"));
+}
+
+// A figure that cannot be made: the comparison still writes its tables, comparison.json and report, and
+// says why with the plot log where it ends up (figures/plot.log); the real plot_case.py makes the
+// figures whose inputs are sound and names the file and column of the one that is not.
+TEST_CASE("A plot script that fails is named with its log, and one bad table costs only its own figure",
+          "[compare][case]") {
+  RunFixture fx;
+  fx.write_sph(0.005, {5.0, 6.5, 8.0, 9.5});
+  fx.write_vof(352, 60, {"5", "7", "9"});
+  CompareOptions options;
+  options.station_spacing_m = 0.005;
+  std::ostringstream log;
+  // A stand-in plot_case.py that fails as a broken matplotlib would.
+  const fs::path fake = fx.tmp.path() / "fake_plot";
+  fs::create_directories(fake);
+  std::ofstream(fake / "plot_case.py") << "import sys\nprint('ImportError: no matplotlib here', file=sys.stderr)\nsys.exit(1)\n";
+  const char* old = std::getenv("HYDROJUMP_PLOT_DIR");
+  const std::string saved = old ? old : "";
+  ::setenv("HYDROJUMP_PLOT_DIR", fake.c_str(), 1);
+  const CaseComparison c = compare_case_directory(fx.run(), options, log);
+  if (old) ::setenv("HYDROJUMP_PLOT_DIR", saved.c_str(), 1); else ::unsetenv("HYDROJUMP_PLOT_DIR");
+  INFO(log.str());
+  const std::string plot_log = (fx.run() / "figures" / "plot.log").string();
+  CHECK_THAT(c.figures_problem, Catch::Contains("plot_case.py failed (it exited with code 1)") &&
+                                    Catch::Contains("ImportError: no matplotlib here") &&
+                                    Catch::Contains("(log: " + plot_log + ")"));
+  CHECK(fs::exists(plot_log));
+  CHECK(fs::exists(fx.run() / "comparison.json"));
+  CHECK(fs::exists(fx.run() / "csv" / "eta.csv"));
+  CHECK_THAT(cases::read_text_file(fx.run() / "report.md"), Catch::Contains("Figures unavailable: ") &&
+                                                               Catch::Contains("(log: " + plot_log + ")"));
+
+  // The real script on those tables with one column renamed: every other figure, exit status 1, and a
+  // last line naming the figure, the file and the column.
+  REQUIRE(std::system("/usr/bin/python3 -c 'import matplotlib' > /dev/null 2>&1") == 0);
+  const fs::path csv = fx.run() / "csv";
+  std::string lon = cases::read_text_file(csv / "longitudinal.csv");
+  lon.replace(lon.find("surface_std_m"), 13, "surface_sd_mm");
+  std::ofstream(csv / "longitudinal.csv") << lon;
+  const fs::path figs = fx.tmp.path() / "figs";
+  const std::string script = std::string(HYDROJUMP_SOURCE_DIR) + "/compare/plot/plot_case.py";
+  const std::string cmd = "/usr/bin/python3 -s '" + script + "' '" + csv.string() + "' '" + figs.string() + "' > '" +
+                          (fx.tmp.path() / "plot.out").string() + "' 2>&1";
+  const int status = std::system(cmd.c_str());
+  const std::string out = cases::read_text_file(fx.tmp.path() / "plot.out");
+  INFO(out);
+  CHECK(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 1);
+  CHECK_THAT(out, Catch::Contains("plot_case.py: 1 of 7 figures not made: surface.png (" + (csv / "longitudinal.csv").string() +
+                                  " has no column 'surface_std_m')"));
+  CHECK_FALSE(fs::exists(figs / "surface.png"));
+  for (const char* f : {"profiles.png", "eta.png", "toe_frames.png", "snapshot_sph.png", "snapshot_vof.png"})
+    CHECK(fs::exists(figs / f));
 }
 
 TEST_CASE("A missing VOF result is reported as missing and is not a crash", "[compare][case]") {
