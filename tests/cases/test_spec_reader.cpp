@@ -541,7 +541,10 @@ TEST_CASE("The initial toe moves the start of the initial ramp and survives a re
   CHECK(plain_geo.initial_water.surface_at(0.3) == Approx(0.0254 + (0.1 / 0.624) * (0.104 - 0.0254)));
   REQUIRE(geo.sections.size() == plain_geo.sections.size());
   for (std::size_t i = 0; i < geo.sections.size(); ++i) CHECK(geo.sections[i].x_m == plain_geo.sections[i].x_m);
-  CHECK(geo.bed.polyline(0.0, 1.76, 1e-3).size() == plain_geo.bed.polyline(0.0, 1.76, 1e-3).size());
+  const auto bed = geo.bed.polyline(0.0, 1.76, 1e-3), plain_bed = plain_geo.bed.polyline(0.0, 1.76, 1e-3);
+  REQUIRE(bed.size() == plain_bed.size());
+  for (std::size_t i = 0; i < bed.size(); ++i) CHECK(bed[i] == plain_bed[i]);  // the same vertices, exactly
+  for (double x = 0.0; x <= 1.76; x += 0.01) CHECK(geo.bed.elevation(x) == plain_geo.bed.elevation(x));
   const Study r = resolved_reload(s, "initial_toe");
   REQUIRE(r.cases[0].stilling_basin()->initial_toe_x_m);
   CHECK(*r.cases[0].stilling_basin()->initial_toe_x_m == 0.6);
