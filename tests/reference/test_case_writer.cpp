@@ -541,9 +541,12 @@ TEST_CASE("the generated Allrun refuses a bad -np, earlier results and a tailgat
     CHECK(status == 1);
     CHECK_THAT(out, Catch::Contains("-np needs a whole number of MPI ranks, 1 or more (got '" + bad + "')"));
   }
-  const auto [usage_status, usage] = allrun(dir, {"--parallel"}, "usage");
-  CHECK(usage_status == 1);
-  CHECK_THAT(usage, Catch::Contains("usage: ./Allrun [-np N]"));
+  for (const auto& args : std::vector<std::vector<std::string>>{{"--parallel"}, {"-np"}, {"-np", "1", "extra"}}) {
+    INFO(args.size() << " arguments");
+    const auto [usage_status, usage] = allrun(dir, args, "usage");
+    CHECK(usage_status == 1);
+    CHECK_THAT(usage, Catch::Contains("usage: ./Allrun [-np N]"));
+  }
 
   for (const std::string& earlier : std::vector<std::string>{"0.01", "processor0", "postProcessing"}) {
     INFO(earlier);
