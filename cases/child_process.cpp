@@ -194,8 +194,11 @@ void stop_with_parent_from_environment() {
   const long parent = std::strtol(text.c_str(), &end, 10);
   if (text.empty() || *end != '\0' || errno != 0 || parent <= 1) return;
   if (::prctl(PR_SET_PDEATHSIG, SIGTERM) != 0) return;
-  // The parent may have ended before the request was made: this process has a new parent then.
-  if (::getppid() != static_cast<pid_t>(parent)) ::raise(SIGTERM);
+  // The parent may have ended before the request was made: this process has a new parent then, and the
+  // named one is gone. (A program between the two, a wrapper script, leaves the parent alive: the
+  // signal then comes when the wrapper ends.)
+  if (::getppid() != static_cast<pid_t>(parent) && ::kill(static_cast<pid_t>(parent), 0) != 0 && errno == ESRCH)
+    ::raise(SIGTERM);
 }
 
 }  // namespace hydrojump::cases

@@ -95,7 +95,8 @@ inline constexpr const char* stop_with_parent_variable = "HYDROJUMP_STOP_WITH_PA
 
 // Call first in main, before any thread starts. In a process started with ChildCommand::stop_with_parent
 // (HYDROJUMP_STOP_WITH_PARENT names its parent's id): asks Linux for SIGTERM when the parent ends
-// (prctl PR_SET_PDEATHSIG) and raises it at once when the parent has already gone. The variable is
+// (prctl PR_SET_PDEATHSIG) and raises it at once when the parent has already gone (when another
+// process stands between them, a wrapper, the signal comes when that one ends). The variable is
 // removed, so that the processes this one starts do not inherit it; a value that is not a process id
 // is ignored.
 void stop_with_parent_from_environment();

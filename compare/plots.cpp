@@ -63,7 +63,9 @@ std::string run_plot_script(const std::string& script, const std::vector<std::st
   argv.insert(argv.end(), args.begin(), args.end());
   fs::create_directories(log_file.parent_path());
   cases::ChildCommand command(argv, log_file);
-  command.environment = {"MPLBACKEND=Agg", "PYTHONPATH"};
+  // Unbuffered: the script's last line (its summary of what failed, on stderr) stays the log's last line,
+  // after its "wrote ..." lines on stdout.
+  command.environment = {"MPLBACKEND=Agg", "PYTHONPATH", "PYTHONUNBUFFERED=1"};
   cases::ChildExit ended;
   try {
     ended = cases::run_child(command);

@@ -476,10 +476,13 @@ std::string write_report(const CaseComparison& c, const fs::path& out, bool plot
   if (plots && (c.sph.available || c.vof.available)) plot_problem = plot_case_figures(staged_csv, staged_figs);
   replace_directory(staged_csv, csv);
   replace_directory(staged_figs, figs);
-  // The message names the log where it now is (the staged directory took the place of figures/).
-  for (auto at = plot_problem.find(staged_figs.string()); at != std::string::npos;
-       at = plot_problem.find(staged_figs.string(), at + figs.string().size()))
-    plot_problem.replace(at, staged_figs.string().size(), figs.string());
+  // The message names the log and the tables where they now are (the staged directories took the places
+  // of figures/ and csv/).
+  for (const auto& [staged, final_dir] : {std::pair{staged_figs, figs}, std::pair{staged_csv, csv}}) {
+    for (auto at = plot_problem.find(staged.string()); at != std::string::npos;
+         at = plot_problem.find(staged.string(), at + final_dir.string().size()))
+      plot_problem.replace(at, staged.string().size(), final_dir.string());
+  }
   if (!plot_problem.empty()) log << "plots: " << plot_problem << std::endl;
   cases::write_file_atomically(out / "comparison.json", comparison_json(c));
 

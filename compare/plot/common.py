@@ -99,4 +99,4 @@ def save(fig, path):
         plt.close(fig)
         if os.path.exists(tmp):
             os.remove(tmp)
-    print("wrote", path)
+    print("wrote", path, flush=True)

@@ -528,7 +528,8 @@ TEST_CASE("the generated Allrun refuses a bad -np, earlier results and a tailgat
     std::vector<std::string> argv = {"sh", (dir / "Allrun").string()};
     argv.insert(argv.end(), args.begin(), args.end());
     cases::ChildCommand command(argv, tmp.path() / (name + ".out"));
-    command.environment = {"PATH=/usr/bin:/bin"};  // no OpenFOAM program may be reached
+    // No program at all may be reached (OpenFOAM's are in /usr/bin): every refusal is the shell's own.
+    command.environment = {"PATH=/nonexistent"};
     const cases::ChildExit e = cases::run_child(command);
     return std::make_pair(e.status(), cases::read_text_file(tmp.path() / (name + ".out")));
   };

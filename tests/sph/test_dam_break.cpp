@@ -210,17 +210,18 @@ TEST_CASE("dam break: a lifted gate delays the surge, a very fast one releases i
        << lifted.max_abs << " (instant: " << instant.mean_abs << " / " << instant.max_abs << "; issue target 0.10 / 0.20)");
 }
 
-// The issue's tolerance with the lifted gate, asserted as it is: not met (mean 0.16 / 0.23, max 0.26 /
-// 0.31 at dx 0.02 / 0.01 m), so tagged [!mayfail] as the instant gate's known failure above.
-TEST_CASE("dam break with the gate lifted at 5.16 m/s at dx 0.02 m and 0.01 m within the issue's tolerance: known failure",
-          "[sph][dam_break][slow][!mayfail]") {
+// The run must compare at least 10 measured points (a failure); the issue's tolerance is checked with
+// CHECK_NOFAIL, reported when it fails (it does: mean 0.16 / 0.23, max 0.26 / 0.31 at dx 0.02 / 0.01 m)
+// without failing the test, as the instant gate's known failure above.
+TEST_CASE("dam break with the gate lifted at 5.16 m/s at dx 0.02 m and 0.01 m, the issue's tolerance a known failure",
+          "[sph][dam_break][slow]") {
   for (const double dx : {0.02, 0.01}) {
     INFO("dx = " << dx);
     const FrontError e = run_dam_break(dx, "symplectic", 5.16);
-    REQUIRE(e.points >= 10);
+    CHECK(e.points >= 10);
     WARN("dam break dx " << dx << " m, gate lifted at 5.16 m/s: mean " << e.mean_abs << ", max " << e.max_abs
          << ", late speed ratio " << e.late_speed_ratio << " (issue target 0.10 / 0.20)");
-    CHECK(e.mean_abs < 0.10);
-    CHECK(e.max_abs < 0.20);
+    CHECK_NOFAIL(e.mean_abs < 0.10);
+    CHECK_NOFAIL(e.max_abs < 0.20);
   }
 }
