@@ -237,8 +237,8 @@ def main(argv):
     failed = []
     try:
         case = read_key_values(os.path.join(csv_dir, "case.csv"))
-    except PlotInputError as e:
-        print("plot_case.py: %s" % e, file=sys.stderr)
+    except PlotInputError as e:  # every figure's title and marks come from it
+        print("plot_case.py: %d of %d figures not made: %s" % (len(figures), len(figures), e), file=sys.stderr)
         return 1
     # One figure's bad input costs that figure only; each failure is named, and the exit status says so.
     for name, plot in figures:
