@@ -403,6 +403,8 @@ VofCase build_vof_case(const cases::Study& study, const cases::Case& c, const st
   if (const auto reason = vof_unsupported_reason(c)) throw std::invalid_argument(*reason);
   const auto* basin = c.stilling_basin();
   const auto* dam = c.dam_break();
+  // The tailgate: hydrojump vof sets the outlet's Umean between legs of the run (tailwater_control.hpp).
+  const bool hold_toe = basin && c.vof.tailwater_control == "hold_toe";
   std::vector<std::string> transported;
   try {
     transported = turbulence_fields(c.vof.turbulence_model);
@@ -684,7 +686,6 @@ VofCase build_vof_case(const cases::Study& study, const cases::Case& c, const st
     cd.set("purgeWrite", 0);
     cd.set("writeFormat", foam::word("ascii"));
     cd.set("writePrecision", 8);
-    const bool hold_toe = basin && c.vof.tailwater_control == "hold_toe";
     if (hold_toe) {
       cd.directive("// uncompressed: vof.tailwater_control = \"hold_toe\" rewrites the outlet's Umean in the latest U "
                    "between legs (reference/tailwater_control.hpp)");
@@ -858,13 +859,12 @@ VofCase build_vof_case(const cases::Study& study, const cases::Case& c, const st
   // ---- Allrun
   {
     std::ostringstream s;
-    const bool hold_toe = basin && c.vof.tailwater_control == "hold_toe";
+    s << "#!/bin/sh\n"
+      << "# OpenFOAM interFoam case written by hydrojump from " << provenance << ".\n";
     if (hold_toe) {
       // interFoam alone would run the outlet at the fixed Umean = q/y2, the set-up the control exists
       // to replace (the jump drifts or swings, reference/README.md): refused, with the way to run it.
-      s << "#!/bin/sh\n"
-        << "# OpenFOAM interFoam case written by hydrojump from " << provenance << ".\n"
-        << "# vof.tailwater_control = \"hold_toe\": the outlet's Umean is set between legs of the run by\n"
+      s << "# vof.tailwater_control = \"hold_toe\": the outlet's Umean is set between legs of the run by\n"
         << "# `hydrojump vof DIR [--np N]` (reference/tailwater_control.hpp); interFoam alone cannot do that,\n"
         << "# so this case is not run by hand. Mesh: " << plan.strategy << ", " << plan.cell_count() << " cells.\n"
         << "echo \"Allrun: this case holds its jump with the tailgate (vof.tailwater_control = \\\"hold_toe\\\"), which only\"\n"
@@ -874,9 +874,7 @@ VofCase build_vof_case(const cases::Study& study, const cases::Case& c, const st
       vof.allrun = s.str();
       return vof;
     }
-    s << "#!/bin/sh\n"
-      << "# OpenFOAM interFoam case written by hydrojump from " << provenance << ".\n"
-      << "# Run by hand:   ./Allrun            (serial)\n"
+    s << "# Run by hand:   ./Allrun            (serial)\n"
       << "#                ./Allrun -np 4      (MPI: decomposePar, mpirun, reconstructPar)\n"
       << "# or with `hydrojump vof DIR [--np N]`, which adds checks, progress, divergence detection and\n"
       << "# resuming. Mesh: " << plan.strategy << ", " << plan.cell_count() << " cells.\n"

@@ -46,9 +46,9 @@ def plot_surface(csv_dir, fig_dir, case):
         ax.axhline(floor + y1, color="0.3", ls="--", lw=0.8, label="experiment y1")
     if math.isfinite(floor + y2):
         ax.axhline(floor + y2, color="0.1", ls="-.", lw=0.8, label="experiment y2")
-    for key in ("basin_start_m", "basin_end_m"):
-        if math.isfinite(number(case, key)):
-            ax.axvline(number(case, key), color="0.6", lw=0.6)
+    for x in (number(case, "basin_start_m"), number(case, "basin_end_m")):
+        if math.isfinite(x):
+            ax.axvline(x, color="0.6", lw=0.6)
     ax.set_xlabel("x (m)")
     ax.set_ylabel("elevation z (m)")
     ax.set_title("Case %s: time-mean free surface (band: ±1 std%s)"
