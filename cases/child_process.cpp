@@ -63,6 +63,92 @@ int open_or_throw(const fs::path& file, int flags, const std::string& program, c
   return high;
 }
 
+// What the child is made of, prepared by start_child.
+struct ChildSetup {
+  const char* program;
+  char* const* argv;
+  char* const* envp;
+  int log_fd;
+  int null_fd;
+  const std::vector<int>& inherited_descriptors;
+  const char* working_directory;  // nullptr: this process's
+  bool own_process_group;
+  int parent_death_signal;  // 0: none
+};
+
+// posix_spawn: no copy of this process's memory, safe from a multi-threaded parent, the exec error
+// returned. Returns 0 or the error number.
+int spawn_and_exec(const ChildSetup& s, pid_t& pid) {
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, s.log_fd, STDOUT_FILENO);
+  posix_spawn_file_actions_adddup2(&actions, s.log_fd, STDERR_FILENO);
+  posix_spawn_file_actions_adddup2(&actions, s.null_fd, STDIN_FILENO);
+  // dup2 onto itself clears close-on-exec in the child (POSIX 2018; glibc >= 2.29).
+  for (const int fd : s.inherited_descriptors)
+    if (fd > STDERR_FILENO) posix_spawn_file_actions_adddup2(&actions, fd, fd);
+  if (s.working_directory) posix_spawn_file_actions_addchdir_np(&actions, s.working_directory);
+  posix_spawnattr_t attributes;
+  posix_spawnattr_init(&attributes);
+  if (s.own_process_group) {
+    posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);
+    posix_spawnattr_setpgroup(&attributes, 0);
+  }
+  const int rc = posix_spawn(&pid, s.program, &actions, &attributes, s.argv, s.envp);
+  posix_spawnattr_destroy(&attributes);
+  posix_spawn_file_actions_destroy(&actions);
+  return rc;
+}
+
+// For ChildCommand::parent_death_signal: fork, then in the child, before exec, ask Linux for that signal
+// when the parent (the forking thread) ends, SIGKILL included (prctl PR_SET_PDEATHSIG; exec keeps the
+// request). posix_spawn has no such attribute. Between fork and exec the child makes only
+// async-signal-safe calls (the parent may be multi-threaded); an exec failure's error number comes back
+// through a close-on-exec pipe, so the caller sees it as from posix_spawn. Returns 0 or the error number.
+int fork_and_exec(const ChildSetup& s, pid_t& pid) {
+  int report[2];
+  if (::pipe2(report, O_CLOEXEC) != 0) return errno;
+  const pid_t parent = ::getpid();
+  pid = ::fork();
+  if (pid < 0) {
+    const int error = errno;
+    ::close(report[0]);
+    ::close(report[1]);
+    return error;
+  }
+  if (pid == 0) {
+    const auto fail = [&](int error) {
+      [[maybe_unused]] const ssize_t n = ::write(report[1], &error, sizeof error);
+      ::_exit(127);
+    };
+    if (s.own_process_group && ::setpgid(0, 0) != 0) fail(errno);
+    if (::dup2(s.log_fd, STDOUT_FILENO) < 0 || ::dup2(s.log_fd, STDERR_FILENO) < 0 ||
+        ::dup2(s.null_fd, STDIN_FILENO) < 0)
+      fail(errno);
+    for (const int fd : s.inherited_descriptors)
+      if (fd > STDERR_FILENO && ::fcntl(fd, F_SETFD, 0) != 0) fail(errno);
+    if (s.working_directory && ::chdir(s.working_directory) != 0) fail(errno);
+    if (::prctl(PR_SET_PDEATHSIG, s.parent_death_signal) != 0) fail(errno);
+    if (::getppid() != parent) ::_exit(128 + s.parent_death_signal);  // the parent ended before the request
+    ::execve(s.program, s.argv, s.envp);
+    fail(errno);
+  }
+  ::close(report[1]);
+  int error = 0;
+  ssize_t n = 0;
+  do {
+    n = ::read(report[0], &error, sizeof error);
+  } while (n < 0 && errno == EINTR);
+  ::close(report[0]);
+  if (n == static_cast<ssize_t>(sizeof error)) {
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    return error;
+  }
+  return 0;
+}
+
 }  // namespace
 
 std::string ChildExit::describe() const {
@@ -88,6 +174,9 @@ std::optional<fs::path> find_on_path(const std::string& name) {
 pid_t start_child(const ChildCommand& command) {
   if (command.argv.empty() || command.argv.front().empty()) throw std::runtime_error("start_child: no program given");
   const std::string& name = command.argv.front();
+  if (command.parent_death_signal < 0 || command.parent_death_signal >= NSIG)
+    throw std::runtime_error("cannot start " + name + ": " + std::to_string(command.parent_death_signal) +
+                             " is not a signal number");
   fs::path program = name;
   if (name.find('/') == std::string::npos) {
     const auto found = find_on_path(name);
@@ -101,16 +190,12 @@ pid_t start_child(const ChildCommand& command) {
                              " (not a directory)");
   }
 
-  // Everything the child needs, built here: posix_spawn (no copy of this process's memory, the exec
-  // error returned to the caller) with the log on stdout and stderr and /dev/null on stdin.
+  // Everything the child needs, built here, before the child exists.
   std::vector<std::string> args = command.argv;
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
-  std::vector<std::string> changes = command.environment;
-  if (command.stop_with_parent)
-    changes.push_back(std::string(stop_with_parent_variable) + "=" + std::to_string(::getpid()));
-  std::vector<std::string> env = child_environment(changes);
+  std::vector<std::string> env = child_environment(command.environment);
   std::vector<char*> envp;
   for (std::string& v : env) envp.push_back(v.data());
   envp.push_back(nullptr);
@@ -119,26 +204,18 @@ pid_t start_child(const ChildCommand& command) {
   // close-on-exec, so children started by other threads meanwhile do not inherit them.
   const int log_fd = open_or_throw(command.log_file, O_WRONLY | O_CREAT | (command.append_to_log ? O_APPEND : O_TRUNC),
                                    name, "log file");
-  const int null_fd = open_or_throw("/dev/null", O_RDONLY, name, "input");
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_adddup2(&actions, log_fd, STDOUT_FILENO);
-  posix_spawn_file_actions_adddup2(&actions, log_fd, STDERR_FILENO);
-  posix_spawn_file_actions_adddup2(&actions, null_fd, STDIN_FILENO);
-  // dup2 onto itself clears close-on-exec in the child (POSIX 2018; glibc >= 2.29).
-  for (const int fd : command.inherited_descriptors)
-    if (fd > STDERR_FILENO) posix_spawn_file_actions_adddup2(&actions, fd, fd);
-  if (!dir.empty()) posix_spawn_file_actions_addchdir_np(&actions, dir.c_str());
-  posix_spawnattr_t attributes;
-  posix_spawnattr_init(&attributes);
-  if (command.own_process_group) {
-    posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);
-    posix_spawnattr_setpgroup(&attributes, 0);
+  int null_fd = -1;
+  try {
+    null_fd = open_or_throw("/dev/null", O_RDONLY, name, "input");
+  } catch (...) {
+    ::close(log_fd);
+    throw;
   }
+  const ChildSetup setup{program.c_str(), argv.data(), envp.data(), log_fd, null_fd, command.inherited_descriptors,
+                         dir.empty() ? nullptr : dir.c_str(), command.own_process_group,
+                         command.parent_death_signal};
   pid_t pid = 0;
-  const int rc = posix_spawn(&pid, program.c_str(), &actions, &attributes, argv.data(), envp.data());
-  posix_spawnattr_destroy(&attributes);
-  posix_spawn_file_actions_destroy(&actions);
+  const int rc = command.parent_death_signal != 0 ? fork_and_exec(setup, pid) : spawn_and_exec(setup, pid);
   ::close(log_fd);
   ::close(null_fd);
   if (rc != 0) throw std::runtime_error("cannot start " + name + " (" + program.string() + "): " + std::strerror(rc));
@@ -183,22 +260,5 @@ ChildExit stop_child(pid_t pid, std::chrono::milliseconds grace) {
 }
 
 ChildExit run_child(const ChildCommand& command) { return wait_child(start_child(command)); }
-
-void stop_with_parent_from_environment() {
-  const char* value = std::getenv(stop_with_parent_variable);
-  if (!value) return;
-  const std::string text = value;
-  ::unsetenv(stop_with_parent_variable);
-  char* end = nullptr;
-  errno = 0;
-  const long parent = std::strtol(text.c_str(), &end, 10);
-  if (text.empty() || *end != '\0' || errno != 0 || parent <= 1) return;
-  if (::prctl(PR_SET_PDEATHSIG, SIGTERM) != 0) return;
-  // The parent may have ended before the request was made: this process has a new parent then, and the
-  // named one is gone. (A program between the two, a wrapper script, leaves the parent alive: the
-  // signal then comes when the wrapper ends.)
-  if (::getppid() != static_cast<pid_t>(parent) && ::kill(static_cast<pid_t>(parent), 0) != 0 && errno == ESRCH)
-    ::raise(SIGTERM);
-}
 
 }  // namespace hydrojump::cases

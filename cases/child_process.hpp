@@ -6,8 +6,9 @@
 //
 // Everything is prepared before the child exists (the program looked up on PATH, the log file opened,
 // the environment built) and the child is made by posix_spawn, which is safe from a multi-threaded
-// parent and does not copy its memory; a program that cannot be started is an exception naming it and
-// the reason instead of an exit status 127 that looks like the program's own.
+// parent and does not copy its memory (by fork, making only async-signal-safe calls before exec, when
+// it is to be signalled at its parent's end); a program that cannot be started is an exception naming it and the
+// reason instead of an exit status 127 that looks like the program's own.
 //
 // Usage
 //   | field               | meaning                                                  | default        |
@@ -18,7 +19,7 @@
 //   | working_directory   | the child's working directory                            | this process's |
 //   | own_process_group   | Ctrl-C in the terminal reaches the parent only           | false          |
 //   | environment         | "NAME=value" sets NAME, "NAME" removes it                | unchanged      |
-//   | stop_with_parent    | a hydrojump child gets SIGTERM when this process ends    | false          |
+//   | parent_death_signal | sent to the child when this process ends in any way      | 0 (none)       |
 //
 // Example
 //   ChildCommand mesh({"blockMesh"}, case_dir / "log.blockMesh");
@@ -51,12 +52,12 @@ struct ChildCommand {
   // Descriptors the child keeps open under the same numbers (all others are close-on-exec): a
   // directory lock it must hold while it runs, even if its parent dies before it (DirectoryLock).
   std::vector<int> inherited_descriptors;
-  // For a hydrojump child (the study's stages): it stops as on `kill -TERM`, its state written, when
-  // this process ends in any way, SIGKILL included, instead of running on unowned with its directory
-  // locked. The child arranges it itself (stop_with_parent_from_environment), told by the variable
-  // HYDROJUMP_STOP_WITH_PARENT=<this process's id>. The thread that starts the child must outlive it
-  // (Linux sends the signal when that thread ends).
-  bool stop_with_parent = false;
+  // A signal (SIGTERM, SIGUSR2, ...) the child gets when this process ends in any way, SIGKILL included
+  // (prctl PR_SET_PDEATHSIG, asked for between fork and exec), instead of running on unowned: a study's
+  // stage stops as on `kill -TERM`, its state written and its directory lock released; interFoam, told
+  // by its controlDict, writes its current time on SIGUSR2 (mpirun passes it to the ranks). 0: none. The
+  // thread that starts the child must outlive it (Linux sends the signal when that thread ends).
+  int parent_death_signal = 0;
 };
 
 // How a child ended.
@@ -89,16 +90,5 @@ ChildExit stop_child(pid_t pid, std::chrono::milliseconds grace = std::chrono::s
 
 // start_child + wait_child.
 ChildExit run_child(const ChildCommand& command);
-
-// The variable through which ChildCommand::stop_with_parent reaches the child.
-inline constexpr const char* stop_with_parent_variable = "HYDROJUMP_STOP_WITH_PARENT";
-
-// Call first in main, before any thread starts. In a process started with ChildCommand::stop_with_parent
-// (HYDROJUMP_STOP_WITH_PARENT names its parent's id): asks Linux for SIGTERM when the parent ends
-// (prctl PR_SET_PDEATHSIG) and raises it at once when the parent has already gone (when another
-// process stands between them, a wrapper, the signal comes when that one ends). The variable is
-// removed, so that the processes this one starts do not inherit it; a value that is not a process id
-// is ignored.
-void stop_with_parent_from_environment();
 
 }  // namespace hydrojump::cases

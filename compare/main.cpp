@@ -14,8 +14,6 @@
 #include "sph/cli.hpp"
 
 int main(int argc, char** argv) {
-  // A study's stage stops with its state written when the study ends, even if it is killed.
-  hydrojump::cases::stop_with_parent_from_environment();
   CLI::App app{
       "hydrojump: hydraulic jumps in stilling basins (smooth and sinusoidal corrugated beds) run with a\n"
       "weakly compressible SPH solver and with an OpenFOAM interFoam (VOF) reference, both generated from\n"

@@ -1,6 +1,7 @@
 #include "compare/plots.hpp"
 
 #include <cerrno>
+#include <csignal>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -66,6 +67,7 @@ std::string run_plot_script(const std::string& script, const std::vector<std::st
   // Unbuffered: the script's last line (its summary of what failed, on stderr) stays the log's last line,
   // after its "wrote ..." lines on stdout.
   command.environment = {"MPLBACKEND=Agg", "PYTHONPATH", "PYTHONUNBUFFERED=1"};
+  command.parent_death_signal = SIGTERM;
   cases::ChildExit ended;
   try {
     ended = cases::run_child(command);

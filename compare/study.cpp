@@ -258,7 +258,7 @@ class StudyRunner {
     try {
       cases::ChildCommand command(args, log_file);
       command.own_process_group = true;  // a stop request reaches it from the study, once
-      command.stop_with_parent = true;   // and a study killed outright (SIGKILL) stops it too
+      command.parent_death_signal = SIGTERM;  // and a study killed outright (SIGKILL) stops it too
       const pid_t pid = cases::start_child(command);
       std::optional<cases::ChildExit> ended;
       while (!(ended = cases::poll_child(pid))) {

@@ -106,7 +106,9 @@ std::string tail_file(const fs::path& file, std::size_t n = 20) {
 }
 
 // Starts `argv` in `cwd` with stdout and stderr going to `log` (appended or truncated), in its own
-// process group: Ctrl-C reaches hydrojump, which asks the solver to write and stop. OpenFOAM warns when
+// process group: Ctrl-C reaches hydrojump, which asks the solver to write and stop; when hydrojump ends
+// in any way, SIGKILL included, the child gets SIGUSR2 (interFoam writes its current time and stops;
+// mpirun passes it to the ranks; the utilities end). OpenFOAM warns when
 // PWD differs from the working directory.
 pid_t spawn(const std::vector<std::string>& argv, const fs::path& cwd, const fs::path& log, bool append,
             std::vector<int> inherited_descriptors = {}) {
@@ -116,6 +118,7 @@ pid_t spawn(const std::vector<std::string>& argv, const fs::path& cwd, const fs:
     command.inherited_descriptors = std::move(inherited_descriptors);
     command.working_directory = cwd;
     command.own_process_group = true;
+    command.parent_death_signal = write_and_stop_signal;  // hydrojump killed outright (SIGKILL) stops it too
     command.environment = {"PWD=" + cwd.string()};
     return cases::start_child(command);
   } catch (const std::exception& e) {

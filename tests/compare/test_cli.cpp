@@ -134,7 +134,7 @@ TEST_CASE("hydrojump sph stops on SIGTERM, SIGINT and SIGHUP with a checkpoint, 
 
 // A study killed outright (SIGKILL: no handler of its own runs) must not leave its running stage going
 // on unowned, holding its directory's lock: the stage asked Linux to be sent SIGTERM when the study
-// ends (ChildCommand::stop_with_parent), so it stops as on `kill -TERM`, with a checkpoint.
+// ends (ChildCommand::parent_death_signal), so it stops as on `kill -TERM`, with a checkpoint.
 TEST_CASE("hydrojump study killed by SIGKILL: its running SPH stage stops with a checkpoint", "[compare][integration][restart]") {
   hydrojump::testing::TempDir tmp("study_killed");
   const fs::path out = tmp.path() / "out";
@@ -192,6 +192,73 @@ TEST_CASE("hydrojump study killed by SIGKILL: its running SPH stage stops with a
   const auto checkpoint = hydrojump::sph::read_checkpoint(run / "checkpoint.bin");
   CHECK(checkpoint.clock.time > 0.0);
   CHECK(checkpoint.clock.time < 0.8);  // stopped before the end
+}
+
+// `hydrojump vof` killed outright (SIGKILL) while interFoam runs: the solver does not run on unowned to
+// the end, holding the case's lock; it gets SIGUSR2 from Linux (ChildCommand::parent_death_signal),
+// which its controlDict makes "write the current time and stop", so `--resume` can go on from there.
+TEST_CASE("hydrojump vof killed by SIGKILL: interFoam writes the current time and stops", "[compare][integration][openfoam]") {
+  hydrojump::testing::TempDir tmp("vof_killed");
+  const std::string spec = std::string(HYDROJUMP_SOURCE_DIR) + "/cases/dam_break.toml";
+  REQUIRE(run({"generate", spec, "--out", tmp.path().string(), "--resolution", "quick"}, tmp.path() / "generate.log") == 0);
+  const fs::path dir = tmp.path() / "dam_break" / "vof";
+  const pid_t vof = start({"vof", dir.string()}, tmp.path() / "vof.log");
+  // However the test ends, nothing it started runs on: the runner is killed and reaped, and a solver
+  // that still holds the case's lock is killed by the pid its note names.
+  struct KillLeftovers {
+    pid_t vof;
+    fs::path dir;
+    bool reaped = false;
+    ~KillLeftovers() {
+      if (!reaped) {
+        ::kill(vof, SIGKILL);
+        hydrojump::cases::wait_child(vof);
+      }
+      try {
+        const hydrojump::cases::DirectoryLock lock(dir, "the test");
+      } catch (const std::exception&) {
+        const std::string holder = read_text(dir / hydrojump::cases::DirectoryLock::file_name);
+        const auto at = holder.find("its solver interFoam, pid ");
+        if (at != std::string::npos) ::kill(static_cast<pid_t>(std::atol(holder.c_str() + at + 26)), SIGKILL);
+      }
+    }
+  } leftovers{vof, dir};
+  // A few time steps in (the run ends at 0.8 s and writes every 0.02 s).
+  const auto started_by = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (read_text(dir / "log.interFoam").find("\nTime = 0.01") == std::string::npos) {
+    INFO("vof log:\n" << read_text(tmp.path() / "vof.log"));
+    REQUIRE(std::chrono::steady_clock::now() < started_by);
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  REQUIRE(::kill(vof, SIGKILL) == 0);
+  CHECK(hydrojump::cases::wait_child(vof).signal == SIGKILL);
+  leftovers.reaped = true;
+
+  // The solver (now nobody's child) writes and ends within a minute, and the lock is free again.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  bool unlocked = false;
+  while (!unlocked && std::chrono::steady_clock::now() < deadline) {
+    try {
+      const hydrojump::cases::DirectoryLock lock(dir, "the test");
+      unlocked = true;
+    } catch (const hydrojump::cases::DirectoryBusy&) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+  }
+  const std::string solver_log = read_text(dir / "log.interFoam");
+  INFO("interFoam log, last part:\n" << solver_log.substr(solver_log.size() > 2000 ? solver_log.size() - 2000 : 0));
+  REQUIRE(unlocked);
+  // It stopped early, on the signal, with the time it had reached written (not an output time).
+  double latest = 0.0;
+  for (const auto& entry : fs::directory_iterator(dir)) {
+    const std::string name = entry.path().filename().string();
+    char* end = nullptr;
+    const double t = std::strtod(name.c_str(), &end);
+    if (entry.is_directory() && !name.empty() && *end == '\0' && fs::exists(entry.path() / "alpha.water.gz")) latest = std::max(latest, t);
+  }
+  CHECK(latest > 0.01);
+  CHECK(latest < 0.1);
+  CHECK_THAT(solver_log, Catch::Contains("\nEnd"));
 }
 
 TEST_CASE("hydrojump sph keeps the outputs of a run that failed before its first checkpoint unless --restart",
