@@ -66,6 +66,29 @@ std::string read_text(const fs::path& file) {
 // Runs `hydrojump args...` to the end; returns its exit status and leaves its output in `log`.
 int run(const std::vector<std::string>& args, const fs::path& log) { return wait_exit_status(start(args, log)); }
 
+// However a test that kills hydrojump outright ends, nothing it started runs on: `process` is killed
+// and reaped (unless the test reaped it), and a process still holding `dir`'s lock is killed by the pid
+// the lock file names after `holder_label` ("hydrojump sph, pid ", "its solver interFoam, pid ").
+struct KillLeftovers {
+  pid_t process;
+  fs::path dir;
+  std::string holder_label;
+  bool reaped = false;
+  ~KillLeftovers() {
+    if (!reaped) {
+      ::kill(process, SIGKILL);
+      hydrojump::cases::wait_child(process);
+    }
+    try {
+      const hydrojump::cases::DirectoryLock lock(dir, "the test");
+    } catch (const std::exception&) {  // held (or unreadable): its holder runs on
+      const std::string holder = read_text(dir / hydrojump::cases::DirectoryLock::file_name);
+      const auto at = holder.find(holder_label);
+      if (at != std::string::npos) ::kill(static_cast<pid_t>(std::atol(holder.c_str() + at + holder_label.size())), SIGKILL);
+    }
+  }
+};
+
 }  // namespace
 
 TEST_CASE("hydrojump sph stops on SIGTERM, SIGINT and SIGHUP with a checkpoint, and --resume finishes the run",
@@ -142,26 +165,7 @@ TEST_CASE("hydrojump study killed by SIGKILL: its running SPH stage stops with a
                              "--resolution", "quick", "--out", out.string()},
                             tmp.path() / "study.log");
   const fs::path run = out / "dam_break" / "sph";
-  // However the test ends, nothing it started runs on: the study is killed and reaped, and a stage that
-  // still holds its directory is killed by the pid its lock file names.
-  struct KillLeftovers {
-    pid_t study;
-    fs::path run;
-    bool reaped = false;
-    ~KillLeftovers() {
-      if (!reaped) {
-        ::kill(study, SIGKILL);
-        hydrojump::cases::wait_child(study);
-      }
-      try {
-        const hydrojump::cases::DirectoryLock lock(run, "the test");
-      } catch (const std::exception&) {  // held (or unreadable): the stage runs on
-        const std::string holder = read_text(run / hydrojump::cases::DirectoryLock::file_name);
-        const auto at = holder.find("hydrojump sph, pid ");
-        if (at != std::string::npos) ::kill(static_cast<pid_t>(std::atol(holder.c_str() + at + 19)), SIGKILL);
-      }
-    }
-  } leftovers{study, run};
+  KillLeftovers leftovers{study, run, "hydrojump sph, pid "};
   wait_for_rows(run / "run_log.csv", 2);
   REQUIRE(::kill(study, SIGKILL) == 0);
   const hydrojump::cases::ChildExit killed = hydrojump::cases::wait_child(study);
@@ -203,26 +207,7 @@ TEST_CASE("hydrojump vof killed by SIGKILL: interFoam writes the current time an
   REQUIRE(run({"generate", spec, "--out", tmp.path().string(), "--resolution", "quick"}, tmp.path() / "generate.log") == 0);
   const fs::path dir = tmp.path() / "dam_break" / "vof";
   const pid_t vof = start({"vof", dir.string()}, tmp.path() / "vof.log");
-  // However the test ends, nothing it started runs on: the runner is killed and reaped, and a solver
-  // that still holds the case's lock is killed by the pid its note names.
-  struct KillLeftovers {
-    pid_t vof;
-    fs::path dir;
-    bool reaped = false;
-    ~KillLeftovers() {
-      if (!reaped) {
-        ::kill(vof, SIGKILL);
-        hydrojump::cases::wait_child(vof);
-      }
-      try {
-        const hydrojump::cases::DirectoryLock lock(dir, "the test");
-      } catch (const std::exception&) {
-        const std::string holder = read_text(dir / hydrojump::cases::DirectoryLock::file_name);
-        const auto at = holder.find("its solver interFoam, pid ");
-        if (at != std::string::npos) ::kill(static_cast<pid_t>(std::atol(holder.c_str() + at + 26)), SIGKILL);
-      }
-    }
-  } leftovers{vof, dir};
+  KillLeftovers leftovers{vof, dir, "its solver interFoam, pid "};
   // A few time steps in (the run ends at 0.8 s and writes every 0.02 s).
   const auto started_by = std::chrono::steady_clock::now() + std::chrono::seconds(120);
   while (read_text(dir / "log.interFoam").find("\nTime = 0.01") == std::string::npos) {
