@@ -183,7 +183,7 @@ std::vector<const cases::Case*> select_cases(const cases::Study& study,
   // "all" (alone; no case may be called so) is every case, as no ids are.
   const bool all = std::find(ids.begin(), ids.end(), "all") != ids.end();
   if (all && ids.size() > 1)
-    throw cases::SpecError(study.source_file.string() + ": --case \"all\" selects every case and cannot be combined "
+    throw cases::SpecError(study.source_file.string() + ": case \"all\" selects every case and cannot be combined "
                            "with other case ids; give either \"all\" or the ids");
   if (ids.empty() || all) {
     for (const auto& c : study.cases) selected.push_back(&c);
@@ -194,7 +194,7 @@ std::vector<const cases::Case*> select_cases(const cases::Study& study,
     if (!c) {
       std::string known;
       for (const auto& k : study.cases) known += (known.empty() ? "" : ", ") + k.id;
-      throw cases::SpecError(study.source_file.string() + ": --case \"" + id +
+      throw cases::SpecError(study.source_file.string() + ": case \"" + id +
                              "\": no such case (cases in this study: " + known + "; \"all\" for every case)");
     }
     // A case named twice runs once (two runs of one case would share its directory).
@@ -289,7 +289,9 @@ void register_case_commands(CLI::App& app) {
   generate->add_option("SPEC", options->spec, "study file (TOML), or \"default\" for the embedded one")
       ->required();
   generate->add_option("--out,-o", options->out, "output directory")->required()->check(cases::non_empty_path());
-  generate->add_option("--case,-c", options->cases, "case id to generate (repeatable; default or \"all\": every case)");
+  generate->add_option("--case,-c", options->cases,
+                       "case ids to generate, comma-separated or repeated (default or \"all\": every case)")
+      ->delimiter(',');
   generate->add_option("--resolution,-r", options->resolution,
                        "resolution level defined in the spec (quick, default, fine)")
       ->capture_default_str();

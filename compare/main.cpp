@@ -1,6 +1,7 @@
 // hydrojump — side-by-side SPH and OpenFOAM studies of hydraulic jumps on corrugated stilling-basin beds.
 #include <exception>
 #include <iostream>
+#include <string>
 
 #include <CLI/CLI.hpp>
 
@@ -35,6 +36,20 @@ int main(int argc, char** argv) {
   hydrojump::compare::register_commands(app);
   hydrojump::compare::register_study_command(app);
 
+  // A mistyped command is named as such (CLI11 itself says only "A subcommand is required").
+  if (argc > 1 && argv[1][0] != '-') {
+    std::string commands;
+    bool known = false;
+    for (const CLI::App* command : app.get_subcommands({})) {
+      known = known || command->get_name() == argv[1];
+      commands += (commands.empty() ? "" : ", ") + command->get_name();
+    }
+    if (!known) {
+      std::cerr << "hydrojump: unknown command \"" << argv[1] << "\" (commands: " << commands
+                << "; hydrojump --help explains them)\n";
+      return 2;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::RuntimeError& e) {

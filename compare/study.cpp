@@ -488,7 +488,7 @@ void register_study_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--resolution,-r", options->resolution, "resolution level (quick, default, fine)")
       ->capture_default_str();
-  cmd->add_option("--cases", options->cases, "comma-separated case ids, or \"all\" (the default: every case)")->delimiter(',');
+  cmd->add_option("--cases", options->cases, "case ids, comma-separated or repeated, or \"all\" (the default: every case)")->delimiter(',');
   cmd->add_option("--out,-o", options->out, "study directory")->capture_default_str()->check(cases::non_empty_path());
   cmd->add_option("--jobs,-j", options->jobs, "cases run at the same time")->check(CLI::Range(1, 64))
       ->capture_default_str();

@@ -37,15 +37,17 @@ void register_commands(CLI::App& app) {
       "checkMesh (a bad mesh stops the run with its report); setFields (initial water); interFoam,\n"
       "serial or with MPI (--np N: decomposePar, mpirun, reconstructPar). Shows the simulated time and\n"
       "an ETA, stops a diverging run (Courant blow-up, NaN, crash) with the last lines of its log, and\n"
-      "continues an interrupted run with --resume. Ctrl-C (or SIGTERM) makes interFoam write the current\n"
-      "time and stop, ready for --resume. Outputs stay on the case's output times (a run resumed\n"
+      "continues an interrupted run with --resume. Ctrl-C (SIGINT), SIGTERM or a hangup (SIGHUP) makes\n"
+      "interFoam write the current time and stop, ready for --resume; so does this command's end in any\n"
+      "other way (killed: Linux sends interFoam SIGUSR2). Outputs stay on the case's output times (a run resumed\n"
       "between two of them first runs to the next one; an end time between two is written by a short\n"
       "closing run). Logs: DIR/log.<application>. The case can also be run by hand with DIR/Allrun.\n"
       "A case with [vof] tailwater_control = \"hold_toe\" runs in legs; after each the outlet's Umean\n"
       "is reset like a tailgate to hold the jump's toe at the basin start (DIR/tailwater_control.csv).\n"
       "Needs OpenFOAM v1912 (WM_PROJECT_DIR, default /usr/share/openfoam).\n"
       "One process per DIR: a second one started on it stops at once, naming the first.");
-  vof->add_option("DIR", options->dir, "case directory (holds case.toml, system/, constant/, 0.orig/)");
+  vof->add_option("DIR", options->dir,
+                  "case directory (holds case.toml, system/, constant/, 0.orig/); required unless --self-test");
   vof->add_option("--np", options->np, "MPI ranks (1 = serial; >1 runs decomposePar + mpirun)")
       ->check(CLI::Range(1, 1024));
   vof->add_flag("--resume", options->resume,

@@ -222,7 +222,7 @@ int run_sph_directory(const SphOptions& opt) {
     return 128 + sig;
   }
   std::cerr << "hydrojump sph: finished at t = " << solver->time() << " s after " << solver->clock().steps
-            << " steps; outputs in " << dir.string() << " (particles.pvd, run_log.csv, gauges.csv" << (c.stilling_basin() ? ", basin.csv, summary.json" : "") << ")\n";
+            << " steps; outputs in " << dir.string() << " (particles.pvd, run_log.csv, gauges.csv" << (c.stilling_basin() ? ", basin.csv, summary.json" : "") << ", results_case.toml)\n";
   return 0;
 }
 
@@ -235,8 +235,8 @@ void register_commands(CLI::App& app) {
       "DIR/run_log.csv (mass, energies, max density variation, dt), DIR/gauges.csv (free-surface elevation\n"
       "at the sections and gauges), for stilling basins DIR/basin.csv (jump toe, inflow/outflow discharge,\n"
       "depth and discharge at every section per output) and DIR/summary.json (averages over the averaging\n"
-      "window, y2/y1 against Belanger, mass balance, steady-state verdict), and DIR/checkpoint.bin (every sph.checkpoint_interval_wall_s seconds and\n"
-      "at exit). Ctrl-C (SIGINT), SIGTERM or a hangup (SIGHUP) writes a checkpoint and stops; continue with --resume. An unstable\n"
+      "window, y2/y1 against Belanger, mass balance, steady-state verdict), DIR/results_case.toml (the case.toml\n"
+      "the run started with) and DIR/checkpoint.bin (every sph.checkpoint_interval_wall_s seconds and at exit). Ctrl-C (SIGINT), SIGTERM or a hangup (SIGHUP) writes a checkpoint and stops; continue with --resume. An unstable\n"
       "run stops with a diagnosis in DIR/failure.txt and keeps its last good checkpoint. One process per DIR:\n"
       "a second one started on it stops at once, naming the first (DIR/.hydrojump.lock).");
   sph->add_option("DIR", opt->dir, "case directory holding case.toml")->required()->check(CLI::ExistingDirectory);

@@ -6,6 +6,7 @@
 //   and writes nothing; `bench --json` prints its figures.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <csignal>
@@ -308,6 +309,23 @@ TEST_CASE("hydrojump exits with 2 on a command-line mistake and 0 on --help", "[
   CHECK(run({"bench", "--threads", "0"}, tmp.path() / "threads.log") == 2);
   CHECK(run({"sph", (tmp.path() / "absent").string()}, tmp.path() / "absent.log") == 2);
   CHECK_THAT(read_text(tmp.path() / "threads.log"), Catch::Contains("--threads"));
+  CHECK_THAT(read_text(tmp.path() / "unknown.log"),
+             Catch::Contains("unknown command \"no-such-command\"") && Catch::Contains("vof, compare, study"));
+}
+
+// `generate --case` takes ids comma-separated as `study --cases` does, and repeated.
+TEST_CASE("hydrojump generate takes case ids comma-separated or repeated", "[compare][integration][cli]") {
+  hydrojump::testing::TempDir tmp("generate_cases");
+  const fs::path out = tmp.path() / "out";
+  REQUIRE(run({"generate", "default", "--out", out.string(), "--case", "A,B_smooth", "--case", "C"},
+              tmp.path() / "generate.log") == 0);
+  std::vector<std::string> written;
+  for (const auto& entry : fs::directory_iterator(out)) written.push_back(entry.path().filename().string());
+  std::sort(written.begin(), written.end());
+  CHECK(written == std::vector<std::string>{"A", "B_smooth", "C"});
+  CHECK(run({"generate", "default", "--out", (tmp.path() / "bad").string(), "--case", "A,Z"}, tmp.path() / "bad.log") == 2);
+  CHECK_THAT(read_text(tmp.path() / "bad.log"), Catch::Contains("case \"Z\": no such case"));
+  CHECK_FALSE(fs::exists(tmp.path() / "bad" / "A"));
 }
 
 // `check` writes every case into a scratch directory under TMPDIR and removes it again, also when it

@@ -266,11 +266,11 @@ TEST_CASE("Study runner: a case named twice in --cases runs once, an unknown one
   CHECK(selected[0]->id == "B");
   CHECK(selected[1]->id == "A");
   CHECK_THROWS_WITH(hydrojump::compare::select_cases(study, {"A", ""}),
-                    Catch::Contains("--case \"\": no such case") && Catch::Contains("A_smooth"));
+                    Catch::Contains("case \"\": no such case") && Catch::Contains("A_smooth"));
   // "all" is every case, as the README's `--cases all` says; it is not a case id among others.
   CHECK(hydrojump::compare::select_cases(study, {"all"}).size() == study.cases.size());
   CHECK_THROWS_WITH(hydrojump::compare::select_cases(study, {"A", "all"}),
-                    Catch::Contains("--case \"all\" selects every case and cannot be combined with other case ids"));
+                    Catch::Contains("case \"all\" selects every case and cannot be combined with other case ids"));
 }
 
 TEST_CASE("Study runner: what only the solvers' derivations refuse stops the study before it runs or moves anything", "[study]") {
