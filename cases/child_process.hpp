@@ -7,8 +7,8 @@
 // Everything is prepared before the child exists (the program looked up on PATH, the log file opened,
 // the environment built) and the child is made by posix_spawn, which is safe from a multi-threaded
 // parent and does not copy its memory (by fork, making only async-signal-safe calls before exec, when
-// it is to be signalled at its parent's end); a program that cannot be started is an exception naming it and the
-// reason instead of an exit status 127 that looks like the program's own.
+// it is to be signalled at its parent's end); a program that cannot be started is an exception naming
+// it and the reason instead of an exit status 127 that looks like the program's own.
 //
 // Usage
 //   | field               | meaning                                                  | default        |

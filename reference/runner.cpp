@@ -108,8 +108,8 @@ std::string tail_file(const fs::path& file, std::size_t n = 20) {
 // Starts `argv` in `cwd` with stdout and stderr going to `log` (appended or truncated), in its own
 // process group: Ctrl-C reaches hydrojump, which asks the solver to write and stop; when hydrojump ends
 // in any way, SIGKILL included, the child gets SIGUSR2 (interFoam writes its current time and stops;
-// mpirun passes it to the ranks; the utilities end). OpenFOAM warns when
-// PWD differs from the working directory.
+// mpirun passes it to the ranks; the utilities end). OpenFOAM warns when PWD differs from the working
+// directory.
 pid_t spawn(const std::vector<std::string>& argv, const fs::path& cwd, const fs::path& log, bool append,
             std::vector<int> inherited_descriptors = {}) {
   try {

@@ -180,8 +180,9 @@ TEST_CASE("A program that cannot be started is an error naming it and the reason
 }
 
 // ChildCommand::parent_death_signal: a parent killed outright (SIGKILL, no handler of its own runs)
-// takes its child with it (SIGTERM here, SIGUSR2 as `hydrojump vof` asks); without one the child runs on. The parent here is a process forked
-// by the test; the test takes in the orphan (PR_SET_CHILD_SUBREAPER) so that it can wait for it.
+// takes its child with it (SIGTERM here, SIGUSR2 as `hydrojump vof` asks); without one the child runs
+// on. The parent here is a process forked by the test; the test takes in the orphan
+// (PR_SET_CHILD_SUBREAPER) so that it can wait for it.
 TEST_CASE("A child started with a parent_death_signal gets it when its parent is killed outright", "[cases][process]") {
   const int death_signal = GENERATE(SIGTERM, SIGUSR2, 0);
   INFO("parent_death_signal: " << death_signal);

@@ -21,6 +21,7 @@
 
 #include "cases/child_process.hpp"
 #include "cases/directory_lock.hpp"
+#include "reference/runner.hpp"
 #include "sph/checkpoint.hpp"
 #include "tests/temp_dir.hpp"
 
@@ -235,15 +236,10 @@ TEST_CASE("hydrojump vof killed by SIGKILL: interFoam writes the current time an
   INFO("interFoam log, last part:\n" << solver_log.substr(solver_log.size() > 2000 ? solver_log.size() - 2000 : 0));
   REQUIRE(unlocked);
   // It stopped early, on the signal, with the time it had reached written (not an output time).
-  double latest = 0.0;
-  for (const auto& entry : fs::directory_iterator(dir)) {
-    const std::string name = entry.path().filename().string();
-    char* end = nullptr;
-    const double t = std::strtod(name.c_str(), &end);
-    if (entry.is_directory() && !name.empty() && *end == '\0' && fs::exists(entry.path() / "alpha.water.gz")) latest = std::max(latest, t);
-  }
-  CHECK(latest > 0.01);
-  CHECK(latest < 0.1);
+  const auto latest = hydrojump::reference::latest_time(dir);
+  REQUIRE(latest.has_value());
+  CHECK(*latest > 0.01);
+  CHECK(*latest < 0.1);
   CHECK_THAT(solver_log, Catch::Contains("\nEnd"));
 }
 
