@@ -7,6 +7,7 @@
 
 #include "cases/cli_checks.hpp"
 #include "compare/case_comparison.hpp"
+#include "compare/dam_break_report.hpp"
 
 namespace hydrojump::compare {
 
@@ -20,6 +21,28 @@ struct CompareCommandOptions {
   std::filesystem::path sph_pvd;
   double station_spacing_m = 0.0;
 };
+// A dam break: the surge front of both methods against the measured one (dam_break_report.hpp).
+// --interpolation, --window, --sph-pvd and --station-spacing belong to stilling basins.
+void compare_dam_break_command(const cases::Study& study, const CompareCommandOptions& o) {
+  if (!o.window.empty() || !o.sph_pvd.empty() || o.station_spacing_m > 0.0)
+    throw CLI::ValidationError("a dam-break case compares the surge front over the whole run: --window, --sph-pvd "
+                               "and --station-spacing are for stilling basins");
+  const DamBreakComparison c = compare_dam_break(study, o.run_dir);
+  const std::filesystem::path out = o.out_dir.empty() ? o.run_dir : o.out_dir;
+  const std::string figures_problem = write_dam_break_report(c, out, !o.no_plots, std::cout);
+  std::cout << dam_break_summary_text(c) << std::flush;
+  if (!c.sph.available && !c.vof.available) {
+    std::cerr << "hydrojump compare: neither result is available:\n  sph: " << c.sph.status
+              << "\n  vof: " << c.vof.status << "\n";
+    throw CLI::RuntimeError(1);
+  }
+  if (!figures_problem.empty()) {
+    std::cerr << "hydrojump compare: the figure was not made (comparison.json, csv/front.csv and report.md were "
+                 "written): " << figures_problem << "\n(--no-plots skips it)\n";
+    throw CLI::RuntimeError(1);
+  }
+}
+
 }  // namespace
 
 void register_commands(CLI::App& app) {
@@ -31,7 +54,10 @@ void register_commands(CLI::App& app) {
       "window: free surface, velocity profiles, discharge, kinetic-energy coefficient, specific energy, toe, "
       "sequent depth y2, jump and roller lengths, eta = (E1-E2)/E1, velocity decay; SPH vs VOF discrepancies and "
       "both against the laboratory values in the spec. Writes comparison.json, csv/*.csv, figures/*.png, "
-      "report.md and report.html into RUN_DIR (or --out). A missing result is reported as missing.");
+      "report.md and report.html into RUN_DIR (or --out). A missing result is reported as missing. For a "
+      "dam-break case: the surge front of both methods against the measured one, in the experiment's time origin "
+      "(t_model = t_exp - 0.175 sqrt(L/(2g)), the gate's opening) and unshifted: comparison.json, csv/front.csv, "
+      "figures/front.png, report.md.");
   cmd->add_option("RUN_DIR", o->run_dir, "case directory (holds sph/ and vof/)")->required()->check(CLI::ExistingDirectory);
   cmd->add_option("--out,-o", o->out_dir, "output directory (default: RUN_DIR)")->check(cases::non_empty_path());
   cmd->add_option("--interpolation", o->interpolation,
@@ -62,6 +88,10 @@ void register_commands(CLI::App& app) {
     options.plots = !o->no_plots;
     options.sph_pvd = o->sph_pvd;
     options.station_spacing_m = o->station_spacing_m;
+    if (const cases::Study study = load_run_case(o->run_dir); study.cases.front().dam_break() != nullptr) {
+      compare_dam_break_command(study, *o);
+      return;
+    }
     const CaseComparison c = compare_case_directory(o->run_dir, options, std::cout);
     if (!c.sph.available && !c.vof.available) {
       std::cerr << "hydrojump compare: neither result is available:\n  sph: " << c.sph.status

@@ -8,12 +8,17 @@
 #include <sstream>
 
 #include "cases/atomic_file.hpp"
+#include "compare/json_writer.hpp"
 #include "compare/plots.hpp"
 #include "hydrojump/version.hpp"
 
 namespace fs = std::filesystem;
 
 namespace hydrojump::compare {
+
+using json::Json;
+using json::json_number;
+using json::json_string;
 
 namespace {
 
@@ -38,58 +43,6 @@ std::string signed_fix(double v, int decimals) {
   s << std::showpos << std::fixed << std::setprecision(decimals) << v;
   return s.str();
 }
-
-std::string json_string(const std::string& s) {
-  std::string o = "\"";
-  for (char ch : s) {
-    switch (ch) {
-      case '"': o += "\\\""; break;
-      case '\\': o += "\\\\"; break;
-      case '\n': o += "\\n"; break;
-      case '\t': o += "\\t"; break;
-      default:
-        if (static_cast<unsigned char>(ch) < 0x20) {
-          char buf[8];
-          std::snprintf(buf, sizeof buf, "\\u%04x", ch);
-          o += buf;
-        } else {
-          o += ch;
-        }
-    }
-  }
-  return o + "\"";
-}
-
-std::string json_number(double v) { return std::isfinite(v) ? num(v, 10) : "null"; }
-
-// Minimal JSON object/array builder (keys in insertion order).
-class Json {
- public:
-  Json& key(const std::string& k) { sep(); s_ << json_string(k) << ": "; pending_key_ = true; return *this; }
-  Json& value(double v) { sep(); s_ << json_number(v); return *this; }
-  Json& value(int v) { sep(); s_ << v; return *this; }
-  Json& value(bool v) { sep(); s_ << (v ? "true" : "false"); return *this; }
-  Json& value(const std::string& v) { sep(); s_ << json_string(v); return *this; }
-  Json& value(const char* v) { return value(std::string(v)); }
-  Json& begin_object() { sep(); s_ << "{"; first_.push_back(true); return *this; }
-  Json& end_object() { s_ << "}"; first_.pop_back(); return *this; }
-  Json& begin_array() { sep(); s_ << "["; first_.push_back(true); return *this; }
-  Json& end_array() { s_ << "]"; first_.pop_back(); return *this; }
-  template <class T> Json& field(const std::string& k, const T& v) { key(k); return value(v); }
-  std::string str() const { return s_.str(); }
-
- private:
-  void sep() {
-    if (pending_key_) { pending_key_ = false; return; }
-    if (!first_.empty()) {
-      if (!first_.back()) s_ << ", ";
-      first_.back() = false;
-    }
-  }
-  std::ostringstream s_;
-  std::vector<bool> first_;
-  bool pending_key_ = false;
-};
 
 void stats_json(Json& j, const std::string& name, const ScalarStats& s) {
   j.key(name).begin_object().field("mean", s.mean).field("std", s.std).field("count", s.count).end_object();

@@ -7,6 +7,8 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <iomanip>
 #include <chrono>
 #include <cstdlib>
 #include <csignal>
@@ -557,4 +559,38 @@ TEST_CASE("hydrojump bench --model jump runs the stilling-basin models and refus
   CHECK_THAT(log, Catch::Contains("\"model\": \"jump\"") && Catch::Contains("\"steps\": 2"));
   CHECK(run({"bench", "--model", "verlet"}, tmp.path() / "bad.log") != 0);
   CHECK_THAT(read_text(tmp.path() / "bad.log"), Catch::Contains("--model") && Catch::Contains("verlet"));
+}
+
+TEST_CASE("hydrojump compare on a dam break: the surge front in the experiment's time origin and unshifted",
+          "[compare][integration][cli][dam_break]") {
+  hydrojump::testing::TempDir tmp("compare_dam_break");
+  const std::string spec = std::string(HYDROJUMP_SOURCE_DIR) + "/cases/dam_break.toml";
+  REQUIRE(run({"generate", spec, "--out", (tmp.path() / "runs").string(), "--resolution", "quick"},
+              tmp.path() / "generate.log") == 0);
+  const fs::path run_dir = tmp.path() / "runs" / "dam_break";
+  // An SPH front that is the measured one 0.0395 s early (t_model = t_exp - 0.175 sqrt(L/(2g)) with
+  // L = 1 m): one output at each measured time less the shift, at the measured position.
+  {
+    std::ofstream g(run_dir / "sph" / "gauges.csv");
+    g << "t_s,front_x_m\n0,1\n";
+    std::ifstream data(std::string(HYDROJUMP_SOURCE_DIR) + "/cases/data/dam_break_front_koshizuka_oka_1996.csv");
+    for (std::string line; std::getline(data, line);) {
+      if (line.empty() || line[0] == '#' || line[0] == 't') continue;
+      const double t = std::stod(line.substr(0, line.find(','))), x = std::stod(line.substr(line.find(',') + 1));
+      g << std::setprecision(12) << t - 0.175 * std::sqrt(1.0 / (2.0 * 9.81)) << ',' << x << '\n';
+    }
+  }
+  CHECK(run({"compare", run_dir.string(), "--window", "0", "1"}, tmp.path() / "w.log") == 2);
+  CHECK_THAT(read_text(tmp.path() / "w.log"), Catch::Contains("--window"));
+  REQUIRE(run({"compare", run_dir.string()}, tmp.path() / "c.log") == 0);
+  const std::string log = read_text(tmp.path() / "c.log");
+  INFO(log);
+  CHECK_THAT(log, Catch::Contains("sph: front vs the experiment, time origin shifted by 0.0395 s: mean 0.000 L, max 0.000 L"));
+  CHECK_THAT(log, Catch::Contains("vof: not available"));
+  const std::string json = read_text(run_dir / "comparison.json");
+  CHECK_THAT(json, Catch::Contains("\"kind\": \"dam_break\"") && Catch::Contains("\"time_shift_s\": 0.03950831859"));
+  CHECK_THAT(json, Catch::Contains("\"shifted\": {\"time_shift_s\": 0.03950831859, \"points\": 14"));
+  CHECK_THAT(read_text(run_dir / "csv" / "front.csv"), Catch::StartsWith("t_exp_s,measured_x_over_L,sph_shifted_x_over_L"));
+  CHECK_THAT(read_text(run_dir / "report.md"), Catch::Contains("| SPH | experiment's (shifted) | 14 of 15 | 0.000 | 0.000 |"));
+  CHECK(fs::file_size(run_dir / "figures" / "front.png") > 1000);
 }
