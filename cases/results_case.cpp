@@ -54,7 +54,7 @@ bool is_run_control_line(std::string_view line) {
 }
 
 bool is_descriptive_line(std::string_view line) {
-  return assigns_one_of(line, {"description", "citations", "source"});
+  return assigns_one_of(line, {"description", "citations", "source", "note"});
 }
 
 bool is_laboratory_comparison_line(std::string_view line) {

@@ -29,7 +29,7 @@ inline constexpr const char* results_case_file_name = "results_case.toml";
 bool is_run_control_line(std::string_view line);
 
 // Whether `line` holds one of the descriptive texts (study or case `description`, the study's
-// `citations`, the measurements' `source`): words about the run, not settings of it.
+// `citations`, the measurements' `source` and `note`): words about the run, not settings of it.
 bool is_descriptive_line(std::string_view line);
 
 // Whether `line` assigns one of the laboratory values a run is only compared with (within

@@ -82,14 +82,11 @@ struct VofSettings {
   double max_time_step_s = 1.0e-3;
   std::string mesh_strategy = "cartesian_cut";     // "cartesian_cut" | "body_fitted"
   double surface_refinement_band_m = 0.0;          // 0: derived from y1 and y2 (stilling basins)
-  // Stilling basins: "none" (the outlet lets out q at the tailwater depth y2, so the basin's water volume
-  // is free to drift) | "hold_toe" (a tailgate: between legs of tailwater_control_interval_s the runner
-  // resets the outlet's Umean to hold the water volume, and moves that volume to hold the toe at the
-  // basin start; reference/tailwater_control.hpp)
-  std::string tailwater_control = "none";
-  double tailwater_control_interval_s = 0.5;       // "hold_toe": a whole number of output intervals
-  double volume_hold_time_s = 1.0;                 // "hold_toe": T_V, time to drain a volume error
-  double toe_hold_time_s = 5.0;                    // "hold_toe": T_x, time to bring the toe to the basin start
+  // Stilling basins with [case.tailwater] control = "hold_toe": the runner resets the outlet's Umean
+  // between legs of this length (reference/tailwater_control.hpp); a whole number of output intervals.
+  // 0 (unset): 0.5 s, or the whole number of output intervals that fits a shorter run (resolved by
+  // the reader).
+  double tailwater_control_interval_s = 0.0;
 };
 
 // [resolution.<name>] — one named resolution level.
@@ -161,6 +158,24 @@ struct MeasuredValues {
   std::optional<double> eta_smooth_percent;       // smooth-bed value listed by the study
   std::optional<double> published_sph_eta_percent;  // Bo et al. (2019) SPH
   std::string source;                             // citation
+  std::string note;                               // what is known about the values as published (a
+                                                  // flaw, a conflict), printed with them in reports
+};
+
+// [case.tailwater] control — what sets the tailwater of a stilling basin, read by both solvers.
+//   "hold_toe"    the flume's protocol (Ead & Rajaratnam 2002 set their tailgate so that the toe stood
+//                 at the start of the bed, then measured y2): the outlet is steered until the time-mean
+//                 toe stands at the basin start, with the water volume held; the tailwater depth is
+//                 the initial level only, and y2, eta, Lj, Lr are predictions (the default). SPH:
+//                 sph/toe_hold_control.hpp; VOF: reference/tailwater_control.hpp.
+//   "fixed_depth" the outlet holds the tailwater depth; the toe goes where the jump takes it (where
+//                 does the jump stand at this tailwater?), and its distance from the basin start is
+//                 the result to score.
+struct TailwaterControl {
+  std::string mode = "hold_toe";        // "hold_toe" | "fixed_depth"
+  double volume_hold_time_s = 1.0;      // "hold_toe": T_V, time to drain a volume error
+  double toe_hold_time_s = 5.0;         // "hold_toe": T_x, time to bring the toe to the basin start
+  bool holds_toe() const { return mode == "hold_toe"; }
 };
 
 // kind = "stilling_basin": supercritical inflow into a basin, tailwater held at the outlet.
@@ -173,7 +188,9 @@ struct StillingBasinCase {
   std::optional<double> stated_discharge_m2_s;  // checked against y1*U1 (2 %)
   std::optional<double> stated_froude;           // checked against U1/sqrt(g y1) (2 %)
   std::string tailwater_rule = "given"; // "given" | "belanger" (y2* from y1 and Fr1)
-  double tailwater_depth_m = 0.0;       // resolved tailwater depth (after the rule)
+  double tailwater_depth_m = 0.0;       // resolved tailwater depth (after the rule); with control
+                                        // "hold_toe" the initial level only
+  TailwaterControl control;
   double upstream_length_m = 0.0;       // inflow to basin start (expected toe)
   double basin_length_m = 0.0;
   double downstream_length_m = 0.0;     // basin end to outlet
@@ -231,6 +248,9 @@ struct Case {
   const DamBreakCase* dam_break() const { return std::get_if<DamBreakCase>(&data); }
   const StillWaterCase* still_water() const { return std::get_if<StillWaterCase>(&data); }
   const PoiseuilleCase* poiseuille() const { return std::get_if<PoiseuilleCase>(&data); }
+  // A stilling basin whose tailwater is steered to hold the toe at the basin start ([case.tailwater]
+  // control = "hold_toe").
+  bool holds_toe() const { return stilling_basin() != nullptr && stilling_basin()->control.holds_toe(); }
   // The resolution called `name`; throws SpecError listing the defined names if there is none.
   const Resolution& resolution(const std::string& name) const;
 };

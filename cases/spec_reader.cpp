@@ -472,32 +472,14 @@ void read_vof(TableReader& t, VofSettings& v) {
   v.max_time_step_s = t.number_or("max_time_step_s", v.max_time_step_s, Range{1e-6, 1.0, false, false, "s"});
   v.mesh_strategy = t.choice("mesh_strategy", v.mesh_strategy, {"cartesian_cut", "body_fitted"});
   v.surface_refinement_band_m = t.number_or("surface_refinement_band_m", v.surface_refinement_band_m, non_negative("m", 100.0));
-  v.tailwater_control = t.choice("tailwater_control", v.tailwater_control, {"none", "hold_toe"});
+  // The tailwater control is the case's protocol, read by both solvers ([case.tailwater] control).
+  for (const char* key : {"tailwater_control", "volume_hold_time_s", "toe_hold_time_s"})
+    if (t.has(key))
+      t.fail_at(t.raw().get(key), key,
+                "is no [vof] setting: the tailwater control is the case's protocol, read by both solvers: "
+                "[case.tailwater] control = \"hold_toe\" (the default) or \"fixed_depth\", with its "
+                "volume_hold_time_s and toe_hold_time_s");
   v.tailwater_control_interval_s = t.number_or("tailwater_control_interval_s", v.tailwater_control_interval_s, positive("s", 100.0));
-  v.volume_hold_time_s = t.number_or("volume_hold_time_s", v.volume_hold_time_s, positive("s", 1000.0));
-  v.toe_hold_time_s = t.number_or("toe_hold_time_s", v.toe_hold_time_s, positive("s", 1000.0));
-  for (const char* key : {"tailwater_control_interval_s", "volume_hold_time_s", "toe_hold_time_s"}) {
-    if (v.tailwater_control != "hold_toe" && t.has(key))
-      t.fail_at(t.raw().get(key), key, "is only used with tailwater_control = \"hold_toe\" (here \"" + v.tailwater_control + "\")");
-  }
-  // Both hold times must be at least one leg:
-  //   T_V: the volume error decays by (1 - interval / T_V) per leg, so T_V below one interval overshoots;
-  //   T_x: the toe term moves the volume target by (y2* - y1)/T_x * (toe error) per second, so T_x below
-  //   one leg overshoots in a single leg, and the outlet just flips between its clamps.
-  struct HoldTime {
-    const char* key;
-    double value_s;
-    const char* control;
-  };
-  for (const HoldTime& hold : {HoldTime{"volume_hold_time_s", v.volume_hold_time_s, "volume"},
-                               HoldTime{"toe_hold_time_s", v.toe_hold_time_s, "toe"}}) {
-    if (v.tailwater_control != "hold_toe" || !(hold.value_s < v.tailwater_control_interval_s)) continue;
-    const std::string key = t.has(hold.key) ? hold.key : "tailwater_control_interval_s";
-    t.fail_at(t.raw().get(key.c_str()), key,
-              "is out of range: " + std::string(hold.key) + " (" + number_text(hold.value_s) +
-                  " s) must be >= tailwater_control_interval_s (" + number_text(v.tailwater_control_interval_s) +
-                  " s), or the " + hold.control + " control overshoots");
-  }
   t.reject_unknown_keys();
 }
 
@@ -581,6 +563,7 @@ MeasuredValues read_measured(TableReader& t) {
   m.eta_smooth_percent = t.optional_number("eta_smooth_percent", between(0.0, 100.0, "%"));
   m.published_sph_eta_percent = t.optional_number("published_sph_eta_percent", between(0.0, 100.0, "%"));
   m.source = t.string_or("source", "");
+  m.note = t.string_or("note", "");
   t.reject_unknown_keys();
   return m;
 }
@@ -618,6 +601,12 @@ StillingBasinCase read_stilling_basin(TableReader& c, double g) {
   } else {
     b.tailwater_depth_m = tail.number("depth_m", Range{b.inflow_depth_m, 100.0, true, false, "m, above the inflow depth y1"});
   }
+  b.control.mode = tail.choice("control", b.control.mode, {"hold_toe", "fixed_depth"});
+  b.control.volume_hold_time_s = tail.number_or("volume_hold_time_s", b.control.volume_hold_time_s, positive("s", 1000.0));
+  b.control.toe_hold_time_s = tail.number_or("toe_hold_time_s", b.control.toe_hold_time_s, positive("s", 1000.0));
+  for (const char* key : {"volume_hold_time_s", "toe_hold_time_s"})
+    if (!b.control.holds_toe() && tail.has(key))
+      tail.fail_at(tail.raw().get(key), key, "is only used with control = \"hold_toe\" (here \"" + b.control.mode + "\")");
   tail.reject_unknown_keys();
 
   auto domain = c.required_table("domain");
@@ -843,6 +832,57 @@ void check_resolution(const Case& c, const Resolution& r, double gravity_m_s2, c
   }
 }
 
+// [case.tailwater] control = "hold_toe" against the rest of the case (merged settings; a key is named
+// where the case sets it, else at [case.tailwater] control; the basin start, where the toe is held,
+// lies downstream of the inflow, since domain.upstream_length_m > 0):
+//   - SPH steers the outflow buffer's depth, which a tailgate weir or a level held at the downstream
+//     section would steer too: those need control = "fixed_depth";
+//   - VOF legs: a whole number of output intervals, at most the run; unset: 0.5 s, or the whole
+//     number of output intervals that fits a shorter run;
+//   - T_V and T_x at least one leg (the volume error decays by (1 - leg / T_V) per leg; T_x below one
+//     leg overshoots in a single leg, and the outlet just flips between its clamps).
+void check_tailwater_control(TableReader& c, Case& result, StillingBasinCase& b) {
+  if (!b.control.holds_toe()) return;
+  auto tail = c.required_table("tailwater");
+  const auto fail = [&](const char* table, const char* key, const std::string& what) {
+    if (auto t = c.table(table); t && t->has(key)) t->fail_at(t->raw().get(key), key, what);
+    tail.fail_at(tail.raw().get("control"), "control",
+                 "= \"hold_toe\" (the default for stilling basins) cannot be used with " + std::string(table) + "." + key +
+                     " " + what);
+  };
+  if (result.sph.outflow_condition == "tailgate")
+    fail("sph", "outflow_condition", "= \"tailgate\": a weir sets the tailwater itself; use control = \"fixed_depth\" "
+                                     "with a tailgate");
+  if (result.sph.outflow_level_reference != "outlet")
+    fail("sph", "outflow_level_reference", "= \"" + result.sph.outflow_level_reference +
+                                               "\": that control holds the tailwater depth, which hold_toe predicts; use "
+                                               "control = \"fixed_depth\" to hold a depth");
+  double& leg = result.vof.tailwater_control_interval_s;
+  const double out = result.run.output_interval_s;
+  if (leg == 0.0) {  // unset: 0.5 s, or as many output intervals as fit a shorter run
+    leg = std::max(1.0, std::floor(std::min(0.5, result.run.end_time_s) / out + 1e-9)) * out;
+  } else {
+    const double ratio = leg / out;
+    if (std::abs(ratio - std::round(ratio)) > 1e-6 * ratio || std::round(ratio) < 1.0)
+      fail("vof", "tailwater_control_interval_s",
+           "= " + number_text(leg) + " is out of range: must be a whole number of run.output_interval_s (" +
+               number_text(out) + " s), since the control reads the outputs of each leg");
+    if (leg > result.run.end_time_s)
+      fail("vof", "tailwater_control_interval_s",
+           "= " + number_text(leg) + " is out of range: must be <= run.end_time_s (" +
+               number_text(result.run.end_time_s) + " s), or the control never acts during the run");
+  }
+  for (const auto& [key, value] : {std::pair<const char*, double>{"volume_hold_time_s", b.control.volume_hold_time_s},
+                                   std::pair<const char*, double>{"toe_hold_time_s", b.control.toe_hold_time_s}}) {
+    if (!(value < leg)) continue;
+    const std::string what = "is out of range: " + std::string(key) + " (" + number_text(value) +
+                             " s) must be >= the VOF legs' length [vof] tailwater_control_interval_s (" +
+                             number_text(leg) + " s), or the control overshoots";
+    if (tail.has(key)) tail.fail_at(tail.raw().get(key), key, what);
+    fail("vof", "tailwater_control_interval_s", "= " + number_text(leg) + ": [case.tailwater] " + what);
+  }
+}
+
 Case read_case(TableReader& c, const Study& study, const SphSettings& sph,
                const VofSettings& vof, const std::map<std::string, Resolution>& resolutions,
                const std::filesystem::path& base_dir) {
@@ -865,29 +905,6 @@ Case read_case(TableReader& c, const Study& study, const SphSettings& sph,
   auto run = c.required_table("run");
   read_run(run, result.run);
 
-  if (result.vof.tailwater_control == "hold_toe") {
-    // Checked on the merged settings; named where the case sets them, else at the case's kind.
-    auto vof_table = c.table("vof");
-    const auto fail = [&](const char* key, const std::string& what) {
-      if (vof_table && vof_table->has(key)) vof_table->fail_at(vof_table->raw().get(key), key, what);
-      c.fail_at(c.raw().get("kind"), "kind", "= \"" + result.kind + "\" with [vof] " + key + " " + what);
-    };
-    if (result.kind != "stilling_basin") {
-      fail("tailwater_control", "= \"hold_toe\" needs a stilling basin (kind = \"stilling_basin\"): it moves a jump's toe");
-    }
-    const double ratio = result.vof.tailwater_control_interval_s / result.run.output_interval_s;
-    if (std::abs(ratio - std::round(ratio)) > 1e-6 * ratio || std::round(ratio) < 1.0) {
-      fail("tailwater_control_interval_s",
-           "= " + number_text(result.vof.tailwater_control_interval_s) +
-               " is out of range: must be a whole number of run.output_interval_s (" +
-               number_text(result.run.output_interval_s) + " s), since the control reads the outputs of each leg");
-    }
-    if (result.vof.tailwater_control_interval_s > result.run.end_time_s) {
-      fail("tailwater_control_interval_s",
-           "= " + number_text(result.vof.tailwater_control_interval_s) + " is out of range: must be <= run.end_time_s (" +
-               number_text(result.run.end_time_s) + " s), or the control never acts during the run");
-    }
-  }
   const double g = study.fluid.gravity_m_s2;
   if (result.kind == "stilling_basin") {
     result.data = read_stilling_basin(c, g);
@@ -918,6 +935,7 @@ Case read_case(TableReader& c, const Study& study, const SphSettings& sph,
       result.sections.push_back({"H" + std::to_string(i + 1), d->gauges_x_m[i], "gauge"});
     }
   }
+  if (auto* b = std::get_if<StillingBasinCase>(&result.data)) check_tailwater_control(c, result, *b);
   c.reject_unknown_keys();
   return result;
 }
@@ -1158,12 +1176,7 @@ void write_vof(TomlWriter& w, const VofSettings& v) {
   w.num("max_time_step_s", v.max_time_step_s);
   w.str("mesh_strategy", v.mesh_strategy);
   w.num("surface_refinement_band_m", v.surface_refinement_band_m);
-  w.str("tailwater_control", v.tailwater_control);
-  if (v.tailwater_control == "hold_toe") {
-    w.num("tailwater_control_interval_s", v.tailwater_control_interval_s);
-    w.num("volume_hold_time_s", v.volume_hold_time_s);
-    w.num("toe_hold_time_s", v.toe_hold_time_s);
-  }
+  if (v.tailwater_control_interval_s > 0.0) w.num("tailwater_control_interval_s", v.tailwater_control_interval_s);
 }
 
 }  // namespace
@@ -1229,6 +1242,11 @@ std::string resolved_case_text(const Study& study, const Case& c, const std::str
     w.header("[case.tailwater]");
     if (b->tailwater_rule == "belanger") w.comment("from rule = \"belanger\" (y2* of the inflow)");
     w.num("depth_m", b->tailwater_depth_m);
+    w.str("control", b->control.mode);
+    if (b->control.holds_toe()) {
+      w.num("volume_hold_time_s", b->control.volume_hold_time_s);
+      w.num("toe_hold_time_s", b->control.toe_hold_time_s);
+    }
     w.header("[case.domain]");
     w.num("upstream_length_m", b->upstream_length_m);
     w.num("basin_length_m", b->basin_length_m);
@@ -1244,6 +1262,7 @@ std::string resolved_case_text(const Study& study, const Case& c, const std::str
     w.opt("eta_smooth_percent", m.eta_smooth_percent);
     w.opt("published_sph_eta_percent", m.published_sph_eta_percent);
     if (!m.source.empty()) w.str("source", m.source);
+    if (!m.note.empty()) w.str("note", m.note);
   } else if (const auto* d = c.dam_break()) {
     w.header("[case.column]");
     w.num("width_m", d->column_width_m);

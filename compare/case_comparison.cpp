@@ -343,6 +343,7 @@ CaseComparison compare_case(const cases::Study& study, const fs::path& run_dir, 
   CaseComparison r;
   r.case_id = c.id;
   r.description = c.description;
+  r.tailwater_control = basin->control.mode;
   r.resolution = res.name;
   r.inflow_depth_m = basin->inflow_depth_m;
   r.inflow_velocity_m_s = basin->inflow_velocity_m_s;
@@ -376,6 +377,7 @@ CaseComparison compare_case(const cases::Study& study, const fs::path& run_dir, 
   r.vof_cell_size_m = res.vof_cell_size_bed_m;
   r.interpolation = to_string(options.scheme);
   r.measured_source = basin->measured.source;
+  r.measured_note = basin->measured.note;
   r.lab.sequent_depth_m = basin->measured.sequent_depth_m;
   r.lab.jump_length_m = basin->measured.jump_length_m;
   r.lab.roller_length_m = basin->measured.roller_length_m;
@@ -542,7 +544,7 @@ CaseComparison compare_case(const cases::Study& study, const fs::path& run_dir, 
     }
     // The tailgate's log, read only for a case run with the control (a file left from another run is
     // not this run's).
-    if (c.vof.tailwater_control == "hold_toe") {
+    if (c.holds_toe()) {
       try {
         const std::string control = vof_tailwater_control_note(run_dir / "vof", r.window_start_s, r.window_end_s);
         if (!control.empty()) r.vof.metrics.notes.push_back(control);
@@ -561,7 +563,7 @@ CaseComparison compare_case(const cases::Study& study, const fs::path& run_dir, 
     r.profiles = profile_differences(r.sph.stats, r.vof.stats, r.inflow_velocity_m_s);
   }
   r.metrics = metric_table(r.sph.available ? &r.sph.metrics : nullptr, r.vof.available ? &r.vof.metrics : nullptr,
-                           r.lab, r.inflow_depth_m, r.inflow_velocity_m_s, r.gravity_m_s2);
+                           r.lab, r.inflow_depth_m, r.inflow_velocity_m_s, r.gravity_m_s2, c.holds_toe());
   return r;
 }
 
@@ -570,16 +572,22 @@ std::string summary_text(const CaseComparison& c) {
   auto lab = [&o](const std::optional<double>& v) {
     if (v) o << " [" << *v << "]";
   };
+  // What the set-up held is marked as such (the toe under the toe-holding control, else y2 and eta).
+  const bool held = c.tailwater_control == "hold_toe";
+  const char* toe_label = held ? " (imposed)" : " (predicted)";
+  const char* y2_label = held ? " (predicted)" : " (imposed)";
   for (const MethodOutcome* m : {&c.sph, &c.vof}) {
     if (!m->available) continue;
     const JumpMetrics& r = m->metrics;
-    o << std::setprecision(4) << m->method << ": toe " << r.toe_mean_of_frames_x_m << " +- " << r.toe_std_m << " m";
+    o << std::setprecision(4) << m->method << ": toe " << r.toe_mean_of_frames_x_m << " +- " << r.toe_std_m << " m"
+      << toe_label;
     if (std::isfinite(r.toe_trend_m_per_s)) o << " (trend " << std::showpos << r.toe_trend_m_per_s << std::noshowpos << " m/s)";
-    o << ", y2 " << r.sequent_depth_m << " m";
+    o << ", y2 " << r.sequent_depth_m << " m" << y2_label;
     lab(c.lab.sequent_depth_m);
-    o << ", eta " << 100.0 * r.eta << " %";
+    if (c.belanger_y2_m > 0.0) o << " {y2* " << c.belanger_y2_m << ", y2/y2* " << r.sequent_depth_m / c.belanger_y2_m << "}";
+    o << ", eta " << 100.0 * r.eta << " %" << y2_label;
     lab(c.lab.eta_percent);
-    o << ", Lj " << r.jump_length_m << " m";
+    o << ", Lj " << r.jump_length_m << " m (predicted)";
     lab(c.lab.jump_length_m);
     o << "\n";
     for (const auto& n : r.notes) o << m->method << ": " << n << "\n";

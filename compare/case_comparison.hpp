@@ -45,6 +45,7 @@ struct MethodOutcome {
 struct CaseComparison {
   std::string case_id, description, resolution;
   double inflow_depth_m = 0.0, inflow_velocity_m_s = 0.0, tailwater_depth_m = 0.0, gravity_m_s2 = 9.81;
+  std::string tailwater_control;                 // the case's [case.tailwater] control
   double floor_z_m = 0.0, basin_start_m = 0.0, basin_end_m = 0.0;
   double bed_wavelength_m = 0.0;                 // 0 for a smooth bed
   double window_start_s = 0.0, window_end_s = 0.0;
@@ -52,6 +53,7 @@ struct CaseComparison {
   double particle_spacing_m = 0.0, vof_cell_size_m = 0.0;
   std::string interpolation;
   std::string measured_source;
+  std::string measured_note;                     // [case.measured] note: what is known about the values
   MeasuredReference lab;
   std::vector<ColumnSpec> sections;
   MethodOutcome sph, vof;
@@ -72,7 +74,9 @@ CaseComparison compare_case(const cases::Study& study, const std::filesystem::pa
 
 // The console summary of a comparison: per method with results, the toe (frames' mean, sd, trend), y2,
 // eta and Lj with the experiment's values in brackets, then the method's notes, e.g.
-//   vof: toe 0.627 +- 0.015 m (trend +0.0128 m/s), y2 0.0972 m [0.104], eta 44.02 % [48.43], Lj 0.3825 m [0.41]
+//   vof: toe 0.627 +- 0.015 m (predicted) (trend +0.0128 m/s), y2 0.0972 m (imposed) [0.104] {y2* 0.132,
+//        y2/y2* 0.736}, eta 44.02 % (imposed) [48.43], Lj 0.3825 m (predicted) [0.41]
+//   (under control = "hold_toe" the toe is imposed and y2, eta predicted; {} holds the inputs-only values)
 //   vof: water balance over the window (...): ...; NOT steady by the window means (...)
 std::string summary_text(const CaseComparison& c);
 

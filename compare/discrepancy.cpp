@@ -70,7 +70,8 @@ std::vector<ProfileDifference> profile_differences(const MethodStatistics& sph, 
 }
 
 std::vector<MetricRow> metric_table(const JumpMetrics* sph, const JumpMetrics* vof, const MeasuredReference& lab,
-                                    double inflow_depth_m, double inflow_velocity_m_s, double gravity_m_s2) {
+                                    double inflow_depth_m, double inflow_velocity_m_s, double gravity_m_s2,
+                                    bool toe_held) {
   auto v = [](const JumpMetrics* m, double JumpMetrics::*f, double scale = 1.0) {
     return m ? m->*f * scale : not_a_number;
   };
@@ -92,8 +93,17 @@ std::vector<MetricRow> metric_table(const JumpMetrics* sph, const JumpMetrics* v
                   not_a_number, not_a_number});
   rows.push_back({"toe_trend", "m/s", v(sph, &JumpMetrics::toe_trend_m_per_s), v(vof, &JumpMetrics::toe_trend_m_per_s),
                   not_a_number, not_a_number, not_a_number});
+  const double belanger_y2 = inflow_depth_m > 0.0 && inflow_velocity_m_s > 0.0 && gravity_m_s2 > 0.0
+                                 ? cases::belanger_sequent_depth(inflow_depth_m,
+                                                                 cases::froude_number(inflow_depth_m, inflow_velocity_m_s,
+                                                                                      gravity_m_s2))
+                                 : not_a_number;
   rows.push_back({"sequent_depth", "m", v(sph, &JumpMetrics::sequent_depth_m), v(vof, &JumpMetrics::sequent_depth_m),
-                  o(lab.sequent_depth_m), not_a_number, not_a_number});
+                  o(lab.sequent_depth_m), not_a_number, belanger_y2});
+  // The bed effect y2 / y2*: what the bed does to the sequent depth (1 on a smooth bed).
+  rows.push_back({"bed_effect", "", v(sph, &JumpMetrics::sequent_depth_m, 1.0 / belanger_y2),
+                  v(vof, &JumpMetrics::sequent_depth_m, 1.0 / belanger_y2), o(lab.sequent_depth_m) / belanger_y2,
+                  not_a_number, 1.0});
   rows.push_back({"jump_length", "m", v(sph, &JumpMetrics::jump_length_m), v(vof, &JumpMetrics::jump_length_m),
                   o(lab.jump_length_m), not_a_number, not_a_number});
   rows.push_back({"roller_length", "m", v(sph, &JumpMetrics::roller_length_m), v(vof, &JumpMetrics::roller_length_m),
@@ -118,6 +128,15 @@ std::vector<MetricRow> metric_table(const JumpMetrics* sph, const JumpMetrics* v
                   v(vof, &JumpMetrics::velocity_settling_distance_m), not_a_number, not_a_number, not_a_number});
   rows.push_back({"surface_peak", "m", v(sph, &JumpMetrics::surface_peak_m), v(vof, &JumpMetrics::surface_peak_m),
                   not_a_number, not_a_number, not_a_number});
+  // What the set-up holds: the inflow always; the toe's mean under the toe-holding control; else the
+  // tailwater, and with it y2 and what the inputs give from it (eta, the bed force and effect).
+  for (MetricRow& r : rows) {
+    const bool from_y2 = r.quantity == "sequent_depth" || r.quantity == "bed_effect" || r.quantity.rfind("eta", 0) == 0 ||
+                         r.quantity == "bed_force_fraction";
+    const bool toe = r.quantity == "toe_position" || r.quantity == "toe_mean_of_frames";
+    if (r.quantity == "upstream_depth") r.status = "input";
+    else if (toe_held ? toe : from_y2) r.status = "imposed";
+  }
   return rows;
 }
 

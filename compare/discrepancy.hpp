@@ -34,11 +34,16 @@ struct ProfileDifference {
 };
 
 // One quantity side by side; NaN where a value does not exist.
+// A row of the metric table. `smooth_theory` is what the inputs alone give: Bélanger's y2* (sequent
+// depth), eta* (eta), 1 (the bed effect y2/y2*), 0 (the bed force). `status` says whether the set-up
+// held the quantity ("imposed": the toe under the toe-holding control; y2 and what follows from it,
+// eta and the bed force, when the outlet holds a depth) or the methods predicted it ("predicted").
 struct MetricRow {
   std::string quantity;        // "sequent_depth", "jump_length", "roller_length", "eta", ...
   std::string unit;            // "m", "%"
   double sph = not_a_number, vof = not_a_number, experiment = not_a_number,
          published_sph = not_a_number, smooth_theory = not_a_number;
+  std::string status = "predicted";  // "predicted" | "imposed" | "input"
 };
 
 struct MeasuredReference {
@@ -55,7 +60,11 @@ std::vector<ProfileDifference> profile_differences(const MethodStatistics& sph, 
 // The inflow (y1, U1) and g give the experiment's bed force: (M1 - M2)/M1 with uniform sections at y1
 // and at the measured y2 (M = h^2/2 + q^2/(g h)), the force balance Ead & Rajaratnam's shear-force
 // coefficient comes from.
+// `toe_held`: the case's tailwater control holds the toe at the basin start ([case.tailwater] control
+// = "hold_toe"), so the toe is imposed and y2 predicted; otherwise the outlet holds a depth, and y2 is
+// imposed while the toe is predicted.
 std::vector<MetricRow> metric_table(const JumpMetrics* sph, const JumpMetrics* vof, const MeasuredReference& lab,
-                                    double inflow_depth_m, double inflow_velocity_m_s, double gravity_m_s2);
+                                    double inflow_depth_m, double inflow_velocity_m_s, double gravity_m_s2,
+                                    bool toe_held);
 
 }  // namespace hydrojump::compare

@@ -285,10 +285,10 @@ void write_csvs(const CaseComparison& c, const fs::path& dir) {
   cases::write_file_atomically(dir / "longitudinal.csv", lon.str());
   {
     std::ostringstream s;
-    s << "quantity,unit,sph,vof,experiment,published_sph,smooth_theory\n";
+    s << "quantity,unit,sph,vof,experiment,published_sph,smooth_theory,status\n";
     for (const auto& r : c.metrics)
       s << r.quantity << "," << r.unit << "," << num(r.sph) << "," << num(r.vof) << "," << num(r.experiment) << ","
-        << num(r.published_sph) << "," << num(r.smooth_theory) << "\n";
+        << num(r.published_sph) << "," << num(r.smooth_theory) << "," << r.status << "\n";
     cases::write_file_atomically(dir / "metrics.csv", s.str());
   }
   {
@@ -321,6 +321,7 @@ std::string pretty_quantity(const std::string& q) {
   if (q == "toe_std") return "toe standard deviation over the frames (m)";
   if (q == "toe_trend") return "toe trend over the window, least-squares slope of the frames' toes (m/s)";
   if (q == "sequent_depth") return "sequent depth y2 (m)";
+  if (q == "bed_effect") return "bed effect y2/y2* (Bélanger's y2*)";
   if (q == "jump_length") return "jump length Lj (m)";
   if (q == "roller_length") return "roller length Lr (m)";
   if (q == "eta") return "eta = (E1-E2)/E1, with alpha (%)";
@@ -365,7 +366,8 @@ std::string comparison_json(const CaseComparison& c) {
   j.key("window_s").begin_array().value(c.window_start_s).value(c.window_end_s).end_array();
   j.key("inputs").begin_object()
       .field("inflow_depth_m", c.inflow_depth_m).field("inflow_velocity_m_s", c.inflow_velocity_m_s)
-      .field("tailwater_depth_m", c.tailwater_depth_m).field("gravity_m_s2", c.gravity_m_s2)
+      .field("tailwater_depth_m", c.tailwater_depth_m).field("tailwater_control", c.tailwater_control)
+      .field("gravity_m_s2", c.gravity_m_s2)
       .field("belanger_y2_m", c.belanger_y2_m).field("eta_smooth_theory_percent", c.eta_smooth_theory_percent)
       .field("particle_spacing_m", c.particle_spacing_m).field("vof_cell_size_bed_m", c.vof_cell_size_m)
       .field("basin_start_m", c.basin_start_m).field("basin_end_m", c.basin_end_m).end_object();
@@ -385,11 +387,12 @@ std::string comparison_json(const CaseComparison& c) {
   for (const auto& r : c.metrics)
     j.begin_object().field("quantity", r.quantity).field("unit", r.unit).field("sph", r.sph).field("vof", r.vof)
         .field("experiment", r.experiment).field("published_sph", r.published_sph)
-        .field("smooth_theory", r.smooth_theory).field("sph_minus_vof", r.sph - r.vof)
+        .field("smooth_theory", r.smooth_theory).field("status", r.status).field("sph_minus_vof", r.sph - r.vof)
         .field("sph_minus_experiment", r.sph - r.experiment).field("vof_minus_experiment", r.vof - r.experiment)
         .end_object();
   j.end_array();
   j.field("measured_source", c.measured_source);
+  j.field("measured_note", c.measured_note);
   j.end_object();
   return j.str() + "\n";
 }
@@ -463,11 +466,18 @@ std::string write_report(const CaseComparison& c, const fs::path& out, bool plot
   std::vector<std::vector<std::string>> rows;
   for (const auto& r : c.metrics) {
     const int dec = r.unit == "%" ? 2 : 4;
-    rows.push_back({pretty_quantity(r.quantity), fix(r.sph, dec), fix(r.vof, dec), fix(r.experiment, dec),
-                    fix(r.published_sph, dec), signed_fix(r.sph - r.vof, dec), signed_fix(r.sph - r.experiment, dec),
-                    signed_fix(r.vof - r.experiment, dec)});
+    rows.push_back({pretty_quantity(r.quantity), r.status, fix(r.sph, dec), fix(r.vof, dec), fix(r.experiment, dec),
+                    fix(r.smooth_theory, dec), fix(r.published_sph, dec), signed_fix(r.sph - r.vof, dec),
+                    signed_fix(r.sph - r.experiment, dec), signed_fix(r.vof - r.experiment, dec)});
   }
-  d.table({"quantity", "this SPH", "this VOF", "experiment", "published SPH", "SPH − VOF", "SPH − exp.", "VOF − exp."}, rows);
+  d.para(c.tailwater_control == "hold_toe"
+             ? "Protocol: the flume's (the outlet steered to hold the toe at the basin start): the toe is imposed; "
+               "y2, η, Lj, Lr and the bed force are predictions."
+             : "Protocol: the outlet holds the tailwater depth (control = \"fixed_depth\"): y2 and what follows from "
+               "it (η, the bed force) are imposed, not results; the toe and the lengths are predictions.");
+  d.table({"quantity", "predicted / imposed", "this SPH", "this VOF", "experiment", "inputs only (Bélanger)",
+           "published SPH", "SPH − VOF", "SPH − exp.", "VOF − exp."},
+          rows);
   {
     double sph = not_a_number, vof = not_a_number;
     for (const auto& r : c.metrics)
@@ -555,6 +565,7 @@ std::string write_report(const CaseComparison& c, const fs::path& out, bool plot
              "stays within 5 % of (y2 − y1) of y2 up to the downstream section; Lj = end − toe (so Lj ≥ Lr, as "
              "the laboratory sections 1–1, 2–2, 3–3 lie in that order)."});
   if (!c.measured_source.empty()) d.para("Laboratory values: " + c.measured_source);
+  if (!c.measured_note.empty()) d.para("Note on the laboratory values: " + c.measured_note);
 
   cases::write_file_atomically(out / "report.md", d.markdown());
   cases::write_file_atomically(out / "report.html", d.html("hydrojump comparison, case " + c.case_id));

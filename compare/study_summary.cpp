@@ -49,8 +49,9 @@ StudySummary summarize_study(const std::vector<std::pair<std::string, fs::path>>
   eta << "| case | smooth bed (theory) | experiment | published SPH | this SPH | this VOF | SPH − exp. | VOF − exp. | "
          "SPH − published SPH | SPH − VOF | SPH, lab convention | VOF, lab convention |\n"
          "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
-  len << "| case | y2 exp. (m) | y2 SPH | y2 VOF | Lj exp. (m) | Lj SPH | Lj VOF | Lr SPH (m) | Lr VOF |\n"
-         "|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  len << "| case | y2 is | y2* (inputs) | y2 exp. (m) | y2 SPH | y2 VOF | y2/y2* exp. | y2/y2* SPH | y2/y2* VOF | "
+         "Lj exp. (m) | Lj SPH | Lj VOF | Lr SPH (m) | Lr VOF |\n"
+         "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   pos << "| case | toe SPH (m) | toe VOF (m) | toe sd SPH (m) | toe sd VOF (m) | bed force exp. (%) | bed force SPH (%) | "
          "bed force VOF (%) |\n"
          "|---|---:|---:|---:|---:|---:|---:|---:|\n";
@@ -59,7 +60,7 @@ StudySummary summarize_study(const std::vector<std::pair<std::string, fs::path>>
     const auto eta_rows = read_csv(eta_file);
     if (eta_rows.empty()) {
       eta << "| " << id << " | missing: no comparison | | | | | | | | | | |\n";
-      len << "| " << id << " | missing | | | | | | | |\n";
+      len << "| " << id << " | missing | | | | | | | | | | | | |\n";
       pos << "| " << id << " | missing | | | | | | |\n";
       continue;
     }
@@ -80,8 +81,13 @@ StudySummary summarize_study(const std::vector<std::pair<std::string, fs::path>>
       const auto it = metrics.find(q);
       return it == metrics.end() ? std::nan("") : value(it->second, col);
     };
-    len << "| " << id << " | " << fix(get("sequent_depth", "experiment"), 3) << " | " << fix(get("sequent_depth", "sph"), 3)
-        << " | " << fix(get("sequent_depth", "vof"), 3) << " | " << fix(get("jump_length", "experiment"), 3) << " | "
+    const auto status = metrics.find("sequent_depth");
+    const std::string y2_is = status == metrics.end() || !status->second.count("status") ? "—" : status->second.at("status");
+    len << "| " << id << " | " << y2_is << " | " << fix(get("sequent_depth", "smooth_theory"), 3) << " | "
+        << fix(get("sequent_depth", "experiment"), 3) << " | " << fix(get("sequent_depth", "sph"), 3)
+        << " | " << fix(get("sequent_depth", "vof"), 3) << " | " << fix(get("bed_effect", "experiment"), 3) << " | "
+        << fix(get("bed_effect", "sph"), 3) << " | " << fix(get("bed_effect", "vof"), 3) << " | "
+        << fix(get("jump_length", "experiment"), 3) << " | "
         << fix(get("jump_length", "sph"), 3) << " | " << fix(get("jump_length", "vof"), 3) << " | "
         << fix(get("roller_length", "sph"), 3) << " | " << fix(get("roller_length", "vof"), 3) << " |\n";
     pos << "| " << id << " | " << fix(get("toe_position", "sph"), 3) << " | " << fix(get("toe_position", "vof"), 3) << " | "
@@ -90,7 +96,10 @@ StudySummary summarize_study(const std::vector<std::pair<std::string, fs::path>>
   }
   out.markdown = "### Energy dissipation rate η (%)\n\nη = (E1 − E2)/E1 with E = z_b + h + αU²/(2g) at the upstream and "
                  "downstream sections; 'lab convention': E = y + q²/(2gy²) with y above the corrugation crests.\n\n" +
-                 eta.str() + "\n### Sequent depth, jump and roller length\n\n" +
+                 eta.str() + "\n### Sequent depth, jump and roller length\n\n"
+                 "'y2 is': predicted (the outlet steered to hold the toe at the basin start, as the flume's tailgate "
+                 "was) or imposed (the outlet held a depth); y2* is Bélanger's sequent depth from the inflow alone, "
+                 "and y2/y2* the bed effect (1 on a smooth bed).\n\n" +
                  len.str() +
                  "\n### Jump position and momentum balance\n\nToe: time-mean surface criterion and its standard "
                  "deviation over the frames. Bed force (M1 − M2)/M1 with the specific force M = h²/2 + βq²/(gh) at the "

@@ -404,7 +404,7 @@ VofCase build_vof_case(const cases::Study& study, const cases::Case& c, const st
   const auto* basin = c.stilling_basin();
   const auto* dam = c.dam_break();
   // The tailgate: hydrojump vof sets the outlet's Umean between legs of the run (tailwater_control.hpp).
-  const bool hold_toe = basin && c.vof.tailwater_control == "hold_toe";
+  const bool hold_toe = c.holds_toe();
   std::vector<std::string> transported;
   try {
     transported = turbulence_fields(c.vof.turbulence_model);
@@ -687,7 +687,7 @@ VofCase build_vof_case(const cases::Study& study, const cases::Case& c, const st
     cd.set("writeFormat", foam::word("ascii"));
     cd.set("writePrecision", 8);
     if (hold_toe) {
-      cd.directive("// uncompressed: vof.tailwater_control = \"hold_toe\" rewrites the outlet's Umean in the latest U "
+      cd.directive("// uncompressed: tailwater.control = \"hold_toe\" rewrites the outlet's Umean in the latest U "
                    "between legs (reference/tailwater_control.hpp)");
     }
     cd.set("writeCompression", foam::on_off(!hold_toe));
@@ -864,12 +864,12 @@ VofCase build_vof_case(const cases::Study& study, const cases::Case& c, const st
     if (hold_toe) {
       // interFoam alone would run the outlet at the fixed Umean = q/y2, the set-up the control exists
       // to replace (the jump drifts or swings, reference/README.md): refused, with the way to run it.
-      s << "# vof.tailwater_control = \"hold_toe\": the outlet's Umean is set between legs of the run by\n"
+      s << "# [case.tailwater] control = \"hold_toe\": the outlet's Umean is set between legs of the run by\n"
         << "# `hydrojump vof DIR [--np N]` (reference/tailwater_control.hpp); interFoam alone cannot do that,\n"
         << "# so this case is not run by hand. Mesh: " << plan.strategy << ", " << plan.cell_count() << " cells.\n"
-        << "echo \"Allrun: this case holds its jump with the tailgate (vof.tailwater_control = \\\"hold_toe\\\"), which only\"\n"
-        << "echo \"\\`hydrojump vof <this directory>\\` drives: run it that way, or regenerate it with\"\n"
-        << "echo \"tailwater_control = \\\"none\\\" to run it by hand at the fixed outlet velocity\"\n"
+        << "echo \"Allrun: this case holds its jump's toe with the tailgate ([case.tailwater] control = \\\"hold_toe\\\"),\"\n"
+        << "echo \"which only \\`hydrojump vof <this directory>\\` drives: run it that way, or regenerate it with\"\n"
+        << "echo \"control = \\\"fixed_depth\\\" to run it by hand at the fixed outlet velocity\"\n"
         << "exit 1\n";
       vof.allrun = s.str();
       return vof;

@@ -42,7 +42,7 @@ void register_commands(CLI::App& app) {
       "other way (killed: Linux sends interFoam SIGUSR2). Outputs stay on the case's output times (a run\n"
       "resumed between two of them first runs to the next one; an end time between two is written by a\n"
       "short closing run). Logs: DIR/log.<application>. The case can also be run by hand with DIR/Allrun.\n"
-      "A case with [vof] tailwater_control = \"hold_toe\" runs in legs; after each the outlet's Umean\n"
+      "A case with [case.tailwater] control = \"hold_toe\" (the default) runs in legs; after each the outlet's Umean\n"
       "is reset like a tailgate to hold the jump's toe at the basin start (DIR/tailwater_control.csv).\n"
       "Needs OpenFOAM v1912 (WM_PROJECT_DIR, default /usr/share/openfoam).\n"
       "One process per DIR: a second one started on it stops at once, naming the first.");

@@ -1148,7 +1148,7 @@ void tailwater_control_after_leg(const fs::path& dir, const TailwaterControlLaw&
   for (const fs::path& f : u_files) {
     if (!fs::exists(f) && fs::exists(f.string() + ".gz")) {
       throw OpenFoamError("tailwater control: " + f.string() + ".gz is compressed, but the control rewrites the "
-                          "outlet's Umean in plain field files (a case with tailwater_control = \"hold_toe\" is "
+                          "outlet's Umean in plain field files (a case with tailwater.control = \"hold_toe\" is "
                           "written with writeCompression off: regenerate it with `hydrojump generate`)");
     }
   }
@@ -1445,7 +1445,7 @@ void run_vof_case_steps(const fs::path& dir, const RunOptions& options, std::ost
   double reached = t_begin;
   std::vector<SolverLeg> legs = plan_solver_legs(t_begin, end_time_s, output_grid_interval(dir));
   std::optional<TailwaterControlLaw> control;
-  if (c.vof.tailwater_control == "hold_toe") {
+  if (c.holds_toe()) {
     control = tailwater_control_law(c, cases::make_geometry(c, study.fluid));
     legs = split_legs_for_control(legs, t_begin, control->interval_s);
     // The log describes this run: rows of an abandoned later part or of an earlier run go.

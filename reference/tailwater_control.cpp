@@ -25,9 +25,9 @@ namespace hydrojump::reference {
 namespace fs = std::filesystem;
 
 TailwaterControlLaw tailwater_control_law(const cases::Case& c, const cases::CaseGeometry& geo) {
-  if (c.vof.tailwater_control != "hold_toe" || !c.stilling_basin() || geo.inflows.empty() || geo.outflows.empty()) {
+  if (!c.holds_toe() || geo.inflows.empty() || geo.outflows.empty()) {
     throw std::invalid_argument("case \"" + c.id + "\": the tailwater control holds the toe of a stilling basin "
-                                "with [vof] tailwater_control = \"hold_toe\"");
+                                "with [case.tailwater] control = \"hold_toe\"");
   }
   TailwaterControlLaw law;
   const cases::InflowBoundary& in = geo.inflows.front();
@@ -42,8 +42,8 @@ TailwaterControlLaw tailwater_control_law(const cases::Case& c, const cases::Cas
   law.outlet_x_m = geo.x_max_m;
   law.interval_s = c.vof.tailwater_control_interval_s;
   law.output_interval_s = c.run.output_interval_s;
-  law.volume_hold_time_s = c.vof.volume_hold_time_s;
-  law.toe_hold_time_s = c.vof.toe_hold_time_s;
+  law.volume_hold_time_s = c.stilling_basin()->control.volume_hold_time_s;
+  law.toe_hold_time_s = c.stilling_basin()->control.toe_hold_time_s;
   return law;
 }
 

@@ -87,7 +87,9 @@ BasinMonitorSetup BasinMonitorSetup::from_case(const cases::Case& c, const cases
   s.discharge_m2_s = cases::unit_discharge(b->inflow_depth_m, b->inflow_velocity_m_s);
   s.froude1 = cases::froude_number(b->inflow_depth_m, b->inflow_velocity_m_s, std::abs(geometry.body_force_m_s2.y()));
   s.tailwater_depth_m = b->tailwater_depth_m;
-  s.tailwater_held_at = c.sph.outflow_condition == "tailgate" ? "tailgate" : c.sph.outflow_level_reference;
+  s.tailwater_held_at = c.holds_toe()                           ? "toe_held"
+                        : c.sph.outflow_condition == "tailgate" ? "tailgate"
+                                                                : c.sph.outflow_level_reference;
   s.belanger_y2_m = cases::belanger_sequent_depth(b->inflow_depth_m, s.froude1);
   s.floor_z_m = geometry.bed.elevation(geometry.inflows.front().x_m);
   s.x_inflow_m = geometry.inflows.front().x_m;
@@ -303,8 +305,10 @@ std::string BasinMonitor::status_line() const {
     o << std::setprecision(4) << "  q_in " << s.q_in << "  q_out " << s.q_out << " m^2/s";
   else
     o << "  q_in, q_out from the second output on";
-  // The level control's output: the depth the outlet holds so that the downstream section holds y2.
-  if (setup_.tailwater_held_at == "downstream_section" && std::isfinite(s.outlet_target_depth))
+  // A control's output: the depth the outlet holds so that the downstream section holds y2, or the toe
+  // stands at the basin start.
+  if (setup_.tailwater_held_at != "outlet" && setup_.tailwater_held_at != "tailgate" &&
+      std::isfinite(s.outlet_target_depth))
     o << std::setprecision(4) << "  outlet y_t " << s.outlet_target_depth << " m";
   const double from = steady_from();
   if (std::isfinite(from)) o << "  steady since t = " << std::setprecision(1) << from << " s";

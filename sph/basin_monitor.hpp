@@ -69,8 +69,9 @@ struct BasinMonitorSetup {
   double discharge_m2_s = 0.0;      // q = y1 U1, prescribed
   double froude1 = 0.0;
   double tailwater_depth_m = 0.0;   // imposed at the outflow
-  // Where the tailwater depth is held: "outlet", "downstream_section" (outflow_level_control.hpp) or
-  // "tailgate" (by the weir's crest).
+  // Where the tailwater depth is held: "outlet", "downstream_section" (outflow_level_control.hpp),
+  // "tailgate" (by the weir's crest), or "toe_held" (not held: the outlet is steered to hold the toe at
+  // the basin start, toe_hold_control.hpp, and the tailwater is a prediction).
   std::string tailwater_held_at = "outlet";
   double belanger_y2_m = 0.0;
   double floor_z_m = 0.0;           // upstream floor = crest level

@@ -21,7 +21,7 @@ namespace {
 
 // Format 5: the payload (magic ... magic) and then its FNV-1a checksum as 16 hex digits, so that a
 // byte changed after the write (a damaged disk, an edit) is found, not resumed from.
-constexpr char kMagic[8] = {'H', 'J', 'S', 'P', 'H', 'C', 'K', '5'};
+constexpr char kMagic[8] = {'H', 'J', 'S', 'P', 'H', 'C', 'K', '6'};
 constexpr std::size_t kChecksumBytes = 16;
 
 template <class T>
@@ -92,6 +92,7 @@ void write_checkpoint(const Checkpoint& c, const std::filesystem::path& file) {
     put(out, c.clock.inflow_mass);
     put(out, c.clock.outflow_mass);
     put(out, c.clock.outflow_target_depth);
+    put(out, c.clock.held_volume_m2);
     const std::int64_t n = c.particles.size();
     put(out, n);
     c.particles.for_each_real_array([&](const Vector& v) { put_array(out, v); });
@@ -137,6 +138,8 @@ void check_contents(const Checkpoint& c, const std::filesystem::path& file) {
   if (!std::isfinite(k.inflow_mass) || !std::isfinite(k.outflow_mass)) damaged("its inflow/outflow mass is not finite");
   if (!std::isfinite(k.outflow_target_depth) || k.outflow_target_depth < 0.0)
     damaged("its outflow target depth is " + std::to_string(k.outflow_target_depth) + " m");
+  if (!std::isfinite(k.held_volume_m2) || k.held_volume_m2 < 0.0)
+    damaged("its held water volume is " + std::to_string(k.held_volume_m2) + " m^2");
   if (!std::isfinite(c.next_output_time) || c.next_output_time < 0.0)
     damaged("its next output time is " + seconds(c.next_output_time));
   Eigen::Index fluid = 0;
@@ -187,6 +190,7 @@ Checkpoint read_checkpoint(const std::filesystem::path& file) {
   c.clock.inflow_mass = r.get<double>();
   c.clock.outflow_mass = r.get<double>();
   c.clock.outflow_target_depth = r.get<double>();
+  c.clock.held_volume_m2 = r.get<double>();
   const auto n = r.get<std::int64_t>();
   // Every particle takes at least its real arrays, id and type in the file: a count the file cannot
   // hold is a damaged file, not a reason to allocate memory.

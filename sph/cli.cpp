@@ -115,6 +115,7 @@ int run_sph_directory(const SphOptions& opt) {
   ro.bed_elevation = [bed = geometry.bed](double x) { return bed.elevation(x); };
   if (c.stilling_basin() != nullptr)
     ro.basin = BasinMonitorSetup::from_case(c, geometry, settings.dx, settings.eos.rho0);
+  if (c.holds_toe()) ro.toe_hold = ToeHoldLaw::from_case(c, geometry, study.fluid.gravity_m_s2, settings.eos.rho0);
   if (const auto* d = c.dam_break()) {  // its gauges are among the geometry's sections
     ro.record_front = true;
     ro.front_layer_m = 0.1 * d->column_width_m;

@@ -141,6 +141,16 @@ class RunState {
     }
   }
 
+  // The toe-holding control's step at an output on the grid, from the sample just recorded
+  // (toe_hold_control.hpp); an end-state output between two grid times does not steer.
+  void steer_tailwater() {
+    if (!basin_ || !o_.toe_hold || basin_->samples().empty()) return;
+    const BasinSample& s = basin_->samples().back();
+    const ToeHoldState next = toe_hold_step(
+        *o_.toe_hold, {solver_.clock().held_volume_m2, solver_.clock().outflow_target_depth}, s.fluid_mass, s.toe_x);
+    solver_.set_tailwater_control(next.outlet_depth_m, next.volume_target_m2);
+  }
+
   std::string status() const { return basin_ ? basin_->status_line() : std::string(); }
   // What the run monitor knew when a run failed: a jump swept out of the basin or drowned at the
   // inflow explains most "particle left the domain" stops of stilling basins (a bad tailwater).
@@ -312,6 +322,7 @@ RunStatus run_case(Solver& solver, const RunOptions& o, const std::optional<Chec
     state.restore(*resume, o.end_time_s > solver.time() + 1e-12);
   } else {
     state.write_output();
+    state.steer_tailwater();
     state.next_output_ = o.output_interval_s;
   }
   const auto t_start = Clock::now();
@@ -366,6 +377,7 @@ RunStatus run_case(Solver& solver, const RunOptions& o, const std::optional<Chec
     }
     if (solver.time() >= state.next_output_ - 1e-12) {
       state.write_output();
+      state.steer_tailwater();
       // The next output time: one interval on, or the first multiple of the interval past t when a
       // step has passed several (a loop adding the interval stalls once it is below t's round-off).
       const double next_multiple = (std::floor((solver.time() + 1e-12) / o.output_interval_s) + 1.0) * o.output_interval_s;

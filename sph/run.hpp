@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "sph/basin_monitor.hpp"
+#include "sph/toe_hold_control.hpp"
 #include "sph/checkpoint.hpp"
 #include "sph/solver.hpp"
 
@@ -54,6 +55,8 @@ struct RunOptions {
   std::vector<Gauge> gauges;               // free-surface and velocity gauges
   std::function<double(double)> bed_elevation = [](double) { return 0.0; };  // floor z at x (m)
   std::optional<BasinMonitorSetup> basin;  // stilling basins: basin.csv and summary.json
+  std::optional<ToeHoldLaw> toe_hold;      // with `basin`: the outlet steered to hold the toe at every
+                                           // output on the grid (toe_hold_control.hpp)
   bool record_front = false;               // dam break: surge front x in gauges.csv
   double front_layer_m = 0.0;              // front: fluid within this height of the floor
   std::string fingerprint;                 // of the resolved case, stored in checkpoints

@@ -80,4 +80,10 @@ void Solver::step() {
 
 void Solver::update_pressure() { compute_pressure(particles_, settings_); }
 
+void Solver::set_tailwater_control(double outflow_target_depth_m, double held_volume_m2) {
+  open_.set_outflow_target_depth(outflow_target_depth_m);
+  clock_.outflow_target_depth = open_.outflow_target_depth();
+  clock_.held_volume_m2 = held_volume_m2;
+}
+
 }  // namespace hydrojump::sph

@@ -44,6 +44,9 @@ struct SolverClock {
   // The outflow buffers' target depth y_t (m), moved by a level control (outflow_level_control.hpp);
   // 0: the case's tailwater depth (a run not yet started, or no outflow buffers).
   double outflow_target_depth = 0.0;
+  // The toe-holding control's water volume target V* (m^2, toe_hold_control.hpp); 0: none, or not
+  // started.
+  double held_volume_m2 = 0.0;
 };
 
 class Solver {
@@ -63,6 +66,9 @@ class Solver {
   double acoustic_time_step() const { return settings_.cfl * settings_.h / settings_.eos.c0; }
   // Pressures of the current state (for output): recomputed from the densities.
   void update_pressure();
+  // The toe-holding control's step (toe_hold_control.hpp): the outflow buffers' new target depth and
+  // V*, both kept in the clock (and so in checkpoints).
+  void set_tailwater_control(double outflow_target_depth_m, double held_volume_m2);
 
  private:
   InteractionSummary interactions();

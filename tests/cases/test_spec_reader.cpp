@@ -353,7 +353,9 @@ TEST_CASE("Non-physical values are rejected with the allowed range", "[cases][sp
     CHECK_THAT(msg, Catch::Contains("spec.toml:" + std::to_string(line_of(text, "tailgate_height_m"))));
     CHECK_THAT(msg, Catch::Contains("sph.tailgate_height_m"));
     CHECK_THAT(msg, Catch::Contains("only used with outflow_condition = \"tailgate\""));
-    CHECK_NOTHROW(parse_study(replaced(valid_spec, "[[case]]",
+    // A tailgate holds a depth: with control = "fixed_depth" (hold_toe, the default, is refused).
+    const std::string fixed = replaced(valid_spec, "depth_m = 0.104", "depth_m = 0.104\ncontrol = \"fixed_depth\"");
+    CHECK_NOTHROW(parse_study(replaced(fixed, "[[case]]",
                                        "[sph]\noutflow_condition = \"tailgate\"\ntailgate_height_m = 0.03\n\n[[case]]"),
                               "spec.toml", "."));
     const auto negative = rejection(replaced(valid_spec, "[[case]]",
@@ -365,7 +367,8 @@ TEST_CASE("Non-physical values are rejected with the allowed range", "[cases][sp
     const auto msg = rejection(text);
     CHECK_THAT(msg, Catch::Contains("spec.toml:" + std::to_string(line_of(text, "outflow_level_time_s"))));
     CHECK_THAT(msg, Catch::Contains("only used with outflow_level_reference = \"downstream_section\""));
-    CHECK_NOTHROW(parse_study(replaced(valid_spec, "[[case]]",
+    const std::string fixed = replaced(valid_spec, "depth_m = 0.104", "depth_m = 0.104\ncontrol = \"fixed_depth\"");
+    CHECK_NOTHROW(parse_study(replaced(fixed, "[[case]]",
                                        "[sph]\noutflow_level_reference = \"downstream_section\"\noutflow_level_time_s = 2.0\n\n[[case]]"),
                               "spec.toml", "."));
     CHECK_THAT(rejection(replaced(valid_spec, "[[case]]",
@@ -726,47 +729,69 @@ TEST_CASE("The viscous wall condition is no_slip, free_slip or wall_function, wi
   CHECK(parse_study(text, "spec.toml", ".").cases[0].sph.viscous_wall_condition == "no_slip");
 }
 
-TEST_CASE("The VOF tailwater control is none or hold_toe, its numbers only with hold_toe, on stilling basins", "[cases][spec]") {
-  const auto with = [](const std::string& lines) { return replaced(valid_spec, "[[case]]", "[vof]\n" + lines + "\n\n[[case]]"); };
-  const Study plain = parse_study(with(""), "spec.toml", ".");
-  CHECK(plain.cases[0].vof.tailwater_control == "none");
-  const Study s = parse_study(with("tailwater_control = \"hold_toe\"\ntailwater_control_interval_s = 1.0\n"
-                                   "volume_hold_time_s = 2.0\ntoe_hold_time_s = 8.0"),
-                              "spec.toml", ".");
-  CHECK(s.cases[0].vof.tailwater_control == "hold_toe");
-  const Study again = resolved_reload(s, "tailwater");
-  CHECK(again.cases[0].vof.tailwater_control == "hold_toe");
+TEST_CASE("The tailwater control is hold_toe by default or fixed_depth in case.tailwater for both solvers", "[cases][spec]") {
+  const auto tail = [](const std::string& lines) { return replaced(valid_spec, "depth_m = 0.104", "depth_m = 0.104\n" + lines); };
+  const auto vof = [](const std::string& text, const std::string& lines) {
+    return replaced(text, "[[case]]", "[vof]\n" + lines + "\n\n[[case]]");
+  };
+  // The default: the flume's protocol; the VOF legs 0.5 s (the outputs come every 0.05 s).
+  const Study plain = parse_study(valid_spec, "spec.toml", ".");
+  REQUIRE(plain.cases[0].stilling_basin() != nullptr);
+  CHECK(plain.cases[0].stilling_basin()->control.mode == "hold_toe");
+  CHECK(plain.cases[0].holds_toe());
+  CHECK(plain.cases[0].stilling_basin()->control.volume_hold_time_s == 1.0);
+  CHECK(plain.cases[0].stilling_basin()->control.toe_hold_time_s == 5.0);
+  CHECK(plain.cases[0].vof.tailwater_control_interval_s == 0.5);
+  const Study again = resolved_reload(parse_study(vof(tail("volume_hold_time_s = 2.0\ntoe_hold_time_s = 8.0"),
+                                                      "tailwater_control_interval_s = 1.0"),
+                                                  "spec.toml", "."),
+                                      "tailwater");
+  CHECK(again.cases[0].holds_toe());
   CHECK(again.cases[0].vof.tailwater_control_interval_s == 1.0);
-  CHECK(again.cases[0].vof.volume_hold_time_s == 2.0);
-  CHECK(again.cases[0].vof.toe_hold_time_s == 8.0);
-  CHECK(resolved_reload(plain, "no_tailwater").cases[0].vof.tailwater_control == "none");
-  CHECK_THAT(rejection(with("tailwater_control = \"tailgate\"")),
-             Catch::Contains("tailwater_control") && Catch::Contains("\"none\"") && Catch::Contains("\"hold_toe\""));
-  CHECK_THAT(rejection(with("toe_hold_time_s = 5")),
-             Catch::Contains("vof.toe_hold_time_s is only used with tailwater_control = \"hold_toe\" (here \"none\")"));
-  CHECK_THAT(rejection(with("tailwater_control = \"hold_toe\"\ntoe_hold_time_s = 0")),
-             Catch::Contains("vof.toe_hold_time_s = 0 is out of range"));
-  CHECK_THAT(rejection(with("tailwater_control = \"hold_toe\"\nvolume_hold_time_s = 0.2")),
-             Catch::Contains("volume_hold_time_s") && Catch::Contains("must be >= tailwater_control_interval_s (0.5 s)"));
+  CHECK(again.cases[0].stilling_basin()->control.volume_hold_time_s == 2.0);
+  CHECK(again.cases[0].stilling_basin()->control.toe_hold_time_s == 8.0);
+  const Study fixed = resolved_reload(parse_study(tail("control = \"fixed_depth\""), "spec.toml", "."), "fixed");
+  CHECK(fixed.cases[0].stilling_basin()->control.mode == "fixed_depth");
+  CHECK(!fixed.cases[0].holds_toe());
+  // A short run: the legs default to the whole outputs that fit it (0.2 s of a 0.2-s run).
+  CHECK(parse_study(replaced(valid_spec, "end_time_s = 10.0\naverage_start_s = 6.0", "end_time_s = 0.2\naverage_start_s = 0.1"), "spec.toml", ".")
+            .cases[0]
+            .vof.tailwater_control_interval_s == Approx(0.2).epsilon(1e-12));
+  CHECK_THAT(rejection(tail("control = \"tailgate\"")),
+             Catch::Contains("tailwater.control") && Catch::Contains("\"hold_toe\"") && Catch::Contains("\"fixed_depth\""));
+  CHECK_THAT(rejection(tail("control = \"fixed_depth\"\ntoe_hold_time_s = 5")),
+             Catch::Contains("tailwater.toe_hold_time_s is only used with control = \"hold_toe\" (here \"fixed_depth\")"));
+  CHECK_THAT(rejection(tail("toe_hold_time_s = 0")), Catch::Contains("tailwater.toe_hold_time_s = 0 is out of range"));
+  CHECK_THAT(rejection(tail("volume_hold_time_s = 2000")), Catch::Contains("tailwater.volume_hold_time_s = 2000 is out of range"));
+  CHECK_THAT(rejection(tail("volume_hold_time_s = 0.2")),
+             Catch::Contains("tailwater.volume_hold_time_s is out of range") &&
+                 Catch::Contains("must be >= the VOF legs' length [vof] tailwater_control_interval_s (0.5 s)"));
   // A toe term faster than one leg (1e-300 s made a gain of 1e299: the outlet flipped between its clamps).
-  CHECK_THAT(rejection(with("tailwater_control = \"hold_toe\"\ntoe_hold_time_s = 1e-300")),
-             Catch::Contains("vof.toe_hold_time_s is out of range: toe_hold_time_s (1e-300 s) must be >= "
-                             "tailwater_control_interval_s (0.5 s)"));
+  CHECK_THAT(rejection(tail("toe_hold_time_s = 1e-300")),
+             Catch::Contains("toe_hold_time_s (1e-300 s) must be >= the VOF legs' length"));
+  // The old [vof] keys name where the control went.
+  CHECK_THAT(rejection(vof(valid_spec, "tailwater_control = \"hold_toe\"")),
+             Catch::Contains("vof.tailwater_control is no [vof] setting") && Catch::Contains("[case.tailwater] control"));
+  CHECK_THAT(rejection(vof(valid_spec, "toe_hold_time_s = 5")), Catch::Contains("vof.toe_hold_time_s is no [vof] setting"));
   // Legs longer than the run: the control would never act.
-  CHECK_THAT(rejection(with("tailwater_control = \"hold_toe\"\ntailwater_control_interval_s = 20\n"
-                            "volume_hold_time_s = 20\ntoe_hold_time_s = 20")),
+  CHECK_THAT(rejection(vof(tail("volume_hold_time_s = 20\ntoe_hold_time_s = 20"), "tailwater_control_interval_s = 20")),
              Catch::Contains("tailwater_control_interval_s = 20 is out of range: must be <= run.end_time_s"));
   // The outputs come every 0.05 s (the default): the legs must end on them.
-  const std::string off_grid_text = with("tailwater_control = \"hold_toe\"\ntailwater_control_interval_s = 0.26\n"
-                                         "volume_hold_time_s = 1");
+  const std::string off_grid_text = vof(tail("volume_hold_time_s = 1"), "tailwater_control_interval_s = 0.26");
   const std::string off_grid = rejection(off_grid_text);
   CHECK_THAT(off_grid, Catch::Contains("tailwater_control_interval_s = 0.26 is out of range: must be a whole number of "
                                        "run.output_interval_s (0.05 s)"));
-  CHECK_THAT(off_grid, Catch::Contains("spec.toml:" + std::to_string(line_of(off_grid_text, "kind = \"stilling_basin\""))));
   // Set in [case.vof], the error names that line.
-  const std::string in_case = replaced(valid_spec, "[case.run]",
-                                       "[case.vof]\ntailwater_control = \"hold_toe\"\ntailwater_control_interval_s = 0.07\n[case.run]");
+  const std::string in_case = replaced(valid_spec, "[case.run]", "[case.vof]\ntailwater_control_interval_s = 0.07\n[case.run]");
   CHECK_THAT(rejection(in_case), Catch::Contains("spec.toml:" + std::to_string(line_of(in_case, "tailwater_control_interval_s")) +
                                                  ": case \"A\": vof.tailwater_control_interval_s = 0.07 is out of range"));
   CHECK(parse_study(replaced(in_case, "0.07", "0.2"), "spec.toml", ".").cases[0].vof.tailwater_control_interval_s == 0.2);
+  // What holds a depth cannot hold the toe: named at the SPH key, the way out given.
+  CHECK_THAT(rejection(replaced(valid_spec, "[case.run]", "[case.sph]\noutflow_level_reference = \"downstream_section\"\n[case.run]")),
+             Catch::Contains("sph.outflow_level_reference = \"downstream_section\"") &&
+                 Catch::Contains("control = \"fixed_depth\""));
+  CHECK_THAT(rejection(replaced(valid_spec, "[case.run]", "[case.sph]\noutflow_condition = \"tailgate\"\n[case.run]")),
+             Catch::Contains("sph.outflow_condition = \"tailgate\"") && Catch::Contains("control = \"fixed_depth\""));
+  CHECK(parse_study(tail("control = \"fixed_depth\"") + "", "spec.toml", ".").cases[0].sph.outflow_condition ==
+        "hydrostatic_level");
 }

@@ -190,10 +190,12 @@ TEST_CASE("compare_case_directory on a synthetic jump gives both methods with me
   CHECK(c.surface.rms_m < 0.002);
   CHECK(std::abs(row(c, "eta").sph - row(c, "eta").vof) < 0.2);
   CHECK(row(c, "eta").experiment == Approx(48.43));
-  // The console summary: both methods, with the experiment's values in brackets.
+  // The console summary: both methods, with the experiment's values in brackets and Bélanger's y2* in
+  // braces; run A holds its toe (the default protocol): the toe imposed, y2 and eta predicted.
   CHECK_THAT(log.str(), Catch::Contains("summary over [6, 10] s (experiment in brackets):\nsph: toe ") &&
-                            Catch::Contains("\nvof: toe ") && Catch::Contains("[48.43], Lj ") &&
-                            Catch::Contains(" m [0.104], eta "));
+                            Catch::Contains("\nvof: toe ") && Catch::Contains("% (predicted) [48.43], Lj ") &&
+                            Catch::Contains(" m (predicted) [0.104] {y2* 0.1318, y2/y2* 0.789") &&
+                            Catch::Contains(" m (imposed)"));
 
   // Outputs.
   for (const char* f : {"comparison.json", "report.md", "report.html", "csv/sections.csv", "csv/profiles.csv",
@@ -495,6 +497,9 @@ TEST_CASE("An unreadable frame is skipped and reported and the other frames are 
 TEST_CASE("The VOF water balance is noted from the discharge samples, and a damaged sample file costs the note only",
           "[compare][case]") {
   RunFixture fx;
+  // Run A with its outlet holding the tailwater (control = "fixed_depth"): no tailgate log is this run's.
+  for (auto& c : fx.study.cases)
+    if (c.id == "A") std::get<cases::StillingBasinCase>(c.data).control.mode = "fixed_depth";
   fx.write_vof(176, 30, {"6", "8", "10"});
   const double q = fx.jump.y1 * fx.jump.u1;
   const double thickness = fx.c->resolutions.at("quick").vof_cell_size_bed_m;  // the 2D mesh's span
@@ -527,9 +532,9 @@ TEST_CASE("The VOF water balance is noted from the discharge samples, and a dama
   CHECK(std::isfinite(row(c, "eta").vof));
   CHECK_THAT(balance_note(c), Catch::StartsWith("water balance unavailable") &&
                                   Catch::Contains("discharge_outlet/0/surfaceFieldValue.dat:5"));
-  // A tailgate log left in a case run without the control (tailwater_control = "none") is not this
+  // A tailgate log left in a case run without the control (control = "fixed_depth") is not this
   // run's: no tailgate note, whatever it holds.
-  REQUIRE(fx.c->vof.tailwater_control == "none");
+  REQUIRE(!fx.c->holds_toe());
   std::ofstream(fx.run() / "vof" / "tailwater_control.csv")
       << "time_s,toe_x_m,toe_outputs,water_volume_m2,volume_target_m2,outlet_mean_velocity_m_s\n8,0.3,5,0.3,0.3,0.4\n";
   c = compare_case_directory(fx.run(), options, log);

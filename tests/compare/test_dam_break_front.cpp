@@ -65,7 +65,7 @@ TEST_CASE("a front that leads by the gate's opening time compares exactly in the
   CHECK(unshifted.mean_abs > 0.1);
 }
 
-TEST_CASE("a front ahead by a constant distance gives that distance over L; the wall and the trace's end drop points",
+TEST_CASE("a front ahead by a constant distance gives that distance over L and the wall and the trace's end drop points",
           "[compare][dam_break]") {
   // Ahead by 0.15 m on L = 0.5 m: |dx| / L = 0.3 at every point; the measured times scale with
   // sqrt(0.5), and the trace moved by that scale's shift compares every point it reaches.

@@ -146,7 +146,7 @@ TEST_CASE("The experiment's bed force from y1, U1 and the measured y2", "[compar
   MeasuredReference lab;
   lab.sequent_depth_m = 0.145;
   const auto bed_row = [](const MeasuredReference& reference) {
-    return metric_row(metric_table(nullptr, nullptr, reference, 0.0254, 3.0, 9.81), "bed_force_fraction");
+    return metric_row(metric_table(nullptr, nullptr, reference, 0.0254, 3.0, 9.81, true), "bed_force_fraction");
   };
   const MetricRow bed = bed_row(lab);
   CHECK(bed.experiment == Approx(38.2252).margin(1e-4));
@@ -165,11 +165,39 @@ TEST_CASE("The smooth-bed column of the eta rows is Belanger's theory, not the s
   // E2* = 0.203556 + 0.0762^2 / (19.62 0.203556^2) = 0.210699 m, eta* = (E1 - E2*)/E1 = 56.4776 %.
   MeasuredReference lab;
   lab.eta_smooth_percent = 56.0;  // a listed value, rounded differently: not what the column holds
-  const auto rows = metric_table(nullptr, nullptr, lab, 0.0254, 3.0, 9.81);
+  const auto rows = metric_table(nullptr, nullptr, lab, 0.0254, 3.0, 9.81, true);
   for (const char* quantity : {"eta", "eta_alpha1", "eta_crest_depth"}) {
     INFO(quantity);
     CHECK(metric_row(rows, quantity).smooth_theory == Approx(56.4776).margin(1e-3));
   }
+}
+
+TEST_CASE("The metric table labels what the set-up held and sets the inputs-only values beside", "[compare][metrics]") {
+  // Run B: y1 = 25.4 mm, U1 = 3.0 m/s, y2* = 0.203556 m (hand value above), measured y2 = 0.145 m:
+  // the bed effect y2/y2* = 0.712334 in the flume; an SPH y2 of 0.15 m gives 0.736898.
+  JumpMetrics sph;
+  sph.sequent_depth_m = 0.15;
+  sph.toe_x_m = 0.2;
+  MeasuredReference lab;
+  lab.sequent_depth_m = 0.145;
+  const auto held = metric_table(&sph, nullptr, lab, 0.0254, 3.0, 9.81, true);
+  CHECK(metric_row(held, "sequent_depth").smooth_theory == Approx(0.203556).margin(1e-6));
+  CHECK(metric_row(held, "bed_effect").experiment == Approx(0.712334).margin(1e-6));
+  CHECK(metric_row(held, "bed_effect").sph == Approx(0.736898).margin(1e-6));
+  CHECK(metric_row(held, "bed_effect").smooth_theory == 1.0);
+  // Under the toe-holding control the toe is imposed and y2, eta and the bed force are predicted.
+  CHECK(metric_row(held, "toe_position").status == "imposed");
+  CHECK(metric_row(held, "toe_mean_of_frames").status == "imposed");
+  for (const char* q : {"sequent_depth", "bed_effect", "eta", "eta_alpha1", "eta_crest_depth", "bed_force_fraction",
+                        "jump_length", "roller_length", "toe_std", "toe_trend"})
+    CHECK(metric_row(held, q).status == "predicted");
+  CHECK(metric_row(held, "upstream_depth").status == "input");
+  // With the outlet holding a depth it is the other way round (the lengths stay predictions).
+  const auto fixed = metric_table(&sph, nullptr, lab, 0.0254, 3.0, 9.81, false);
+  for (const char* q : {"sequent_depth", "bed_effect", "eta", "eta_alpha1", "eta_crest_depth", "bed_force_fraction"})
+    CHECK(metric_row(fixed, q).status == "imposed");
+  for (const char* q : {"toe_position", "toe_mean_of_frames", "jump_length", "roller_length"})
+    CHECK(metric_row(fixed, q).status == "predicted");
 }
 
 TEST_CASE("The metric table reports both toe positions: of the mean surface and the frames' mean", "[compare][metrics]") {
@@ -177,7 +205,7 @@ TEST_CASE("The metric table reports both toe positions: of the mean surface and 
   sph.toe_x_m = 0.17;                 // an oscillating toe: the mean surface rises upstream of
   sph.toe_mean_of_frames_x_m = 0.21;  // the frames' mean toe
   sph.toe_std_m = 0.04;
-  const auto rows = metric_table(&sph, nullptr, MeasuredReference{}, 0.0254, 2.0, 9.81);
+  const auto rows = metric_table(&sph, nullptr, MeasuredReference{}, 0.0254, 2.0, 9.81, true);
   const auto value = [&rows](const std::string& quantity) { return metric_row(rows, quantity).sph; };
   CHECK(value("toe_position") == 0.17);
   CHECK(value("toe_mean_of_frames") == 0.21);
@@ -287,7 +315,7 @@ TEST_CASE("A mean surface cresting above y2 over the jump is reported as a stand
   CHECK(low.surface_peak_m == Approx(1.15 * y2).margin(1e-9));
   CHECK(wave_notes(low) == 0);
   // The metric table carries the peak.
-  const auto rows = metric_table(&wave, nullptr, MeasuredReference{}, y1, u1, g);
+  const auto rows = metric_table(&wave, nullptr, MeasuredReference{}, y1, u1, g, true);
   CHECK(metric_row(rows, "surface_peak").sph == Approx(1.5 * y2).margin(1e-9));
 }
 

@@ -8,8 +8,8 @@
 namespace hydrojump::reference::testing {
 
 // A short corrugated stilling basin (4 wavelengths of S = 68 mm, T = 13 mm; y1 = 25.4 mm, U1 = 2 m/s,
-// tailwater 60 mm) with three explicit sections. `extra_vof` is appended to the [vof] table,
-// `run` replaces the [case.run] table body.
+// tailwater 60 mm held at the outlet: control = "fixed_depth") with three explicit sections.
+// `extra_vof` is appended to the [vof] table.
 inline std::string basin_spec(const std::string& extra_vof = "", double end_time_s = 0.02,
                               double output_interval_s = 0.01, const std::string& profile = "sinusoidal",
                               double cell_bed_m = 0.005, double cell_bulk_m = 0.01,
@@ -28,7 +28,7 @@ inline std::string basin_spec(const std::string& extra_vof = "", double end_time
          "\naverage_start_s = 0.0\naverage_end_s = " + std::to_string(end_time_s) + "\n"
          "[case.bed]\n" + bed +
          "[case.inflow]\ndepth_m = 0.0254\nvelocity_m_s = 2.0\n"
-         "[case.tailwater]\ndepth_m = 0.06\n"
+         "[case.tailwater]\ndepth_m = 0.06\ncontrol = \"fixed_depth\"\n"
          "[case.domain]\nupstream_length_m = 0.1\nbasin_length_m = 0.272\ndownstream_length_m = 0.1\n"
          "air_height_m = " + std::to_string(air_height_m) + "\n"
          "[[case.sections]]\nname = \"up\"\nx_m = 0.05\nrole = \"upstream\"\n"
@@ -36,13 +36,20 @@ inline std::string basin_spec(const std::string& extra_vof = "", double end_time
          "[[case.sections]]\nname = \"down\"\nx_m = 0.42\nrole = \"downstream\"\n";
 }
 
+// `spec` (a basin_spec) under [case.tailwater] control = "hold_toe", with `extra_tailwater` (e.g.
+// toe_hold_time_s) added to that table.
+inline std::string with_hold_toe(std::string spec, const std::string& extra_tailwater = "") {
+  const std::string fixed = "control = \"fixed_depth\"\n";
+  spec.replace(spec.find(fixed), fixed.size(), "control = \"hold_toe\"\n" + extra_tailwater);
+  return spec;
+}
+
 // basin_spec on a smooth bed, to 0.02 s with outputs every 0.01 s, under the "hold_toe" tailwater
-// control with a leg per output and the volume held over 0.02 s; `extra_vof` adds [vof] keys
-// (e.g. toe_hold_time_s).
-inline std::string tiny_hold_toe_spec(const std::string& extra_vof = "") {
-  return basin_spec("tailwater_control = \"hold_toe\"\ntailwater_control_interval_s = 0.01\n"
-                    "volume_hold_time_s = 0.02\n" + extra_vof,
-                    0.02, 0.01, "smooth");
+// control with a leg per output and the volume held over 0.02 s; `extra_tailwater` adds
+// [case.tailwater] keys (e.g. toe_hold_time_s).
+inline std::string tiny_hold_toe_spec(const std::string& extra_tailwater = "") {
+  return with_hold_toe(basin_spec("tailwater_control_interval_s = 0.01\n", 0.02, 0.01, "smooth"),
+                       "volume_hold_time_s = 0.02\n" + extra_tailwater + "\n");
 }
 
 // A small dam break: column 0.1 m x 0.2 m in a tank 0.4 m x 0.3 m, cells of 1 cm, two gauges.

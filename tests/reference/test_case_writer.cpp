@@ -564,6 +564,6 @@ TEST_CASE("the generated Allrun refuses a bad -np, earlier results and a tailgat
   reference::write_vof_case(held, held.cases.front(), "quick", held_dir);
   const auto [held_status, held_out] = allrun(held_dir, {}, "held");
   CHECK(held_status == 1);
-  CHECK_THAT(held_out, Catch::Contains("vof.tailwater_control = \"hold_toe\"") &&
-                           Catch::Contains("hydrojump vof <this directory>") && Catch::Contains("tailwater_control = \"none\""));
+  CHECK_THAT(held_out, Catch::Contains("[case.tailwater] control = \"hold_toe\"") &&
+                           Catch::Contains("hydrojump vof <this directory>") && Catch::Contains("control = \"fixed_depth\""));
 }

@@ -33,6 +33,7 @@ namespace fs = std::filesystem;
 using namespace hydrojump;
 using reference::testing::basin_spec;
 using reference::testing::dam_break_spec;
+using reference::testing::with_hold_toe;
 using reference::testing::tiny_hold_toe_spec;
 using reference::testing::parse;
 using hydrojump::testing::TempDir;
@@ -474,9 +475,8 @@ TEST_CASE("the tailwater control resumed between two control times integrates fr
           "[reference][openfoam][tailwater]") {
   require_openfoam();
   // Outputs every 5 ms, a control step every 10 ms.
-  const std::string spec = basin_spec("tailwater_control = \"hold_toe\"\ntailwater_control_interval_s = 0.01\n"
-                                      "volume_hold_time_s = 0.02\ntoe_hold_time_s = 5\n",
-                                      0.02, 0.005, "smooth");
+  const std::string spec = with_hold_toe(basin_spec("tailwater_control_interval_s = 0.01\n", 0.02, 0.005, "smooth"),
+                                         "volume_hold_time_s = 0.02\ntoe_hold_time_s = 5\n");
   const TempDir tmp("openfoam-tailwater-resume");
   const fs::path dir = generate(spec, tmp.path() / "case");
   std::ostringstream out;

@@ -1,0 +1,51 @@
+#include "sph/toe_hold_control.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "cases/hydraulics.hpp"
+
+namespace hydrojump::sph {
+
+ToeHoldLaw ToeHoldLaw::from_case(const cases::Case& c, const cases::CaseGeometry& geometry, double gravity_m_s2,
+                                  double rho0) {
+  if (!c.holds_toe() || geometry.inflows.empty() || geometry.outflows.empty())
+    throw std::invalid_argument("case \"" + c.id + "\": the toe-holding tailwater control needs a stilling basin with an "
+                                "inflow, an outflow and [case.tailwater] control = \"hold_toe\"");
+  const cases::StillingBasinCase& b = *c.stilling_basin();
+  ToeHoldLaw law;
+  law.inflow_depth_m = geometry.inflows.front().depth_m;
+  law.tailwater_depth_m = geometry.outflows.front().tailwater_depth_m;
+  law.target_toe_x_m = geometry.expected_toe_x_m;
+  law.outlet_x_m = geometry.x_max_m;
+  const cases::InflowBoundary& in = geometry.inflows.front();
+  law.outlet_speeds_m_s = cases::unit_discharge(in.depth_m, in.velocity_m_s) / law.tailwater_depth_m +
+                          std::sqrt(gravity_m_s2 * law.tailwater_depth_m);
+  law.interval_s = c.run.output_interval_s;
+  law.volume_hold_time_s = b.control.volume_hold_time_s;
+  law.toe_hold_time_s = b.control.toe_hold_time_s;
+  law.rho0 = rho0;
+  if (!(law.outlet_x_m > law.target_toe_x_m) || !(law.tailwater_depth_m > law.inflow_depth_m))
+    throw std::invalid_argument("case \"" + c.id + "\": the toe-holding control needs the basin start upstream of the "
+                                "outlet and a tailwater deeper than the inflow");
+  return law;
+}
+
+ToeHoldState toe_hold_step(const ToeHoldLaw& law, const ToeHoldState& previous, double water_mass_kg_per_m,
+                           double toe_x_m) {
+  const double volume = water_mass_kg_per_m / law.rho0;
+  const double y2 = law.tailwater_depth_m;
+  if (previous.volume_target_m2 == 0.0) return {volume, y2};  // V*(0) = V(0)
+  const double toe = std::isfinite(toe_x_m) ? toe_x_m : law.outlet_x_m;
+  ToeHoldState next;
+  // V*(n) = V*(n-1) + (y2* - y1) / T_x * (x_toe - x_target) * dt
+  next.volume_target_m2 = previous.volume_target_m2 +
+                          (y2 - law.inflow_depth_m) / law.toe_hold_time_s * (toe - law.target_toe_x_m) * law.interval_s;
+  // y_t(n) = y2* - (V - V*) / (T_V (U_t + c_t)), within [y2*/2, 3 y2*/2]
+  const double depth = y2 - (volume - next.volume_target_m2) / (law.volume_hold_time_s * law.outlet_speeds_m_s);
+  next.outlet_depth_m = std::clamp(depth, 0.5 * y2, 1.5 * y2);
+  return next;
+}
+
+}  // namespace hydrojump::sph

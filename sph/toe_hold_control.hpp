@@ -1,0 +1,82 @@
+// Holding a hydraulic jump's toe at the basin start with the tailwater, as a laboratory tailgate does
+// ([case.tailwater] control = "hold_toe", the default for stilling basins): the SPH twin of the VOF
+// tailgate (reference/tailwater_control.hpp). Ead & Rajaratnam (2002) set their tailgate so that the
+// toe stood at the start of the corrugated bed, then measured y2: the tailwater is a result, not an
+// input.
+//
+// Why. An outlet that holds a fixed depth leaves the basin's water volume free, and on a smooth bed
+// the jump has no preferred place: a tailwater 1 % off Bélanger's depth moves the toe at about 1 % of
+// U1. A basin that keeps its water volume holds the jump: moved downstream by dx, it leaves
+// (y2 - y1) dx of water behind, which raises the level behind the roller and pushes it back. So the
+// control holds the volume, and moves that volume slowly to bring the toe to the target. It acts at
+// every output time t_n (spacing dt = run.output_interval_s) on the outflow buffers' target depth y_t
+// (open_boundaries.hpp):
+//
+//   V*(n)  = V*(n-1) + (y2* - y1) / T_x * (x_toe(n) - x_target) * dt          (more water when the toe
+//                                                                             lies downstream)
+//   y_t(n) = clamp( y2* - (V(n) - V*(n)) / (T_V (U_t + c_t)),  y2*/2,  3 y2*/2 )   (volume)
+//
+// V(n) the water in the domain per unit width (m^2: the fluid and outflow-buffer mass over rho0, the
+// run monitor's fluid_mass), x_toe(n) the run monitor's toe at t_n (cases/jump_toe.hpp; no toe counts
+// as a toe at the outlet: the jump has left the basin), x_target the basin start, y2* the case's
+// tailwater depth (the initial level), U_t = q / y2* and c_t = sqrt(g y2*). Why U_t + c_t: the
+// absorbing outlet lets out h u_b with u_b = q/y_t + 2 (sqrt(g h) - sqrt(g y_t)), so at h = y_t a target
+// lowered by delta lets out (U_t + c_t) delta more: the law drains a volume error V - V* at the rate
+// (V - V*) / T_V, as the VOF tailgate's Umean = (q + (V - V*)/T_V) / y2* does. The toe term moves the
+// toe to the target over about T_x. V*(0) = V(0) at the first output. At steady state the toe stands
+// at x_target and the outlet lets out q: the tailwater then is the depth the jump needs, a prediction
+// the comparator sets beside Bélanger's and the laboratory's.
+//
+// V* and y_t are saved in checkpoints (SolverClock), and the law reads only the current output, so a
+// resumed run continues exactly. The control acts only at outputs on the output grid (not at the end
+// state of a run stopped between two), which an extended run drops.
+//
+// Usage ([case.tailwater])
+//   | key                 | values / range | default    | meaning                                    |
+//   |---------------------|----------------|------------|--------------------------------------------|
+//   | control             | "hold_toe",    | "hold_toe" | this control, or the outlet holds depth_m  |
+//   |                     | "fixed_depth"  |            |                                            |
+//   | volume_hold_time_s  | (0, 1000] s    | 1.0        | T_V                                        |
+//   | toe_hold_time_s     | (0, 1000] s    | 5.0        | T_x                                        |
+// SPH needs an outflow buffer ("hydrostatic_level" or "absorbing"), not a tailgate weir or a level held
+// at the downstream section (those hold a depth: give control = "fixed_depth").
+// Example:
+//   [case.tailwater]
+//   rule = "belanger"        # the initial level
+//   control = "hold_toe"
+#pragma once
+
+#include <limits>
+
+#include "cases/geometry.hpp"
+#include "cases/spec.hpp"
+
+namespace hydrojump::sph {
+
+struct ToeHoldLaw {
+  double inflow_depth_m = 0.0;       // y1
+  double tailwater_depth_m = 0.0;    // y2*, the initial level
+  double target_toe_x_m = 0.0;       // x_target, the basin start
+  double outlet_x_m = 0.0;           // the toe of an output without one
+  double outlet_speeds_m_s = 0.0;    // U_t + c_t = q / y2* + sqrt(g y2*)
+  double interval_s = 0.0;           // dt, the output interval
+  double volume_hold_time_s = 1.0;   // T_V
+  double toe_hold_time_s = 5.0;      // T_x
+  double rho0 = 1000.0;              // V = mass / rho0
+
+  // The law of a stilling basin with control = "hold_toe" (throws std::invalid_argument otherwise).
+  static ToeHoldLaw from_case(const cases::Case& c, const cases::CaseGeometry& geometry, double gravity_m_s2,
+                              double rho0);
+};
+
+struct ToeHoldState {
+  double volume_target_m2 = 0.0;     // V*; 0: not started (set to V at the first output)
+  double outlet_depth_m = 0.0;       // y_t (y2* until the first step)
+};
+
+// One control step at an output with the water mass `water_mass_kg_per_m` and the toe `toe_x_m` (NaN:
+// no toe): the new V* and y_t.
+ToeHoldState toe_hold_step(const ToeHoldLaw& law, const ToeHoldState& previous, double water_mass_kg_per_m,
+                           double toe_x_m);
+
+}  // namespace hydrojump::sph
