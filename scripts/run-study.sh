@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The main job: installs what is missing, builds, and runs the built-in study (the embedded
 # cases/ead2002.toml) at the quick resolution into ./study/, ending with study/study_report.md and the
-# plots. By default only its case A_smooth (SPH and OpenFOAM); a study file given first runs all its
-# cases unless --cases says otherwise. Arguments go to `hydrojump study`:
+# plots. By default its run A and A's smooth twin (SPH and OpenFOAM: what the corrugated bed does to
+# the jump); a study file given first runs all its cases unless --cases says otherwise. Arguments go to `hydrojump study`:
 #   bash scripts/run-study.sh --cases A,B,C           # three cases (--cases all: all ten, many hours)
 #   bash scripts/run-study.sh my_study.toml --resolution default --out runs/my_study
 # A first argument that is not an option is the study file; --resolution and --out replace the
@@ -24,8 +24,8 @@ for a in "$@"; do
   esac
   filtered+=("$a")
 done
-# The built-in study runs A_smooth unless told otherwise; a study file of the user's runs all its cases.
-[ "$has_cases" -eq 1 ] || [ "$spec" != default ] || filtered+=(--cases A_smooth)
+# The built-in study runs A and A_smooth unless told otherwise; a study file of the user's runs all its cases.
+[ "$has_cases" -eq 1 ] || [ "$spec" != default ] || filtered+=(--cases A,A_smooth)
 [ "$has_resolution" -eq 1 ] || filtered+=(--resolution quick)
 [ "$has_out" -eq 1 ] || filtered+=(--out study)
 export OMP_WAIT_POLICY="${OMP_WAIT_POLICY:-passive}"

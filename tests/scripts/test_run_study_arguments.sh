@@ -24,7 +24,7 @@ expect() {  # expect "<arguments of run-study.sh>" "<arguments hydrojump must re
     failures=$((failures + 1))
   fi
 }
-expect "" "study default --cases A_smooth --resolution quick --out study"
+expect "" "study default --cases A,A_smooth --resolution quick --out study"
 expect "--cases all" "study default --cases all --resolution quick --out study"
 expect "--cases=all --jobs 2" "study default --cases=all --jobs 2 --resolution quick --out study"
 expect "--cases A,B" "study default --cases A,B --resolution quick --out study"
@@ -32,7 +32,7 @@ expect "--cases=B" "study default --cases=B --resolution quick --out study"
 expect "my.toml --resolution default --out runs" "study my.toml --resolution default --out runs"
 expect "my.toml --cases B" "study my.toml --cases B --resolution quick --out study"
 expect "--out runs --cases all --np 2" "study default --out runs --cases all --np 2 --resolution quick"
-expect "-r default --methods sph" "study default -r default --methods sph --cases A_smooth --out study"
+expect "-r default --methods sph" "study default -r default --methods sph --cases A,A_smooth --out study"
 if [ "$failures" -ne 0 ]; then
   echo "$failures case(s) failed"
   exit 1
