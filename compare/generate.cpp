@@ -47,12 +47,14 @@ void print_study_summary(const cases::Study& study, std::ostream& out) {
   for (const auto& c : study.cases) {
     if (const auto* b = c.stilling_basin()) {
       if (!basin_header) {
-        out << "\n  stilling basins (q per unit width; E above the local floor; eta with the case's tailwater)\n";
+        out << "\n  stilling basins (q per unit width; E above the local floor; y2 m: the case's tailwater depth, "
+               "eta with it: the initial level under\n  control hold_toe, where the solvers predict y2; the held "
+               "depth under fixed_depth, where y2 and eta are imposed)\n";
         out << "  " << std::left << std::setw(id_width) << "case" << std::setw(12) << "bed" << std::right
             << std::setw(8) << "y1 m" << std::setw(8) << "U1 m/s" << std::setw(10) << "q m2/s"
             << std::setw(7) << "Fr1" << std::setw(9) << "y2* m" << std::setw(9) << "y2 m" << std::setw(9)
             << "E1 m" << std::setw(9) << "E2 m" << std::setw(9) << "eta %" << std::setw(11) << "eta* %"
-            << std::setw(11) << "lab eta %" << "\n";
+            << std::setw(11) << "lab eta %" << "  control" << "\n";
         basin_header = true;
       }
       const auto j = cases::jump_hydraulics(b->inflow_depth_m, b->inflow_velocity_m_s,
@@ -66,7 +68,8 @@ void print_study_summary(const cases::Study& study, std::ostream& out) {
           << std::setw(9) << fixed(j.belanger_y2_m, 3) << std::setw(9) << fixed(b->tailwater_depth_m, 3)
           << std::setw(9) << fixed(j.e1_m, 4) << std::setw(9) << fixed(j.e2_m, 4) << std::setw(9)
           << fixed(100 * j.eta, 2) << std::setw(11) << fixed(100 * j.eta_smooth, 2) << std::setw(11)
-          << (b->measured.eta_percent ? fixed(*b->measured.eta_percent, 2) : std::string("-")) << "\n";
+          << (b->measured.eta_percent ? fixed(*b->measured.eta_percent, 2) : std::string("-")) << "  "
+          << b->control.mode << "\n";
     }
   }
   for (const auto& c : study.cases) {

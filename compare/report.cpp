@@ -450,7 +450,9 @@ std::string write_report(const CaseComparison& c, const fs::path& out, bool plot
        << c.vof_cell_size_m << " m); averaging window " << c.window_start_s << "–" << c.window_end_s
        << " s; inflow y1 = " << c.inflow_depth_m << " m, U1 = " << c.inflow_velocity_m_s << " m/s (q = "
        << c.inflow_depth_m * c.inflow_velocity_m_s << " m²/s); tailwater " << c.tailwater_depth_m
-       << " m; Bélanger y2* = " << fix(c.belanger_y2_m, 4) << " m. Interpolation: " << c.interpolation
+       << (c.tailwater_control == "hold_toe" ? " m (the initial level: the outlet is steered to hold the toe)"
+                                              : " m (held at the outlet)")
+       << "; Bélanger y2* = " << fix(c.belanger_y2_m, 4) << " m. Interpolation: " << c.interpolation
        << ". hydrojump " << version_string << ".";
   d.para(info.str());
   std::vector<std::string> status;
@@ -484,7 +486,8 @@ std::string write_report(const CaseComparison& c, const fs::path& out, bool plot
       if (r.quantity == "eta") { sph = r.sph; vof = r.vof; }
     const double exp = c.lab.eta_percent.value_or(not_a_number);
     const double pub = c.lab.published_sph_eta_percent.value_or(not_a_number);
-    d.heading(3, "Energy dissipation rate η (%)");
+    d.heading(3, std::string("Energy dissipation rate η (%), ") +
+                     (c.tailwater_control == "hold_toe" ? "predicted" : "imposed with y2"));
     d.table({"smooth bed (theory)", "experiment", "published SPH", "this SPH", "this VOF", "SPH − exp.", "VOF − exp.",
              "SPH − published SPH"},
             {{fix(c.eta_smooth_theory_percent, 2), fix(exp, 2), fix(pub, 2), fix(sph, 2), fix(vof, 2),

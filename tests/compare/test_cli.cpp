@@ -284,7 +284,7 @@ TEST_CASE("hydrojump check prints run A's derived hydraulics", "[compare][integr
   std::istringstream fields(row_a);
   std::vector<std::string> f;
   for (std::string x; fields >> x;) f.push_back(x);
-  REQUIRE(f.size() == 13u);
+  REQUIRE(f.size() == 14u);
   CHECK(f[2] == "0.0254");
   CHECK(f[4] == "0.0508");
   CHECK(f[5] == "4.01");
@@ -294,6 +294,7 @@ TEST_CASE("hydrojump check prints run A's derived hydraulics", "[compare][integr
   CHECK(f[10] == "49.34");
   CHECK(f[11] == "39.22");
   CHECK(f[12] == "48.43");  // the experiment's, from the spec
+  CHECK(f[13] == "hold_toe");  // the flume's protocol, the default: y2 is predicted, 0.104 m the initial level
 }
 
 // Exit statuses: 0 for --help and --version, 2 for a command-line mistake (as for an invalid spec),
