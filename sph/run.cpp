@@ -146,8 +146,7 @@ class RunState {
   void steer_tailwater() {
     if (!basin_ || !o_.toe_hold || basin_->samples().empty()) return;
     const BasinSample& s = basin_->samples().back();
-    const ToeHoldState next = toe_hold_step(
-        *o_.toe_hold, {solver_.clock().held_volume_m2, solver_.clock().outflow_target_depth}, s.fluid_mass, s.toe_x);
+    const ToeHoldState next = toe_hold_step(*o_.toe_hold, solver_.clock().held_volume_m2, s.fluid_mass, s.toe_x);
     solver_.set_tailwater_control(next.outlet_depth_m, next.volume_target_m2);
   }
 

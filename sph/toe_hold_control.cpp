@@ -32,15 +32,15 @@ ToeHoldLaw ToeHoldLaw::from_case(const cases::Case& c, const cases::CaseGeometry
   return law;
 }
 
-ToeHoldState toe_hold_step(const ToeHoldLaw& law, const ToeHoldState& previous, double water_mass_kg_per_m,
+ToeHoldState toe_hold_step(const ToeHoldLaw& law, double volume_target_m2, double water_mass_kg_per_m,
                            double toe_x_m) {
   const double volume = water_mass_kg_per_m / law.rho0;
   const double y2 = law.tailwater_depth_m;
-  if (previous.volume_target_m2 == 0.0) return {volume, y2};  // V*(0) = V(0)
+  if (volume_target_m2 == 0.0) return {volume, y2};  // V*(0) = V(0)
   const double toe = std::isfinite(toe_x_m) ? toe_x_m : law.outlet_x_m;
   ToeHoldState next;
   // V*(n) = V*(n-1) + (y2* - y1) / T_x * (x_toe - x_target) * dt
-  next.volume_target_m2 = previous.volume_target_m2 +
+  next.volume_target_m2 = volume_target_m2 +
                           (y2 - law.inflow_depth_m) / law.toe_hold_time_s * (toe - law.target_toe_x_m) * law.interval_s;
   // y_t(n) = y2* - (V - V*) / (T_V (U_t + c_t)), within [y2*/2, 3 y2*/2]
   const double depth = y2 - (volume - next.volume_target_m2) / (law.volume_hold_time_s * law.outlet_speeds_m_s);

@@ -75,8 +75,9 @@ struct ToeHoldState {
 };
 
 // One control step at an output with the water mass `water_mass_kg_per_m` and the toe `toe_x_m` (NaN:
-// no toe): the new V* and y_t.
-ToeHoldState toe_hold_step(const ToeHoldLaw& law, const ToeHoldState& previous, double water_mass_kg_per_m,
+// no toe), from the previous V* (0: the first output): the new V* and y_t (y_t depends on V* and V
+// alone, not on its previous value).
+ToeHoldState toe_hold_step(const ToeHoldLaw& law, double volume_target_m2, double water_mass_kg_per_m,
                            double toe_x_m);
 
 }  // namespace hydrojump::sph

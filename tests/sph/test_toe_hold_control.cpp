@@ -101,24 +101,24 @@ double mean_toe(const RunOptions& o, const Solver& solver, double t0, double t1)
 TEST_CASE("the toe-holding law by hand: the first output, a toe downstream, no toe, the clamps", "[sph][toe_hold]") {
   const ToeHoldLaw law = hand_law();
   const double mass = 120.0;  // kg/m: V = 0.12 m^2
-  const ToeHoldState first = toe_hold_step(law, {0.0, 0.0}, mass, 0.35);
+  const ToeHoldState first = toe_hold_step(law, 0.0, mass, 0.35);
   CHECK(first.volume_target_m2 == Approx(0.12).epsilon(1e-15));
   CHECK(first.outlet_depth_m == 0.132);
   // The toe 0.1 m downstream of the target: V* += (0.132 - 0.0254) / 5 * 0.1 * 0.1 = 2.132e-4 m^2,
   // and with V unchanged the outlet rises by that over T_V (U_t + c_t).
-  const ToeHoldState second = toe_hold_step(law, first, mass, 0.3);
+  const ToeHoldState second = toe_hold_step(law, first.volume_target_m2, mass, 0.3);
   const double dv = (0.132 - 0.0254) / 5.0 * 0.1 * 0.1;
   CHECK(second.volume_target_m2 - first.volume_target_m2 == Approx(dv).epsilon(1e-9));
   CHECK(second.outlet_depth_m == Approx(0.132 + dv / law.outlet_speeds_m_s).epsilon(1e-12));
   // More water than the target: the outlet drops below y2* to let it out.
-  const ToeHoldState drain = toe_hold_step(law, {0.12, 0.132}, mass + 1.0, 0.2);
+  const ToeHoldState drain = toe_hold_step(law, 0.12, mass + 1.0, 0.2);
   CHECK(drain.outlet_depth_m == Approx(0.132 - 0.001 / law.outlet_speeds_m_s).epsilon(1e-12));
   // No toe: the jump has left the basin, a toe at the outlet (0.8 m downstream).
-  const ToeHoldState gone = toe_hold_step(law, first, mass, std::numeric_limits<double>::quiet_NaN());
+  const ToeHoldState gone = toe_hold_step(law, first.volume_target_m2, mass, std::numeric_limits<double>::quiet_NaN());
   CHECK(gone.volume_target_m2 - first.volume_target_m2 == Approx(8.0 * dv).epsilon(1e-9));
   // The clamps: y2*/2 and 3 y2*/2.
-  CHECK(toe_hold_step(law, {0.12, 0.132}, mass + 1000.0, 0.2).outlet_depth_m == Approx(0.066));
-  CHECK(toe_hold_step(law, {0.12, 0.132}, mass - 110.0, 0.2).outlet_depth_m == Approx(0.198));
+  CHECK(toe_hold_step(law, 0.12, mass + 1000.0, 0.2).outlet_depth_m == Approx(0.066));
+  CHECK(toe_hold_step(law, 0.12, mass - 110.0, 0.2).outlet_depth_m == Approx(0.198));
   // The law of a case: its basin start and outlet; a fixed-depth case has none.
   const auto held = held_basin("hold_toe", 0.0, 1.0);
   const ToeHoldLaw from_case = ToeHoldLaw::from_case(held.spec, held.geometry, 9.81, 1000.0);
