@@ -35,6 +35,8 @@ struct SphSettings {
   double sps_smagorinsky_constant = 0.12;          // Cs
   double sps_blin_constant = 0.0066;               // CI
   double sps_mixing_length_m = 0.0;               // > 0: nu_t = l^2 |S| with this l instead of (Cs dx)
+  double sps_mixing_length_per_sequent_depth = 0.0; // > 0 (stilling basins): l = this * y2*, resolved per
+                                                    // case into sps_mixing_length_m (cases/case_rules.hpp)
   std::string sps_wall_distance = "kernel_support"; // with a mixing length: "kernel_support" | "whole_domain"
                                                     // (where d in l = min(l_m, kappa d) is measured; sph/wall_distance.hpp)
   std::string viscous_wall_condition = "no_slip";  // laminar_sps with mdbc: "no_slip" | "free_slip" | "wall_function"
@@ -115,6 +117,23 @@ struct RunSettings {
     const double by_outputs = output_interval_s * max_outputs_per_run;
     return by_outputs < max_end_time_s ? by_outputs : max_end_time_s;
   }
+};
+
+// [run] (study level) — the run of every stilling basin that has no [case.run], from its sloshing
+// period T_s = 2 L / sqrt(g y2*) (cases/case_rules.hpp):
+//   | key                       | default | meaning                                                |
+//   |---------------------------|---------|--------------------------------------------------------|
+//   | output_interval_s         | 0.1     | s between outputs                                      |
+//   | start_up_sloshing_periods | 2       | average_start = N_s T_s (start-up left out), [0.5, 100]|
+//   | window_sloshing_periods   | 1       | window (and run end) N_w T_s later, (0, 100]           |
+// Example:
+//   [run]
+//   start_up_sloshing_periods = 2.0
+//   window_sloshing_periods = 1.0
+struct RunRule {
+  double output_interval_s = 0.1;
+  double start_up_sloshing_periods = 2.0;
+  double window_sloshing_periods = 1.0;
 };
 
 // [[case.sections]]: a named x position where both results are compared (a vertical line from the
@@ -262,6 +281,7 @@ struct Study {
   std::string description;
   std::vector<std::string> citations;
   FluidProperties fluid;
+  std::optional<RunRule> run_rule;      // [run], when the file has one
   std::vector<Case> cases;
 
   const Case* find_case(const std::string& id) const;

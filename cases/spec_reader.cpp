@@ -13,6 +13,7 @@
 #include <toml++/toml.h>
 
 #include "cases/atomic_file.hpp"
+#include "cases/case_rules.hpp"
 #include "cases/csv_table.hpp"
 #include "cases/fingerprint.hpp"
 #include "cases/geometry.hpp"
@@ -355,10 +356,21 @@ void read_sph(TableReader& t, SphSettings& s) {
   s.artificial_viscosity_wall_factor = t.number_or("artificial_viscosity_wall_factor", s.artificial_viscosity_wall_factor, between(0.0, 1.0));
   s.sps_smagorinsky_constant = t.number_or("sps_smagorinsky_constant", s.sps_smagorinsky_constant, between(0.0, 1.0));
   s.sps_blin_constant = t.number_or("sps_blin_constant", s.sps_blin_constant, between(0.0, 1.0));
-  // A table that sets C_s without a mixing length means Smagorinsky's length: it drops an inherited l.
-  if (t.has("sps_smagorinsky_constant") && !t.has("sps_mixing_length_m")) s.sps_mixing_length_m = 0.0;
+  // The mixing length is given in metres or by the rule l = c_l y2* (cases/case_rules.hpp): a table that
+  // gives one drops the other it inherits; one that sets C_s alone means Smagorinsky's length.
+  constexpr const char* kRule = "sps_mixing_length_per_sequent_depth";
+  if (t.has("sps_mixing_length_m") && t.has(kRule))
+    t.fail_at(t.raw().get(kRule), kRule, "and sps_mixing_length_m are both given: set one (the rule gives l = c_l y2* per case)");
+  if (t.has("sps_smagorinsky_constant") && !t.has("sps_mixing_length_m") && !t.has(kRule)) {
+    s.sps_mixing_length_m = 0.0;
+    s.sps_mixing_length_per_sequent_depth = 0.0;
+  }
+  if (t.has("sps_mixing_length_m")) s.sps_mixing_length_per_sequent_depth = 0.0;
+  if (t.has(kRule)) s.sps_mixing_length_m = 0.0;
   s.sps_mixing_length_m = t.number_or("sps_mixing_length_m", s.sps_mixing_length_m,
                                       non_negative("m, 0: the Smagorinsky length sps_smagorinsky_constant dx", 1.0));
+  s.sps_mixing_length_per_sequent_depth = t.number_or(kRule, s.sps_mixing_length_per_sequent_depth,
+                                                      between(0.0, 1.0, "l / y2*, 0: no rule"));
   s.sps_wall_distance = t.choice("sps_wall_distance", s.sps_wall_distance, {"kernel_support", "whole_domain"});
   s.boundary = t.choice("boundary", s.boundary, {"dbc", "mdbc"});
   s.viscous_wall_condition = t.choice("viscous_wall_condition", s.viscous_wall_condition, {"no_slip", "free_slip", "wall_function"});
@@ -425,19 +437,22 @@ void read_sph(TableReader& t, SphSettings& s) {
   only_with("sps_smagorinsky_constant", s.viscosity == "laminar_sps", "viscosity = \"laminar_sps\"" + here_viscosity);
   only_with("sps_blin_constant", s.viscosity == "laminar_sps", "viscosity = \"laminar_sps\"" + here_viscosity);
   only_with("sps_mixing_length_m", s.viscosity == "laminar_sps", "viscosity = \"laminar_sps\"" + here_viscosity);
+  only_with(kRule, s.viscosity == "laminar_sps", "viscosity = \"laminar_sps\"" + here_viscosity);
   only_with("viscous_wall_condition", s.viscosity == "laminar_sps", "viscosity = \"laminar_sps\"" + here_viscosity);
   if (s.viscous_wall_condition != "no_slip" && s.boundary != "mdbc")
     t.fail_at(t.raw().get(t.has("viscous_wall_condition") ? "viscous_wall_condition" : "boundary"), "viscous_wall_condition",
               "= \"" + s.viscous_wall_condition + "\" needs boundary = \"mdbc\" (the slip velocity is mirrored at mDBC's ghost nodes; here \"" +
                   s.boundary + "\")");
-  only_with("sps_wall_distance", s.viscosity == "laminar_sps" && s.sps_mixing_length_m > 0.0,
-            "viscosity = \"laminar_sps\" and sps_mixing_length_m > 0 (here \"" + s.viscosity + "\", " +
-                number_text(s.sps_mixing_length_m) + " m)");
-  // A case without a mixing length does not use the distance rule it inherits.
-  if (s.viscosity != "laminar_sps" || s.sps_mixing_length_m == 0.0) s.sps_wall_distance = "kernel_support";
-  if (t.has("sps_mixing_length_m") && t.has("sps_smagorinsky_constant") && s.sps_mixing_length_m > 0.0)
-    t.fail_at(t.raw().get("sps_mixing_length_m"), "sps_mixing_length_m",
-              "and sps_smagorinsky_constant are both given: the mixing length replaces C_s dx, set one");
+  const bool mixing_length = s.sps_mixing_length_m > 0.0 || s.sps_mixing_length_per_sequent_depth > 0.0;
+  only_with("sps_wall_distance", s.viscosity == "laminar_sps" && mixing_length,
+            "viscosity = \"laminar_sps\" and a mixing length, sps_mixing_length_m or " + std::string(kRule) +
+                " > 0 (here \"" + s.viscosity + "\", " + number_text(s.sps_mixing_length_m) + " m)");
+  // A case without a mixing length does not use the distance rule it inherits, nor the length rule.
+  if (s.viscosity != "laminar_sps" || !mixing_length) s.sps_wall_distance = "kernel_support";
+  if (s.viscosity != "laminar_sps") s.sps_mixing_length_per_sequent_depth = 0.0;
+  for (const char* key : {"sps_mixing_length_m", kRule})
+    if (t.has(key) && t.has("sps_smagorinsky_constant") && mixing_length)
+      t.fail_at(t.raw().get(key), key, "and sps_smagorinsky_constant are both given: the mixing length replaces C_s dx, set one");
   only_with("density_diffusion_coefficient", s.density_diffusion != "none",
             "density_diffusion = \"molteni\" or \"fourtakas\" (here \"none\")");
   for (const char* key : {"particle_shifting_coefficient", "particle_shifting_surface_threshold", "particle_shifting_correction"})
@@ -552,6 +567,18 @@ void read_run(TableReader& t, RunSettings& run) {
                   number_text(run.output_interval_s) + " s): it must hold at least 2");
   }
   t.reject_unknown_keys();
+}
+
+// The study's [run]: the run-length rule of its stilling basins (cases/case_rules.hpp).
+RunRule read_run_rule(TableReader& t) {
+  RunRule r;
+  r.output_interval_s = t.number_or("output_interval_s", r.output_interval_s, positive("s", 100.0));
+  r.start_up_sloshing_periods = t.number_or("start_up_sloshing_periods", r.start_up_sloshing_periods,
+                                            Range{0.5, 100.0, false, false, "sloshing periods 2 L / sqrt(g y2*)"});
+  r.window_sloshing_periods = t.number_or("window_sloshing_periods", r.window_sloshing_periods,
+                                          Range{0.0, 100.0, true, false, "sloshing periods 2 L / sqrt(g y2*)"});
+  t.reject_unknown_keys();
+  return r;
 }
 
 MeasuredValues read_measured(TableReader& t) {
@@ -883,6 +910,32 @@ void check_tailwater_control(TableReader& c, Case& result, StillingBasinCase& b)
   }
 }
 
+// [case.run], or the study's [run] rule for a stilling basin without one.
+void read_case_run(TableReader& c, const Study& study, Case& result) {
+  if (auto run = c.table("run")) {
+    read_run(*run, result.run);
+  } else if (!study.run_rule) {
+    c.required_table("run");  // names the missing table
+  } else if (const auto* b = result.stilling_basin()) {
+    result.run = run_from_sloshing_periods(*study.run_rule, *b, study.fluid.gravity_m_s2);
+  } else {
+    c.fail_at(nullptr, "run", "is missing: the study's [run] rule sets the run of stilling basins only (it needs a "
+                              "sloshing period); give this " + result.kind + " case its [case.run] with end_time_s");
+  }
+}
+
+// l = c_l y2* of a stilling basin (cases/case_rules.hpp) into sps_mixing_length_m.
+void resolve_mixing_length_rule(TableReader& c, const Study& study, Case& result) {
+  const double coefficient = result.sph.sps_mixing_length_per_sequent_depth;
+  if (coefficient == 0.0) return;
+  const auto* b = result.stilling_basin();
+  if (!b)
+    c.fail_at(nullptr, "sph", "inherits sps_mixing_length_per_sequent_depth = " + number_text(coefficient) +
+                                  ", a rule for stilling basins (l = c_l y2*): give this " + result.kind +
+                                  " case sps_mixing_length_m in [case.sph]");
+  result.sph.sps_mixing_length_m = mixing_length_from_sequent_depth(coefficient, *b, study.fluid.gravity_m_s2);
+}
+
 Case read_case(TableReader& c, const Study& study, const SphSettings& sph,
                const VofSettings& vof, const std::map<std::string, Resolution>& resolutions,
                const std::filesystem::path& base_dir) {
@@ -902,9 +955,6 @@ Case read_case(TableReader& c, const Study& study, const SphSettings& sph,
   if (auto t = c.table("vof")) read_vof(*t, result.vof);
   result.resolutions = resolutions;
   read_resolutions(c, result.resolutions, false);
-  auto run = c.required_table("run");
-  read_run(run, result.run);
-
   const double g = study.fluid.gravity_m_s2;
   if (result.kind == "stilling_basin") {
     result.data = read_stilling_basin(c, g);
@@ -915,6 +965,8 @@ Case read_case(TableReader& c, const Study& study, const SphSettings& sph,
   } else {
     result.data = read_poiseuille(c);
   }
+  read_case_run(c, study, result);
+  resolve_mixing_length_rule(c, study, result);
   // Sections need the domain, which make_geometry derives; use it (sections are not read yet).
   const CaseGeometry geo = make_geometry(result, study.fluid);
   if (const toml::array* array = c.array_of_tables("sections")) {
@@ -992,6 +1044,7 @@ Study parse_study(std::string_view toml_text, const std::string& source_name,
     study.fluid.gravity_m_s2 = fluid->number_or("gravity_m_s2", study.fluid.gravity_m_s2, positive("m/s^2", 100.0));
     fluid->reject_unknown_keys();
   }
+  if (auto run = top.table("run")) study.run_rule = read_run_rule(*run);
   SphSettings sph;
   if (auto t = top.table("sph")) read_sph(*t, sph);
   VofSettings vof;
@@ -1125,6 +1178,9 @@ void write_sph(TomlWriter& w, const SphSettings& s) {
     w.num("artificial_viscosity_wall_factor", s.artificial_viscosity_wall_factor);
   } else {
     if (s.sps_mixing_length_m > 0.0) {
+      if (s.sps_mixing_length_per_sequent_depth > 0.0)
+        w.comment("from sps_mixing_length_per_sequent_depth = " + toml_number(s.sps_mixing_length_per_sequent_depth) +
+                  " (l = c_l y2*)");
       w.num("sps_mixing_length_m", s.sps_mixing_length_m);
       w.str("sps_wall_distance", s.sps_wall_distance);
     } else {

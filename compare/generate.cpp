@@ -34,6 +34,36 @@ std::string fixed(double v, int digits) {
   return s.str();
 }
 
+// The SPH viscosity model in a few words: "artificial alpha 0.1", "SPS l 0.0132 m free_slip".
+std::string sph_model_text(const cases::SphSettings& s) {
+  if (s.viscosity == "artificial")
+    return s.artificial_viscosity_nu_m2_s > 0.0 ? "artificial nu " + fixed(s.artificial_viscosity_nu_m2_s * 1e3, 3) + "e-3"
+                                                : "artificial alpha " + fixed(s.artificial_viscosity_alpha, 3);
+  const std::string length = s.sps_mixing_length_m > 0.0 ? "l " + fixed(s.sps_mixing_length_m, 4) + " m"
+                                                         : "Cs " + fixed(s.sps_smagorinsky_constant, 2);
+  return "SPS " + length + " " + s.viscous_wall_condition;
+}
+
+// Each basin's models and run after the rules (cases/case_rules.hpp): one line per case, so that a study
+// that sets one model per method shows it, and one that does not shows where.
+void print_models_and_runs(const cases::Study& study, int id_width, std::ostream& out) {
+  bool header = false;
+  for (const auto& c : study.cases) {
+    if (!c.stilling_basin()) continue;
+    if (!header) {
+      out << "\n  models and runs (after the rules: l = c_l y2*, window from the sloshing period 2 L / sqrt(g y2*))\n"
+          << "  " << std::left << std::setw(id_width) << "case" << std::setw(34) << "SPH viscosity"
+          << std::setw(28) << "VOF turbulence" << "averaging window, s\n";
+      header = true;
+    }
+    const std::string vof = c.vof.turbulence_model +
+                            (c.vof.turbulence_stabilization == "none" ? "" : " + " + c.vof.turbulence_stabilization);
+    out << "  " << std::left << std::setw(id_width) << c.id << std::setw(34) << sph_model_text(c.sph) << std::setw(28)
+        << vof << fixed(c.run.average_start_s, 1) << " - " << fixed(c.run.average_end_s, 1) << " (run "
+        << fixed(c.run.end_time_s, 1) << ")\n";
+  }
+}
+
 }  // namespace
 
 void print_study_summary(const cases::Study& study, std::ostream& out) {
@@ -72,6 +102,7 @@ void print_study_summary(const cases::Study& study, std::ostream& out) {
           << b->control.mode << "\n";
     }
   }
+  print_models_and_runs(study, id_width, out);
   for (const auto& c : study.cases) {
     if (c.stilling_basin()) continue;
     out << "\n  " << c.id << " (" << c.kind << "): " << c.description << "\n";

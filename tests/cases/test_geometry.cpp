@@ -9,7 +9,7 @@
 using namespace hydrojump::cases;
 
 TEST_CASE("Stilling-basin geometry of run A", "[cases][geometry]") {
-  const Study s = load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/cases/ead2002.toml");
+  const Study s = load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/tests/data/basins.toml");
   const auto geo = make_geometry(*s.find_case("A"), s.fluid);
   CHECK(geo.x_min_m == 0.0);
   CHECK(geo.x_max_m == Approx(0.2 + 20 * 0.068 + 0.2));
@@ -62,7 +62,7 @@ TEST_CASE("Closed-tank walls enclose the water with inward normals", "[cases][ge
 }
 
 TEST_CASE("Piston reservoir of run A: level from E1, piston speed from q, length from the run", "[cases][geometry]") {
-  const Study s = load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/cases/ead2002.toml");
+  const Study s = load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/tests/data/basins.toml");
   const Case& a = *s.find_case("A_smooth");
   CaseGeometry geo = make_geometry(a, s.fluid);
   const double t = 0.015, g = 9.81, y1 = 0.0254, q = 0.0254 * 2.0, end = 10.0;

@@ -105,10 +105,10 @@ TEST_CASE("The minimal spec is valid and derives sections", "[cases][spec]") {
   CHECK(b->bed.profile == "sinusoidal");
 }
 
-TEST_CASE("The reference study lists the ten stilling-basin cases", "[cases][spec]") {
+TEST_CASE("The reference study lists runs A-E with their smooth twins and two basins outside them", "[cases][spec]") {
   const Study s = load_study(source_dir + "/cases/ead2002.toml");
-  REQUIRE(s.cases.size() == 10);
-  for (const char* id : {"A", "B", "C", "D", "E", "A_smooth", "B_smooth", "C_smooth", "D_smooth", "E_smooth"}) {
+  REQUIRE(s.cases.size() == 12);
+  for (const char* id : {"A", "B", "C", "D", "E", "A_smooth", "B_smooth", "C_smooth", "D_smooth", "E_smooth", "F3_smooth", "G5"}) {
     const auto* c = s.find_case(id);
     REQUIRE(c);
     CHECK(c->kind == "stilling_basin");
@@ -122,7 +122,7 @@ TEST_CASE("The reference study lists the ten stilling-basin cases", "[cases][spe
   CHECK(s.find_case("D")->resolution("quick").particle_spacing_m == Approx(0.01));
   CHECK(s.find_case("A")->resolution("quick").particle_spacing_m == Approx(0.005));
   // The embedded default is the same file.
-  CHECK(load_embedded_default_study().cases.size() == 10);
+  CHECK(load_embedded_default_study().cases.size() == 12);
 }
 
 TEST_CASE("The verification specs load", "[cases][spec]") {
@@ -659,7 +659,7 @@ TEST_CASE("The mixing length's wall distance is kernel_support or whole_domain, 
   CHECK_THAT(rejection(with(mixing + "\nsps_wall_distance = \"everywhere\"")),
              Catch::Contains("sps_wall_distance") && Catch::Contains("\"kernel_support\"") && Catch::Contains("\"whole_domain\""));
   CHECK_THAT(rejection(with("viscosity = \"laminar_sps\"\nsps_wall_distance = \"whole_domain\"")),
-             Catch::Contains("sph.sps_wall_distance is only used with viscosity = \"laminar_sps\" and sps_mixing_length_m > 0"));
+             Catch::Contains("sph.sps_wall_distance is only used with viscosity = \"laminar_sps\" and a mixing length"));
   CHECK_THAT(rejection(with("sps_wall_distance = \"whole_domain\"")),
              Catch::Contains("sph.sps_wall_distance is only used with"));
   // A case that drops the mixing length (C_s instead) drops the inherited rule too.

@@ -61,7 +61,7 @@ struct RunFixture {
   SyntheticJump jump{};
 
   RunFixture() {
-    study = cases::load_embedded_default_study();
+    study = cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/tests/data/basins.toml");
     c = study.find_case("A");
     REQUIRE(c != nullptr);
     geo = cases::make_geometry(*c, study.fluid);

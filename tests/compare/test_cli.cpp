@@ -275,10 +275,11 @@ TEST_CASE("hydrojump check prints run A's derived hydraulics", "[compare][integr
   // Run A by hand (y1 = 25.4 mm, U1 = 2 m/s, y2 = 0.104 m): q = 0.0508 m^2/s, Fr1 = 2/sqrt(9.81 y1) =
   // 4.01, y2* = y1/2 (sqrt(1 + 8 Fr1^2) - 1) = 0.132 m, E1 = y1 + q^2/(2 g y1^2) = 0.2293 m,
   // E2 = 0.104 + q^2/(2 g 0.104^2) = 0.1162 m, eta = 1 - E2/E1 = 49.34 %, eta* (at y2*) = 39.22 %.
-  std::string row_a;
+  // Run A's row of the hydraulics table, then of the models table.
+  std::string row_a, models_a;
   std::istringstream lines(read_text(tmp.path() / "check.log"));
   for (std::string line; std::getline(lines, line);)
-    if (line.rfind("  A ", 0) == 0) row_a = line;
+    if (line.rfind("  A ", 0) == 0) (row_a.empty() ? row_a : models_a) = line;
   INFO(read_text(tmp.path() / "check.log"));
   REQUIRE_FALSE(row_a.empty());
   std::istringstream fields(row_a);
@@ -295,6 +296,10 @@ TEST_CASE("hydrojump check prints run A's derived hydraulics", "[compare][integr
   CHECK(f[11] == "39.22");
   CHECK(f[12] == "48.43");  // the experiment's, from the spec
   CHECK(f[13] == "hold_toe");  // the flume's protocol, the default: y2 is predicted, 0.104 m the initial level
+  // The rules by hand: l = 0.1 y2* = 0.0132 m; T_s = 2 (0.2 + 1.36 + 0.2) / sqrt(9.81 * 0.13178) = 3.096 s,
+  // the window from 2 T_s = 6.19 s (up to the next 0.1 s output: 6.2) over one more T_s (3.1 s): 6.2 - 9.3 s.
+  CHECK_THAT(models_a, Catch::Contains("SPS l 0.0132 m free_slip") && Catch::Contains("kEpsilon + nut_limiter") &&
+                           Catch::Contains("6.2 - 9.3 (run 9.3)"));
 }
 
 // Exit statuses: 0 for --help and --version, 2 for a command-line mistake (as for an invalid spec),

@@ -27,7 +27,7 @@ TEST_CASE("The initial states written by the SPH generator and the OpenFOAM writ
   // OpenFOAM is a dependency (scripts/setup.sh installs Debian's openfoam): missing is a failure.
   REQUIRE((fs::exists("/usr/bin/blockMesh") && fs::exists("/usr/bin/setFields")));
   hydrojump::testing::TempDir tmp("writers");
-  const cases::Study study = cases::load_embedded_default_study();
+  const cases::Study study = cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/tests/data/basins.toml");
   const cases::Case* c = study.find_case("A");
   REQUIRE(c != nullptr);
   std::ostringstream log;

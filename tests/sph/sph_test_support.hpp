@@ -29,7 +29,7 @@ struct LoadedCase {
 inline LoadedCase load_case(const std::string& file, double dx,
                             const std::function<void(hydrojump::cases::Case&)>& adjust = {}) {
   LoadedCase out;
-  out.study = hydrojump::cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/cases/" + file);
+  out.study = hydrojump::cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + (file == "basins.toml" ? "/tests/data/" : "/cases/") + file);
   out.spec = out.study.cases.front();
   if (adjust) adjust(out.spec);
   out.geometry = hydrojump::sph::solver_geometry(out.spec, out.study.fluid, dx);
@@ -51,15 +51,15 @@ inline void use_fixture_viscosity(hydrojump::cases::Case& c) {
   c.sph.viscous_wall_condition = "no_slip";
 }
 
-// Case A_smooth of cases/ead2002.toml (y1 = 25.4 mm, U1 = 2 m/s) on a shortened domain (0.1 m
+// Case A_smooth of tests/data/basins.toml (the reference study frozen for the tests) (y1 = 25.4 mm, U1 = 2 m/s) on a shortened domain (0.1 m
 // upstream, 0.3 m basin, 0.1 m downstream) at spacing dx, with the fixture viscosity above; `adjust`
 // may change it further (its [sph] settings, run length) before the solver geometry, settings and
 // particles are derived.
 inline LoadedCase short_smooth_basin(double dx, const std::function<void(hydrojump::cases::Case&)>& adjust = {}) {
   LoadedCase out;
-  out.study = hydrojump::cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/cases/ead2002.toml");
+  out.study = hydrojump::cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/tests/data/basins.toml");
   const hydrojump::cases::Case* found = out.study.find_case("A_smooth");
-  if (found == nullptr) throw std::logic_error("cases/ead2002.toml has no case A_smooth");
+  if (found == nullptr) throw std::logic_error("tests/data/basins.toml has no case A_smooth");
   out.spec = *found;
   auto& basin = std::get<hydrojump::cases::StillingBasinCase>(out.spec.data);
   basin.upstream_length_m = 0.1;

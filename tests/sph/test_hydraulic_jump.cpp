@@ -1,7 +1,7 @@
 // SPH hydraulic jumps in stilling basins (issue 4), the full runs: tagged [slow] (each is a 10 s
 // simulation, 15-40 minutes on 2 cores); run them with scripts/validate.sh -R jump.
 //
-// Smooth-bed twin of run A (cases/ead2002.toml A_smooth: y1 = 25.4 mm, U1 = 2 m/s, Fr1 = 4, tailwater
+// Smooth-bed twin of run A (tests/data/basins.toml A_smooth: y1 = 25.4 mm, U1 = 2 m/s, Fr1 = 4, tailwater
 // at Belanger's y2*) at the quick resolution, driven exactly as `hydrojump sph` drives it. The run's
 // summary.json (sph/basin_monitor.hpp) is checked against the acceptance criteria of the issue:
 //   - time-averaged inflow discharge within 2 % of the prescribed q = y1 U1: the buffer's count of the
@@ -58,7 +58,7 @@ std::string section_text(const std::string& json, const std::string& section) {
 }  // namespace
 
 TEST_CASE("SPH smooth-bed jump A_smooth holds in the basin at Belanger's ratio", "[sph][jump][slow]") {
-  const auto study = cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/cases/ead2002.toml");
+  const auto study = cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/tests/data/basins.toml");
   const cases::Case* c = study.find_case("A_smooth");
   REQUIRE(c != nullptr);
   const fs::path dir = fs::current_path() / "validation" / "sph_A_smooth";

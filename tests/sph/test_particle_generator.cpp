@@ -62,7 +62,7 @@ TEST_CASE("corrugated bed layers lie at their depth, evenly spaced, mirrored thr
 
 TEST_CASE("a corrugated basin's fluid lattice lines up with the inflow buffer", "[sph][generator]") {
   const double dx = 0.005;
-  auto c = sph_test::load_case("ead2002.toml", dx, [](cases::Case&) {});  // run A: troughs 13 mm deep
+  auto c = sph_test::load_case("basins.toml", dx, [](cases::Case&) {});  // run A: troughs 13 mm deep
   REQUIRE(c.geometry.bed.corrugated());
   const auto& ps = c.particles;
   const double z_in = c.geometry.bed.elevation(c.geometry.inflows.front().x_m);
@@ -90,7 +90,7 @@ TEST_CASE("the bed is watertight where the corrugated reach meets the floor", "[
   const double dx = 0.005;
   for (const double height : {0.013, 0.022})  // runs A-C and run E
   for (const double offset : {0.0, 0.2, 0.4, 0.6, 0.8}) {
-    auto c = sph_test::load_case("ead2002.toml", dx, [&](cases::Case& k) {  // run A
+    auto c = sph_test::load_case("basins.toml", dx, [&](cases::Case& k) {  // run A
       auto& bed = std::get<cases::StillingBasinCase>(k.data).bed;  // the reach moved upstream
       bed.reach_start_m -= offset * dx;
       bed.reach_end_m -= offset * dx;

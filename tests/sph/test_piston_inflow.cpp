@@ -123,7 +123,7 @@ TEST_CASE("piston inflow: the level-holding speed u_p = U_p0 + K (H_r - H) from 
 }
 
 TEST_CASE("piston inflow: an opening of fewer than 5 particle spacings is refused", "[sph][piston]") {
-  auto study = cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/cases/ead2002.toml");
+  auto study = cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/tests/data/basins.toml");
   REQUIRE(study.find_case("A_smooth") != nullptr);
   cases::Case c = *study.find_case("A_smooth");
   c.sph.inflow_condition = "piston";

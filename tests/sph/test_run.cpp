@@ -372,7 +372,7 @@ TEST_CASE("hydrojump sph runs a generated dam-break directory and resumes it", "
 TEST_CASE("hydrojump sph refuses to run a piston reservoir past the end it was made for", "[sph][cli][piston]") {
   const hydrojump::testing::TempDir tmp("cli_piston");
   const fs::path& dir = tmp.path();
-  auto study = hydrojump::cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/cases/ead2002.toml");
+  auto study = hydrojump::cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/tests/data/basins.toml");
   REQUIRE(study.find_case("A_smooth") != nullptr);
   hydrojump::cases::Case c = *study.find_case("A_smooth");
   c.sph.inflow_condition = "piston";

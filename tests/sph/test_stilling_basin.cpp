@@ -1,5 +1,5 @@
 // Smooth-bed stilling basin with open boundaries (issue 4): the inflow and outflow buffers coupled to
-// the solver. Case A_smooth of cases/ead2002.toml (y1 = 25.4 mm, U1 = 2 m/s, Fr1 = 4, tailwater at
+// the solver. Case A_smooth of tests/data/basins.toml (the reference study frozen for the tests) (y1 = 25.4 mm, U1 = 2 m/s, Fr1 = 4, tailwater at
 // Belanger's y2*) on a shortened domain (0.1 m upstream, 0.3 m basin, 0.1 m downstream) at
 // dx = 5 mm, 0.5 s of simulated time, with mDBC walls and c0 = 20 sqrt(g H_max). Checks:
 //  - the run stays healthy (diagnose() empty after every step);
@@ -50,7 +50,7 @@ struct ShortBasin {
 // absorbing outlet, with the sections re-derived for the shortened basin.
 ShortBasin short_smooth_basin(bool level_control = false) {
   ShortBasin out;
-  out.study = cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/cases/ead2002.toml");
+  out.study = cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/tests/data/basins.toml");
   const cases::Case* found = nullptr;
   for (const auto& c : out.study.cases)
     if (c.id == "A_smooth") found = &c;
@@ -175,7 +175,7 @@ TEST_CASE("a stilling-basin run resumed from a checkpoint continues bit for bit"
 
 TEST_CASE("open-channel spray may rise to the energy line, not above it", "[sph][stilling_basin][robustness]") {
   // Run B_smooth (Fr1 = 6): E1 = y1 + U1^2/(2g) = 0.484 m, above the domain top y2* + air = 0.324 m.
-  const auto study = cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/cases/ead2002.toml");
+  const auto study = cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/tests/data/basins.toml");
   const cases::Case& c = *study.find_case("B_smooth");
   const auto geometry = sph::solver_geometry(c, study.fluid, 0.005);
   const auto settings = sph::make_settings(c, study.fluid, geometry, 0.005);

@@ -1,0 +1,38 @@
+// Rules that give a stilling basin's case-dependent settings from the case's own inputs, written once
+// and the same for every basin (runs A-E of the reference study and any basin a user brings). A study
+// states a rule's coefficient once ([sph], [run]); the reader resolves it per case, and the resolved
+// case.toml carries the resulting numbers.
+//
+//   | rule                                  | spec key                                 | gives                    |
+//   |---------------------------------------|------------------------------------------|--------------------------|
+//   | mixing length from the sequent depth  | [sph] sps_mixing_length_per_sequent_depth| l_m = c_l y2*            |
+//   | run length from the sloshing period   | [run] start_up_sloshing_periods,         | the averaging window and |
+//   |                                       |       window_sloshing_periods            | the end time             |
+//
+// y2* is Belanger's sequent depth of the inflow (y1, Fr1): an input-only length, never the measured y2.
+#pragma once
+
+#include "cases/spec.hpp"
+
+namespace hydrojump::cases {
+
+// The eddy length of a jump scales with its depth: Rodi (1993, Turbulence models and their application
+// in hydraulics, sec. 2.3) gives a mixing length of 0.07-0.1 times the layer thickness for free shear
+// layers and wall jets. With the layer taken as the sequent depth,
+//   l_m = c_l y2*,   y2* = y1 (sqrt(1 + 8 Fr1^2) - 1) / 2
+// c_l = 0.1 held the smooth twins of the reference study within 1 % of Belanger (calibrated against
+// theory, not against the laboratory's corrugated-bed runs).
+double mixing_length_from_sequent_depth(double coefficient, const StillingBasinCase& basin, double gravity_m_s2);
+
+// The lowest sloshing mode of the water in a basin of length L at depth y (a standing wave of length
+// 2L, shallow-water speed sqrt(g y)):
+//   T_s = 2 L / sqrt(g y)
+// the time a start-up surge needs to cross the domain and come back.
+double sloshing_period_s(double length_m, double depth_m, double gravity_m_s2);
+
+// The run of a stilling basin from its sloshing period (L the whole domain, inflow to outlet; y = y2*):
+//   average_start = N_s T_s,  average_end = end_time = average_start + N_w T_s
+// each rounded up to a whole number of output intervals.
+RunSettings run_from_sloshing_periods(const RunRule& rule, const StillingBasinCase& basin, double gravity_m_s2);
+
+}  // namespace hydrojump::cases
