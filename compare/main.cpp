@@ -9,6 +9,7 @@
 #include "cases/spec_reader.hpp"
 #include "compare/cli.hpp"
 #include "compare/generate.hpp"
+#include "compare/record_cli.hpp"
 #include "compare/study.hpp"
 #include "hydrojump/version.hpp"
 #include "reference/cli.hpp"
@@ -35,6 +36,7 @@ int main(int argc, char** argv) {
   hydrojump::reference::register_commands(app);
   hydrojump::compare::register_commands(app);
   hydrojump::compare::register_study_command(app);
+  hydrojump::compare::register_record_commands(app);
 
   // A mistyped command is named as such (CLI11 itself says only "A subcommand is required").
   if (argc > 1 && argv[1][0] != '-') {

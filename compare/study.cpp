@@ -21,6 +21,8 @@
 #include "cases/cli_checks.hpp"
 #include "cases/directory_lock.hpp"
 #include "cases/fingerprint.hpp"
+#include "cases/number_text.hpp"
+#include "compare/record.hpp"
 #include "cases/results_case.hpp"
 #include "cases/spec_reader.hpp"
 #include "cases/stop_signals.hpp"
@@ -196,6 +198,7 @@ class StudyRunner {
       cases::write_file_atomically(generated_stamp, fingerprint);
       cases::write_file_atomically(run_stamp, run_fingerprint);
     }
+    if (auto imported = import_records(c, dir, run_fingerprint)) return *imported;
     bool any_solver_ok = false, any_solver_ran = false;
     for (const auto& method : options_.methods) {
       if (study_stopping()) {
@@ -235,6 +238,57 @@ class StudyRunner {
       result.stages.push_back({"compare", "skipped", 0.0, 0, {}});
     }
     return result;
+  }
+
+  // The case from its validation records (--records) when every method asked for has one whose key is
+  // this case's run fingerprint: the study report reads them instead of a run. A record with another key
+  // is stale (other settings or other solver code) and is said so; the case then runs.
+  std::optional<CaseResult> import_records(const cases::Case& c, const std::filesystem::path& dir,
+                                           const std::string& run_fingerprint) {
+    if (options_.records.empty() || options_.force) return std::nullopt;
+    std::vector<ValidationRecord> found;
+    for (const auto& method : options_.methods) {
+      const auto file = record_file(options_.records, study_.name, c.id, method, options_.resolution);
+      const auto record = read_record_if_present(file);
+      if (!record) return std::nullopt;
+      if (record->run_key != run_fingerprint) {
+        say(c.id + ": record " + file.string() + " is stale (made with run key " + record->run_key +
+            "; this case and code give " + run_fingerprint + "): running instead");
+        return std::nullopt;
+      }
+      found.push_back(*record);
+    }
+    if (found.empty()) return std::nullopt;
+    // A directory of results that are not these records' is kept aside, as for a changed case.
+    if (std::filesystem::exists(dir)) {
+      const auto previous = options_.out / (c.id + ".previous");
+      auto runs_idle = lock_solver_directories({dir, previous}, "hydrojump study (moving it)");
+      std::filesystem::remove_all(previous);
+      std::filesystem::rename(dir, previous);
+    }
+    write_imported_comparison(dir, found);
+    CaseResult result{c.id, {}};
+    std::string files;
+    for (const auto& r : found) {
+      const auto file = record_file(options_.records, r.study, r.case_id, r.method, r.resolution);
+      files += (files.empty() ? "" : ", ") + file.string();
+      result.stages.push_back({r.method, "imported", 0.0, 0, "record of " + r.recorded_on});
+    }
+    say(c.id + ": imported from " + files + " (not run)");
+    return result;
+  }
+
+  // OUT/<case>/<stage>.stage.toml beside a finished solver stage: its wall time and threads (or MPI ranks),
+  // which `hydrojump record` keeps.
+  void write_stage_info(const std::filesystem::path& dir, const std::string& stage, double seconds) {
+    if (stage != "sph" && stage != "vof") return;
+    const int threads = stage == "sph" ? (options_.sph_threads > 0 ? options_.sph_threads
+                                                                    : static_cast<int>(std::max(1u, std::thread::hardware_concurrency())))
+                                       : options_.mpi_ranks;
+    cases::write_file_atomically(dir / (stage + ".stage.toml"),
+                                 "# the last leg of this stage (a resumed run counts from its resume)\nwall_time_s = " +
+                                     cases::number_text(seconds) + (seconds == std::floor(seconds) ? ".0" : "") +
+                                     "\nthreads = " + std::to_string(threads) + "\n");
   }
 
   StageResult run_stage(const std::string& id, const std::string& stage, const std::vector<std::string>& args,
@@ -290,6 +344,7 @@ class StudyRunner {
           duration_text(seconds) + "; last lines of " + log_file.string() + ":\n" + tail(log_file, 8));
       return {stage, "failed", seconds, status, {}};
     }
+    write_stage_info(dir, stage, seconds);
     cases::write_file_atomically(stamp, fingerprint);
     if (!started_marker.empty()) std::filesystem::remove(started_marker);
     say(id + ": " + stage + " finished in " + duration_text(seconds));
@@ -502,6 +557,11 @@ void register_study_command(CLI::App& app) {
       ->delimiter(',')
       ->check(CLI::IsMember({"sph", "vof"}));
   cmd->add_flag("--force", options->force, "ignore cached results and run every stage again");
+  cmd->add_option("--records", options->records,
+                  "validation records (`hydrojump record`, e.g. validation/records): a case whose records for every "
+                  "method asked for match its settings and the solvers' code is imported instead of run; a stale "
+                  "record is named and the case runs")
+      ->check(CLI::ExistingDirectory);
   cmd->callback([options] {
     const int status = run_study(*options, std::cout);
     if (status >= 128) throw CLI::RuntimeError(status);  // stopped by a signal: 128 + its number

@@ -34,6 +34,7 @@ struct StudyOptions {
                                              // cores shared out with several (sph_threads_per_job)
   std::vector<std::string> methods = {"sph", "vof"};  // which solvers to run
   bool force = false;                        // ignore the stamps and run everything again
+  std::filesystem::path records;             // validation records to import (compare/record.hpp); empty: none
   std::filesystem::path executable;          // the hydrojump binary run for each stage
                                              // (empty: this process's own executable)
 };

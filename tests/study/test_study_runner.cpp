@@ -19,6 +19,7 @@
 #include "cases/fingerprint.hpp"
 #include "cases/spec_reader.hpp"
 #include "compare/generate.hpp"
+#include "compare/record.hpp"
 #include "compare/study.hpp"
 #include "tests/temp_dir.hpp"
 
@@ -260,7 +261,7 @@ TEST_CASE("Study runner: the report covers cases run earlier into the same direc
 
 TEST_CASE("Study runner: a case named twice in --cases runs once, an unknown one is refused by name", "[study]") {
   // Two workers on one case would share its directory (`--cases X,X --jobs 2` raced on case.toml).
-  const auto study = hydrojump::cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/cases/ead2002.toml");
+  const auto study = hydrojump::cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/tests/data/basins.toml");
   const auto selected = hydrojump::compare::select_cases(study, {"B", "A", "B", "A"});
   REQUIRE(selected.size() == 2u);
   CHECK(selected[0]->id == "B");
@@ -495,4 +496,47 @@ TEST_CASE("Study runner: a second stop request stops a stage that does not stop 
   INFO(log.str());
   CHECK(status == 128 + SIGINT);
   CHECK_THAT(log.str(), Catch::Contains("A: sph stopped on request") && Catch::Contains("study stopped by SIGINT"));
+}
+
+TEST_CASE("Study runner: a case whose records match is imported instead of run and a stale record is named and the case runs",
+          "[study]") {
+  const TempDir tmp("study_records");
+  const fs::path& dir = tmp.path();
+  const fs::path calls = dir / "calls.txt";
+  // A stand-in whose comparison writes the metrics table a real one would.
+  StudyOptions options = mini_study_with_stand_in(
+      dir, "echo \"$*\" >> '" + calls.string() + "'\nif [ \"$1\" = compare ]; then mkdir -p \"$2/csv\"; printf '"
+           "quantity,unit,sph,vof,experiment,published_sph,smooth_theory,status\\nsequent_depth,m,0.11,0.12,0.104,nan,"
+           "0.13,predicted\\neta,%%,45,44,48.43,47.08,39.2,predicted\\n' > \"$2/csv/metrics.csv\"; fi\nexit 0\n");
+  std::ostringstream log;
+  REQUIRE(run_study(options, log) == 0);
+  const fs::path records = dir / "records";
+  for (const char* id : {"A", "B"})
+    for (auto r : hydrojump::compare::records_from_case_dir(options.out / id, {"2026-11-29", "test"}))
+      hydrojump::compare::write_record(records, r);
+  CHECK(fs::exists(records / "mini" / "A" / "sph-quick.toml"));
+  CHECK(fs::exists(records / "mini" / "B" / "vof-quick.toml"));
+
+  // Into a fresh directory with the records: nothing runs, and the report has the recorded values.
+  fs::remove(calls);
+  options.out = dir / "out2";
+  options.records = records;
+  std::ostringstream imported;
+  CHECK(run_study(options, imported) == 0);
+  CHECK_FALSE(fs::exists(calls));
+  CHECK_THAT(imported.str(), Catch::Contains("A: imported from") && Catch::Contains("(not run)"));
+  CHECK_THAT(hydrojump::cases::read_text_file(options.out / "A" / "csv" / "metrics.csv"),
+             Catch::Contains("sequent_depth,m,0.11,0.12,0.104"));
+  CHECK_THAT(hydrojump::cases::read_text_file(options.out / "study_report.md"),
+             Catch::Contains("| A | sph | imported (record of 2026-11-29) |"));
+
+  // A changed case: its records are stale (another run key), it runs; B is still imported.
+  write(dir / "mini.toml", with_tailwater("0.11"));
+  std::ostringstream stale;
+  CHECK(run_study(options, stale) == 0);
+  CHECK_THAT(stale.str(), Catch::Contains("A: record " + (records / "mini" / "A" / "sph-quick.toml").string() + " is stale"));
+  CHECK_THAT(stale.str(), Catch::Contains("B: imported from"));
+  const auto ran = lines_of(calls);
+  CHECK(std::count_if(ran.begin(), ran.end(), [](const std::string& l) { return l.find("/A") != std::string::npos; }) == 3);
+  CHECK(std::count_if(ran.begin(), ran.end(), [](const std::string& l) { return l.find("/B") != std::string::npos; }) == 0);
 }

@@ -1,0 +1,154 @@
+#include "compare/record_cli.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <ctime>
+#include <iostream>
+#include <memory>
+
+#include "cases/atomic_file.hpp"
+#include "cases/cli_checks.hpp"
+#include "cases/fingerprint.hpp"
+#include "cases/spec_reader.hpp"
+#include "compare/record.hpp"
+#include "compare/validation_doc.hpp"
+#include "hydrojump/version.hpp"
+
+namespace fs = std::filesystem;
+
+namespace hydrojump::compare {
+
+namespace {
+
+std::string today() {
+  const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  char buffer[16];
+  std::strftime(buffer, sizeof buffer, "%Y-%m-%d", &tm);
+  return buffer;
+}
+
+// The study file a resolved case came from, as `hydrojump study` takes it: "default" for the embedded
+// study. The resolved case's first line reads "# Resolved by hydrojump from FILE: case ...".
+std::string study_argument(const fs::path& resolved_case) {
+  const std::string text = cases::read_text_file(resolved_case);
+  const std::string lead = "# Resolved by hydrojump from ";
+  if (text.rfind(lead, 0) != 0) return "SPEC";
+  const auto end = text.find(": case \"", lead.size());
+  const std::string file = text.substr(lead.size(), end == std::string::npos ? std::string::npos : end - lead.size());
+  return file.find("<embedded") == 0 ? "default" : file;
+}
+
+struct RecordOptions {
+  fs::path study_dir;
+  std::vector<std::string> cases;
+  fs::path records = "validation/records";
+};
+
+void record_command(const RecordOptions& o) {
+  std::vector<fs::path> dirs;
+  if (o.cases.empty()) {
+    for (const auto& entry : fs::directory_iterator(o.study_dir))
+      if (entry.is_directory() && fs::exists(entry.path() / "csv" / "metrics.csv")) dirs.push_back(entry.path());
+    std::sort(dirs.begin(), dirs.end());
+    if (dirs.empty())
+      throw CLI::ValidationError("STUDY_DIR", o.study_dir.string() + " holds no compared case (no <case>/csv/metrics.csv)");
+  } else {
+    for (const auto& id : o.cases) dirs.push_back(o.study_dir / id);
+  }
+  for (const auto& dir : dirs) {
+    const fs::path resolved = fs::exists(dir / "sph" / "case.toml") ? dir / "sph" / "case.toml" : dir / "vof" / "case.toml";
+    RecordProvenance provenance{today(), ""};
+    std::vector<ValidationRecord> records = records_from_case_dir(dir, provenance);
+    for (auto& r : records) {
+      r.hydrojump_version = version_string;
+      r.command = "hydrojump study " + study_argument(resolved) + " --cases " + r.case_id + " --resolution " +
+                  r.resolution + " --methods " + r.method;
+      write_record(o.records, r);
+      std::cout << "recorded " << record_file(o.records, r.study, r.case_id, r.method, r.resolution).string() << "\n";
+    }
+  }
+}
+
+struct DocOptions {
+  fs::path records = "validation/records";
+  fs::path out = "docs/validation.md";
+  std::vector<std::string> not_run;  // SPEC and RESOLUTION
+  bool check = false;
+};
+
+void validation_doc_command(const DocOptions& o) {
+  const auto records = read_records(o.records);
+  std::string text = validation_markdown(records, o.records.generic_string());
+  if (o.not_run.size() == 2) {
+    const cases::Study study = o.not_run[0] == "default" ? cases::load_embedded_default_study()
+                                                         : cases::load_study(o.not_run[0]);
+    text += not_run_markdown(study, records, o.not_run[1]);
+  }
+  if (o.check) {
+    if (cases::read_text_file(o.out) != text) {
+      std::cerr << "hydrojump validation-doc: " << o.out.string() << " is not what the records in " << o.records.string()
+                << " give: run `hydrojump validation-doc --records " << o.records.string() << " --out "
+                << o.out.string() << "`\n";
+      throw CLI::RuntimeError(1);
+    }
+    std::cout << o.out.string() << " is up to date with " << o.records.string() << "\n";
+    return;
+  }
+  if (o.out.has_parent_path()) fs::create_directories(o.out.parent_path());
+  cases::write_file_atomically(o.out, text);
+  std::cout << "wrote " << o.out.string() << "\n";
+}
+
+}  // namespace
+
+void register_record_commands(CLI::App& app) {
+  auto r = std::make_shared<RecordOptions>();
+  auto* record = app.add_subcommand(
+      "record",
+      "Keep the finished comparisons of a study directory as validation records: one small TOML file per case, "
+      "method and resolution, RECORDS/<study>/<case>/<method>-<resolution>.toml, holding every metric with its "
+      "label (predicted, imposed, input), the laboratory and inputs-only values, the section profiles and mean "
+      "surface, the window, the solver's wall time, and its key (the case's resolved settings and the solvers' "
+      "code). Commit them: `hydrojump study --records RECORDS` then imports a case instead of running it, and "
+      "`hydrojump validation-doc` writes docs/validation.md from them.");
+  record->add_option("STUDY_DIR", r->study_dir, "a study's output directory (`hydrojump study --out`)")
+      ->required()
+      ->check(CLI::ExistingDirectory);
+  record->add_option("--cases", r->cases, "case ids, comma-separated (default: every compared case)")->delimiter(',');
+  record->add_option("--records", r->records, "records folder")->capture_default_str()->check(cases::non_empty_path());
+  record->callback([r] {
+    try {
+      record_command(*r);
+    } catch (const RecordError& e) {
+      std::cerr << "hydrojump record: " << e.what() << "\n";
+      throw CLI::RuntimeError(1);
+    }
+  });
+
+  auto d = std::make_shared<DocOptions>();
+  auto* doc = app.add_subcommand(
+      "validation-doc",
+      "Write docs/validation.md from the validation records: per case, method and resolution the predicted "
+      "sequent depth, energy dissipation, jump and roller length and toe against the laboratory and the "
+      "inputs-only values, SPH against VOF, and the record and command behind each row. --check compares "
+      "instead of writing (exit 1 when the file is out of date).");
+  doc->add_option("--records", d->records, "records folder")->capture_default_str()->check(cases::non_empty_path());
+  doc->add_option("--out,-o", d->out, "the document")->capture_default_str()->check(cases::non_empty_path());
+  doc->add_option("--not-run", d->not_run,
+                  "SPEC RESOLUTION: also list the stilling basins of SPEC (a file, or \"default\") with no record of a "
+                  "method at RESOLUTION, with the size of each missing run")
+      ->expected(2);
+  doc->add_flag("--check", d->check, "compare the document with what the records give; write nothing");
+  doc->callback([d] {
+    try {
+      validation_doc_command(*d);
+    } catch (const RecordError& e) {
+      std::cerr << "hydrojump validation-doc: " << e.what() << "\n";
+      throw CLI::RuntimeError(1);
+    }
+  });
+}
+
+}  // namespace hydrojump::compare

@@ -1,0 +1,11 @@
+// The `record` and `validation-doc` commands: keep a study's finished comparisons as validation
+// records (compare/record.hpp) and write docs/validation.md from them (compare/validation_doc.hpp).
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace hydrojump::compare {
+
+void register_record_commands(CLI::App& app);
+
+}  // namespace hydrojump::compare

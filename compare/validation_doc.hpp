@@ -1,0 +1,23 @@
+// docs/validation.md, generated from the validation records (compare/record.hpp) by
+// `hydrojump validation-doc`: per case, method and resolution the predicted numbers against the
+// laboratory and the inputs-only values (Belanger), SPH against VOF, and the record and command behind
+// every row. The same records give the same text, byte for byte (a test checks the committed file).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "cases/spec.hpp"
+#include "compare/record.hpp"
+
+namespace hydrojump::compare {
+
+// `records_root` is printed as the folder the records live in (e.g. "validation/records").
+std::string validation_markdown(const std::vector<ValidationRecord>& records, const std::string& records_root);
+
+// The stilling basins of `study` that have no record of a method at `resolution`, as a Markdown table
+// with the size of each missing run (water area / dx^2 particles, cells from the VOF sizes, simulated time).
+std::string not_run_markdown(const cases::Study& study, const std::vector<ValidationRecord>& records,
+                             const std::string& resolution);
+
+}  // namespace hydrojump::compare

@@ -1,0 +1,184 @@
+// Validation records (compare/record.hpp) and the document made from them (compare/validation_doc.hpp):
+// a record reads back exactly as written, bad records are refused by file and key, a compared case
+// directory gives one record per finished method with that method's values, and the document's
+// differences are the hand-computed ones.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "cases/fingerprint.hpp"
+#include "cases/spec_reader.hpp"
+#include "compare/record.hpp"
+#include "compare/validation_doc.hpp"
+#include "tests/temp_dir.hpp"
+
+namespace fs = std::filesystem;
+using namespace hydrojump::compare;
+
+namespace {
+
+ValidationRecord sample_record(const std::string& method, double y2) {
+  ValidationRecord r;
+  r.study = "mini";
+  r.case_id = "A";
+  r.description = "a \"quoted\" description";
+  r.method = method;
+  r.resolution = "quick";
+  r.run_key = "0123456789abcdef";
+  r.hydrojump_version = "0.1.0+test";
+  r.recorded_on = "2026-11-29";
+  r.command = "hydrojump study mini.toml --cases A --resolution quick --methods " + method;
+  r.tailwater_control = "hold_toe";
+  r.wall_time_s = 1234.5;
+  r.threads = 2;
+  r.window_start_s = 6.2;
+  r.window_end_s = 9.3;
+  r.metrics = {{"sequent_depth", "m", "predicted", y2, 0.104, std::nullopt, 0.1317813053},
+               {"eta", "%", "predicted", 45.448, 48.43, 47.08, 39.2188},
+               {"toe_mean_of_frames", "m", "imposed", 0.21628, std::nullopt, std::nullopt, std::nullopt}};
+  r.profiles = {{"x_2y2", 0.408, {0.0, 0.01, 1.0 / 3.0}, {1.5, -0.25, 0.1}}};
+  r.surface_x_m = {0.1, 0.2};
+  r.surface_mean_m = {0.0254, 0.1085};
+  return r;
+}
+
+void write(const fs::path& p, const std::string& text) {
+  fs::create_directories(p.parent_path());
+  std::ofstream(p) << text;
+}
+
+}  // namespace
+
+TEST_CASE("A validation record reads back exactly as written", "[compare][record]") {
+  const ValidationRecord r = sample_record("sph", 0.108535);
+  const ValidationRecord back = parse_record(record_text(r), "A/sph-quick.toml");
+  CHECK(back.study == r.study);
+  CHECK(back.description == r.description);
+  CHECK(back.run_key == r.run_key);
+  CHECK(back.command == r.command);
+  CHECK(*back.wall_time_s == 1234.5);
+  CHECK(*back.threads == 2);
+  CHECK(back.window_start_s == 6.2);
+  REQUIRE(back.metrics.size() == 3);
+  CHECK(back.metrics[0].value == 0.108535);
+  CHECK(*back.metrics[0].smooth_theory == 0.1317813053);
+  CHECK_FALSE(back.metrics[0].published_sph);
+  CHECK(back.metric("toe_mean_of_frames")->status == "imposed");
+  REQUIRE(back.profiles.size() == 1);
+  CHECK(back.profiles[0].z_m[2] == 1.0 / 3.0);  // exact: the shortest text that reads back
+  CHECK(back.surface_mean_m == r.surface_mean_m);
+  // The same record gives the same text.
+  CHECK(record_text(back) == record_text(r));
+}
+
+TEST_CASE("A damaged validation record is refused by file and key", "[compare][record]") {
+  const std::string good = record_text(sample_record("sph", 0.11));
+  const auto replaced = [&](const std::string& from, const std::string& to) {
+    std::string s = good;
+    s.replace(s.find(from), from.size(), to);
+    return s;
+  };
+  const auto refusal = [](const std::string& text) {
+    try {
+      parse_record(text, "rec.toml");
+    } catch (const RecordError& e) {
+      return std::string(e.what());
+    }
+    FAIL("the record was accepted");
+    return std::string();
+  };
+  CHECK_THAT(refusal(replaced("format = 1", "format = 7")), Catch::Contains("rec.toml: format is not 1"));
+  CHECK_THAT(refusal(replaced("run_key = ", "key = ")), Catch::Contains("rec.toml: run_key is missing"));
+  CHECK_THAT(refusal(replaced("method = \"sph\"", "method = \"lbm\"")), Catch::Contains("method = \"lbm\" is not"));
+  CHECK_THAT(refusal(replaced("window_s = [6.2, 9.3]", "window_s = [9.3, 6.2]")), Catch::Contains("rec.toml: window_s"));
+  CHECK_THAT(refusal(replaced("value = 0.11", "value = \"high\"")), Catch::Contains("metrics.sequent_depth: value"));
+  CHECK_THAT(refusal(good + "\n[[[\n"), Catch::Contains("rec.toml:") && Catch::Contains("not a valid record"));
+}
+
+TEST_CASE("A compared case directory gives one record per finished method with that method's values",
+          "[compare][record]") {
+  const hydrojump::testing::TempDir tmp("record_case");
+  const std::string spec = R"([study]
+name = "mini"
+[resolution.quick]
+particle_spacing_m = 0.005
+vof_cell_size_bed_m = 0.005
+vof_cell_size_bulk_m = 0.01
+[[case]]
+id = "A"
+kind = "stilling_basin"
+[case.run]
+end_time_s = 10.0
+average_start_s = 6.0
+[case.bed]
+profile = "smooth"
+[case.inflow]
+depth_m = 0.0254
+velocity_m_s = 2.0
+[case.tailwater]
+rule = "belanger"
+[case.domain]
+upstream_length_m = 0.2
+basin_length_m = 1.36
+downstream_length_m = 0.2
+air_height_m = 0.1
+)";
+  const auto study = hydrojump::cases::parse_study(spec, "mini.toml", ".");
+  const fs::path dir = tmp.path() / "A";
+  hydrojump::cases::write_resolved_case(study, study.cases[0], "quick", (fs::create_directories(dir / "sph"), dir / "sph" / "case.toml"));
+  write(dir / "sph.stamp", "feedfacefeedface");
+  write(dir / "sph.stage.toml", "wall_time_s = 600.0\nthreads = 2\n");
+  // The VOF stage did not finish (no stamp): no VOF record.
+  write(dir / "csv" / "metrics.csv",
+        "quantity,unit,sph,vof,experiment,published_sph,smooth_theory,status\n"
+        "sequent_depth,m,0.1331,0.1286,nan,nan,0.131781,predicted\n"
+        "toe_std,m,0.041,nan,nan,nan,nan,predicted\n");
+  write(dir / "csv" / "profiles.csv", "method,section,x_m,z_m,u_mean_m_s,u_std_m_s,w_mean_m_s,wet_fraction\n"
+                                      "sph,up,0.1,0,1.99,0.03,0.0,1\nsph,up,0.1,0.01,1.98,0.03,0.0,1\n"
+                                      "vof,up,0.1,0,1.5,0.03,0.0,1\nsph,down,1.0,0,0.4,0.1,0.0,1\n");
+  write(dir / "csv" / "longitudinal.csv", "method,x_m,z_bed_m,surface_mean_m\nsph,0.1,0,0.026\nvof,0.1,0,0.027\n");
+  const auto records = records_from_case_dir(dir, {"2026-11-29", "cmd"});
+  REQUIRE(records.size() == 1);
+  const ValidationRecord& r = records[0];
+  CHECK(r.method == "sph");
+  CHECK(r.study == "mini");
+  CHECK(r.resolution == "quick");
+  CHECK(r.run_key == "feedfacefeedface");
+  CHECK(r.window_start_s == 6.0);
+  CHECK(r.window_end_s == 10.0);
+  CHECK(*r.wall_time_s == 600.0);
+  CHECK(r.tailwater_control == "hold_toe");
+  CHECK(r.metric("sequent_depth")->value == 0.1331);
+  CHECK(*r.metric("sequent_depth")->smooth_theory == 0.131781);
+  CHECK_FALSE(r.metric("sequent_depth")->experiment);
+  CHECK(r.metric("toe_std")->value == 0.041);
+  REQUIRE(r.profiles.size() == 2);
+  CHECK(r.profiles[0].u_mean_m_s == std::vector<double>{1.99, 1.98});
+  CHECK(r.surface_mean_m == std::vector<double>{0.026});
+  // A directory with no comparison is refused by name.
+  CHECK_THROWS_WITH(records_from_case_dir(tmp.path() / "none", {}), Catch::Contains("has no finished comparison"));
+
+  // The imported comparison: the study report's tables from the records.
+  const fs::path imported = tmp.path() / "imported";
+  write_imported_comparison(imported, {sample_record("sph", 0.11), sample_record("vof", 0.12)});
+  const std::string metrics = hydrojump::cases::read_text_file(imported / "csv" / "metrics.csv");
+  CHECK_THAT(metrics, Catch::Contains("sequent_depth,m,0.11,0.12,0.104,nan,0.1317813053,predicted"));
+  CHECK_THAT(hydrojump::cases::read_text_file(imported / "csv" / "eta.csv"),
+             Catch::Contains("A,39.2188,48.43,47.08,45.448,45.448,nan,nan"));
+}
+
+TEST_CASE("The validation document gives the hand-computed differences and is the same for the same records",
+          "[compare][record]") {
+  const std::vector<ValidationRecord> records = {sample_record("sph", 0.108535), sample_record("vof", 0.113782)};
+  const std::string md = validation_markdown(records, "validation/records");
+  // y2: 0.108535 / 0.104 - 1 = +4.36 %; eta: 45.448 - 48.43 = -2.98 points; SPH - VOF: 0.108535 / 0.113782 - 1 = -4.6 %.
+  CHECK_THAT(md, Catch::Contains("| A | SPH | quick | predicted | 0.1085 | 0.104 | +4.4 % | 0.1318 |"));
+  CHECK_THAT(md, Catch::Contains("| 45.45 | 48.43 | -2.98 | 39.22 |"));
+  CHECK_THAT(md, Catch::Contains("| A | quick | 0.1085 | 0.1138 | -4.6 % |"));
+  CHECK_THAT(md, Catch::Contains("21 min (2 threads)"));
+  CHECK_THAT(md, Catch::Contains("`hydrojump study mini.toml --cases A --resolution quick --methods vof`"));
+  CHECK(validation_markdown(records, "validation/records") == md);
+  CHECK_THAT(validation_markdown({}, "validation/records"), Catch::Contains("No records yet."));
+}
