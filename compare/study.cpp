@@ -159,6 +159,10 @@ class StudyRunner {
     const std::string run_fingerprint = run_fingerprint_of(study_, c, options_.resolution);
     const std::string compare_fingerprint = case_fingerprint(study_, c, options_.resolution, source_fingerprint);
 
+    // Records of this case and code (--records) stand in for a run, unless this directory's own
+    // comparison is current.
+    if (cases::read_text_file(dir / "compare.stamp") != compare_fingerprint)
+      if (auto imported = import_records(c, dir, run_fingerprint)) return *imported;
     // Regenerate the case directories only when the case changed (keeps finished results).
     const auto generated_stamp = dir / "generate.stamp";
     const auto run_stamp = dir / "settings.stamp";
@@ -198,7 +202,6 @@ class StudyRunner {
       cases::write_file_atomically(generated_stamp, fingerprint);
       cases::write_file_atomically(run_stamp, run_fingerprint);
     }
-    if (auto imported = import_records(c, dir, run_fingerprint)) return *imported;
     bool any_solver_ok = false, any_solver_ran = false;
     for (const auto& method : options_.methods) {
       if (study_stopping()) {
@@ -260,12 +263,14 @@ class StudyRunner {
     }
     if (found.empty()) return std::nullopt;
     // A directory of results that are not these records' is kept aside, as for a changed case.
-    if (std::filesystem::exists(dir)) {
+    if (cases::holds_results(dir / "sph") || cases::holds_results(dir / "vof")) {
       const auto previous = options_.out / (c.id + ".previous");
       auto runs_idle = lock_solver_directories({dir, previous}, "hydrojump study (moving it)");
       std::filesystem::remove_all(previous);
       std::filesystem::rename(dir, previous);
+      say(c.id + ": its earlier results are kept in " + previous.string());
     }
+    std::filesystem::remove_all(dir);
     write_imported_comparison(dir, found);
     CaseResult result{c.id, {}};
     std::string files;

@@ -51,7 +51,7 @@ std::string wall_text(const ValidationRecord& r) {
   std::ostringstream o;
   if (s >= 3600) o << s / 3600 << " h " << std::setw(2) << std::setfill('0') << (s / 60) % 60 << " min";
   else o << (s + 30) / 60 << " min";
-  if (r.threads) o << " (" << *r.threads << (r.method == "sph" ? " threads)" : " ranks)");
+  if (r.threads) o << " (" << *r.threads << (r.method == "sph" ? " thread" : " rank") << (*r.threads == 1 ? ")" : "s)");
   return o.str();
 }
 
