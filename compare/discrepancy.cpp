@@ -126,6 +126,8 @@ std::vector<MetricRow> metric_table(const JumpMetrics* sph, const JumpMetrics* v
                   v(vof, &JumpMetrics::bed_force_fraction, 100.0), lab_bed_force, not_a_number, 0.0});
   rows.push_back({"velocity_settling_distance", "m", v(sph, &JumpMetrics::velocity_settling_distance_m),
                   v(vof, &JumpMetrics::velocity_settling_distance_m), not_a_number, not_a_number, not_a_number});
+  rows.push_back({"jet_height", "", v(sph, &JumpMetrics::jet_height_fraction), v(vof, &JumpMetrics::jet_height_fraction),
+                  not_a_number, not_a_number, not_a_number});
   rows.push_back({"surface_peak", "m", v(sph, &JumpMetrics::surface_peak_m), v(vof, &JumpMetrics::surface_peak_m),
                   not_a_number, not_a_number, not_a_number});
   // What the set-up holds: the inflow always; the toe's mean under the toe-holding control; else the

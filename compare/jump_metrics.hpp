@@ -38,6 +38,12 @@
 //                smooth bed has M1 = M2 (0); the corrugations' drag makes it positive, which is why
 //                they hold a jump at a lower tailwater. A jump that drifts upstream in a run shows
 //                M2 > M1 at the sections (negative): more force downstream than the inflow can carry.
+//   jet height   at the section "x_2y2" (two tailwater depths past the basin start), the height of the
+//                time-mean maximum forward velocity above the bed over the mean depth there. A jump is a
+//                wall jet under a surface roller (Rajaratnam 1965, The hydraulic jump as a wall jet,
+//                J. Hydraul. Div. 91(HY5)): the fastest forward flow stays near the bed, a small
+//                fraction; a surface jet over reverse flow at the bed puts it near 1. Heights where
+//                fewer than half the frames had water do not count.
 //   velocity decay  u_max(x)/U1 and U(x)/U1 along the stations from the toe; the settling distance is
 //                the first x - x_t from which u_max stays within 10 % of its value at the downstream
 //                section.
@@ -90,6 +96,7 @@ struct JumpMetrics {
   double specific_force_downstream_m2 = not_a_number;  // M2
   double bed_force_fraction = not_a_number;    // (M1 - M2)/M1
   double velocity_settling_distance_m = not_a_number;
+  double jet_height_fraction = not_a_number;    // z(u_max) above the bed / depth at section x_2y2
   double surface_peak_m = not_a_number;         // highest time-mean depth above the floor from the toe to
   double surface_peak_x_m = not_a_number;       // the downstream section (running mean), and where
   std::vector<std::string> notes;              // why a metric is missing

@@ -59,6 +59,12 @@ std::string row_label(const ValidationRecord& r) {
   return "| " + r.case_id + " | " + (r.method == "sph" ? std::string("SPH") : std::string("VOF")) + " | " + r.resolution + " |";
 }
 
+// "wall jet (0.12)" or "surface jet (0.85)" from the jet height fraction at x_2y2.
+std::string structure_text(double jet_height) {
+  if (!std::isfinite(jet_height)) return dash;
+  return std::string(jet_height < 0.5 ? "wall jet" : "surface jet") + " (" + fix(jet_height, 2) + ")";
+}
+
 // The targets a row is held to (the predictions issue): the toe held within one wavelength (68 mm on a
 // smooth bed) of the basin start with sd <= 2 y1; a smooth bed's y2 within 3 % of Belanger; a corrugated
 // bed with laboratory data: y2 within 10 %, eta within 3 points, Lj within 20 %, y2/y2* within 0.05.
@@ -129,14 +135,18 @@ std::string validation_markdown(const std::vector<ValidationRecord>& records, co
     md << "\n### Jump length, roller and toe\n\n"
           "Lj and Lr from the time-mean surface; the toe's mean and standard deviation over the window's frames "
           "(held at the basin start under the flume's protocol: a check of the control, not a prediction).\n\n"
-          "| case | method | resolution | Lj (m) | Lj lab | ΔLj | Lr (m) | toe mean (m) | toe sd (m) | window (s) | "
-          "solver wall time |\n"
-          "|---|---|---|---:|---:|---:|---:|---:|---:|---|---|\n";
+          "Structure: where the fastest forward flow runs two tailwater depths past the basin start, as a "
+          "fraction of the depth there: a wall jet under a surface roller (a classic jump, Rajaratnam 1965) "
+          "below one half, a surface jet above.\n\n"
+          "| case | method | resolution | Lj (m) | Lj lab | ΔLj | Lr (m) | structure | toe mean (m) | toe sd (m) | "
+          "window (s) | solver wall time |\n"
+          "|---|---|---|---:|---:|---:|---:|---|---:|---:|---|---|\n";
     for (const auto* r : rows) {
       const double lj = value_of(*r, "jump_length"), lj_lab = experiment_of(*r, "jump_length");
       md << row_label(*r) << " " << fix(lj, 3) << " | " << fix(lj_lab, 2) << " | "
          << (std::isfinite(lj_lab) ? fix(percent_off(lj, lj_lab), 1, true) + " %" : dash) << " | "
-         << fix(value_of(*r, "roller_length"), 3) << " | " << fix(value_of(*r, "toe_mean_of_frames"), 3) << " | "
+         << fix(value_of(*r, "roller_length"), 3) << " | " << structure_text(value_of(*r, "jet_height")) << " | "
+         << fix(value_of(*r, "toe_mean_of_frames"), 3) << " | "
          << fix(value_of(*r, "toe_std"), 3) << " | " << fix(r->window_start_s, 1) << "–" << fix(r->window_end_s, 1)
          << " | " << wall_text(*r) << " |\n";
     }

@@ -460,3 +460,27 @@ TEST_CASE("A section whose mean discharge is off the inflow q is named in the no
   m.sections.push_back(as_statistics("downstream", "downstream", uniform_column(1.5, 0.0, y2, 1.077 * q / y2)));
   CHECK(has_note(compute_jump_metrics(m, in), "is 7.7 % off the inflow q"));
 }
+
+TEST_CASE("The jet height is where the fastest forward flow runs at x_2y2 over the depth there", "[compare][metrics]") {
+  // A hand-built section 0.1 m deep over a bed at z = -0.01 m: a wall jet (u_max at 0.02 m above the
+  // bed: 0.2), then a surface jet (u_max at 0.09 m: 0.9); heights wet in under half the frames do not count.
+  MethodStatistics m;
+  ColumnStatistics s;
+  s.spec = {"x_2y2", "interior", 0.6, -0.01, 11};
+  s.n_times = s.n_wet = 10;
+  s.depth.mean = 0.1;
+  for (int k = 0; k <= 10; ++k) {
+    s.z.push_back(-0.01 + 0.01 * k);
+    s.u_mean.push_back(k == 2 ? 1.2 : 0.3);
+    s.wet_fraction.push_back(1.0);
+  }
+  m.sections.push_back(s);
+  JumpInputs in{0.0254, 2.0, 0.0, g, {}};
+  CHECK(compute_jump_metrics(m, in).jet_height_fraction == Approx(0.2).margin(1e-12));
+  m.sections[0].u_mean[9] = 1.5;
+  CHECK(compute_jump_metrics(m, in).jet_height_fraction == Approx(0.9).margin(1e-12));
+  m.sections[0].wet_fraction[9] = 0.4;  // a splash height: the wall jet again
+  CHECK(compute_jump_metrics(m, in).jet_height_fraction == Approx(0.2).margin(1e-12));
+  m.sections[0].spec.name = "x_4y2";  // no section x_2y2: not measured
+  CHECK(std::isnan(compute_jump_metrics(m, in).jet_height_fraction));
+}
