@@ -100,34 +100,11 @@ TEST_CASE("A damaged validation record is refused by file and key", "[compare][r
 TEST_CASE("A compared case directory gives one record per finished method with that method's values",
           "[compare][record]") {
   const hydrojump::testing::TempDir tmp("record_case");
-  const std::string spec = R"([study]
-name = "mini"
-[resolution.quick]
-particle_spacing_m = 0.005
-vof_cell_size_bed_m = 0.005
-vof_cell_size_bulk_m = 0.01
-[[case]]
-id = "A"
-kind = "stilling_basin"
-[case.run]
-end_time_s = 10.0
-average_start_s = 6.0
-[case.bed]
-profile = "smooth"
-[case.inflow]
-depth_m = 0.0254
-velocity_m_s = 2.0
-[case.tailwater]
-rule = "belanger"
-[case.domain]
-upstream_length_m = 0.2
-basin_length_m = 1.36
-downstream_length_m = 0.2
-air_height_m = 0.1
-)";
-  const auto study = hydrojump::cases::parse_study(spec, "mini.toml", ".");
-  const fs::path dir = tmp.path() / "A";
-  hydrojump::cases::write_resolved_case(study, study.cases[0], "quick", (fs::create_directories(dir / "sph"), dir / "sph" / "case.toml"));
+  // Run A_smooth of the test fixture: a 10 s run averaged over 6-10 s, the toe held.
+  const auto study = hydrojump::cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/tests/data/basins.toml");
+  const fs::path dir = tmp.path() / "A_smooth";
+  fs::create_directories(dir / "sph");
+  hydrojump::cases::write_resolved_case(study, *study.find_case("A_smooth"), "quick", dir / "sph" / "case.toml");
   write(dir / "sph.stamp", "feedfacefeedface");
   write(dir / "sph.stage.toml", "wall_time_s = 600.0\nthreads = 2\n");
   // The VOF stage did not finish (no stamp): no VOF record.
@@ -143,7 +120,10 @@ air_height_m = 0.1
   REQUIRE(records.size() == 1);
   const ValidationRecord& r = records[0];
   CHECK(r.method == "sph");
-  CHECK(r.study == "mini");
+  CHECK(r.study == "ead2002");
+  CHECK(r.case_id == "A_smooth");
+  CHECK(r.bed == "smooth");
+  CHECK(r.basin_start_m == 0.2);
   CHECK(r.resolution == "quick");
   CHECK(r.run_key == "feedfacefeedface");
   CHECK(r.window_start_s == 6.0);
