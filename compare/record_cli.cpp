@@ -75,6 +75,7 @@ struct DocOptions {
   fs::path records = "validation/records";
   fs::path out = "docs/validation.md";
   std::vector<std::string> not_run;  // SPEC and RESOLUTION
+  fs::path readme;                   // a document with the headline table's markers
   bool check = false;
 };
 
@@ -86,7 +87,14 @@ void validation_doc_command(const DocOptions& o) {
                                                          : cases::load_study(o.not_run[0]);
     text += not_run_markdown(study, records, o.not_run[1]);
   }
+  std::string readme_text;
+  if (!o.readme.empty()) readme_text = with_headline(cases::read_text_file(o.readme), headline_markdown(records), o.readme.string());
   if (o.check) {
+    if (!o.readme.empty() && cases::read_text_file(o.readme) != readme_text) {
+      std::cerr << "hydrojump validation-doc: the headline table of " << o.readme.string() << " is not what the records in "
+                << o.records.string() << " give: run validation-doc with --readme " << o.readme.string() << "\n";
+      throw CLI::RuntimeError(1);
+    }
     if (cases::read_text_file(o.out) != text) {
       std::cerr << "hydrojump validation-doc: " << o.out.string() << " is not what the records in " << o.records.string()
                 << " give: run `hydrojump validation-doc --records " << o.records.string() << " --out "
@@ -99,6 +107,10 @@ void validation_doc_command(const DocOptions& o) {
   if (o.out.has_parent_path()) fs::create_directories(o.out.parent_path());
   cases::write_file_atomically(o.out, text);
   std::cout << "wrote " << o.out.string() << "\n";
+  if (!o.readme.empty()) {
+    cases::write_file_atomically(o.readme, readme_text);
+    std::cout << "updated the headline table of " << o.readme.string() << "\n";
+  }
 }
 
 }  // namespace
@@ -140,6 +152,10 @@ void register_record_commands(CLI::App& app) {
                   "SPEC RESOLUTION: also list the stilling basins of SPEC (a file, or \"default\") with no record of a "
                   "method at RESOLUTION, with the size of each missing run")
       ->expected(2);
+  doc->add_option("--readme", d->readme,
+                  "also set the headline table of this document (e.g. README.md) between its lines "
+                  "<!-- validation-table:start --> and <!-- validation-table:end -->")
+      ->check(CLI::ExistingFile);
   doc->add_flag("--check", d->check, "compare the document with what the records give; write nothing");
   doc->callback([d] {
     try {

@@ -181,6 +181,36 @@ std::string validation_markdown(const std::vector<ValidationRecord>& records, co
   return md.str();
 }
 
+std::string headline_markdown(const std::vector<ValidationRecord>& records) {
+  std::ostringstream md;
+  md << "| case | method | resolution | y2 | η (points) | Lj | y2/y2* (lab) | structure | targets |\n"
+        "|---|---|---|---|---:|---|---|---|---|\n";
+  for (const auto& r : records) {
+    const double y2 = value_of(r, "sequent_depth"), y2_lab = experiment_of(r, "sequent_depth"),
+                 y2_star = theory_of(r, "sequent_depth");
+    const std::string y2_text = std::isfinite(y2_lab)   ? fix(percent_off(y2, y2_lab), 1, true) + " % of lab"
+                                : std::isfinite(y2_star) ? fix(percent_off(y2, y2_star), 1, true) + " % of y2*"
+                                                         : dash;
+    const double lj = value_of(r, "jump_length"), lj_lab = experiment_of(r, "jump_length");
+    md << row_label(r) << " " << y2_text << " | " << fix(value_of(r, "eta") - experiment_of(r, "eta"), 2, true) << " | "
+       << (std::isfinite(lj_lab) ? fix(percent_off(lj, lj_lab), 1, true) + " %" : dash) << " | "
+       << fix(value_of(r, "bed_effect"), 3) << " (" << fix(experiment_of(r, "bed_effect"), 3) << ") | "
+       << structure_text(value_of(r, "jet_height")) << " | " << targets_text(r) << " |\n";
+  }
+  if (records.empty()) md << "| no records yet | | | | | | | | |\n";
+  return md.str();
+}
+
+std::string with_headline(const std::string& text, const std::string& block, const std::string& file_name) {
+  const std::string start = "<!-- validation-table:start -->\n", end = "<!-- validation-table:end -->";
+  const auto a = text.find(start);
+  const auto b = a == std::string::npos ? std::string::npos : text.find(end, a);
+  if (b == std::string::npos)
+    throw RecordError(file_name + ": has no \"<!-- validation-table:start -->\" line followed by \"" + end +
+                      "\": the headline table goes between them");
+  return text.substr(0, a + start.size()) + block + text.substr(b);
+}
+
 std::string not_run_markdown(const cases::Study& study, const std::vector<ValidationRecord>& records,
                              const std::string& resolution) {
   std::ostringstream md;

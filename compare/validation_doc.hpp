@@ -15,6 +15,14 @@ namespace hydrojump::compare {
 // `records_root` is printed as the folder the records live in (e.g. "validation/records").
 std::string validation_markdown(const std::vector<ValidationRecord>& records, const std::string& records_root);
 
+// The headline table of README.md: one row per record, each prediction against the laboratory (or
+// Belanger on a smooth bed) and the targets met or missed.
+std::string headline_markdown(const std::vector<ValidationRecord>& records);
+
+// `text` with the lines between "<!-- validation-table:start -->" and "<!-- validation-table:end -->"
+// replaced by `block`; throws RecordError naming `file_name` when the markers are missing.
+std::string with_headline(const std::string& text, const std::string& block, const std::string& file_name);
+
 // The stilling basins of `study` that have no record of a method at `resolution`, as a Markdown table
 // with the size of each missing run (water area / dx^2 particles, cells from the VOF sizes, simulated time).
 std::string not_run_markdown(const cases::Study& study, const std::vector<ValidationRecord>& records,

@@ -162,3 +162,15 @@ TEST_CASE("The validation document gives the hand-computed differences and is th
   CHECK(validation_markdown(records, "validation/records") == md);
   CHECK_THAT(validation_markdown({}, "validation/records"), Catch::Contains("No records yet."));
 }
+
+TEST_CASE("The README headline table goes between its markers and a document without them is refused", "[compare][record]") {
+  const std::vector<ValidationRecord> records = {sample_record("sph", 0.108535)};
+  const std::string block = headline_markdown(records);
+  // y2 against the lab: 0.108535 / 0.104 - 1 = +4.4 %; eta 45.448 - 48.43 = -2.98 points.
+  CHECK_THAT(block, Catch::Contains("| A | SPH | quick | +4.4 % of lab | -2.98 |"));
+  const std::string doc = "intro\n<!-- validation-table:start -->\nold table\n<!-- validation-table:end -->\nafter\n";
+  const std::string updated = with_headline(doc, block, "README.md");
+  CHECK(updated == "intro\n<!-- validation-table:start -->\n" + block + "<!-- validation-table:end -->\nafter\n");
+  CHECK(with_headline(updated, block, "README.md") == updated);
+  CHECK_THROWS_WITH(with_headline("no markers\n", block, "README.md"), Catch::Contains("README.md: has no"));
+}
