@@ -342,11 +342,12 @@ void write_imported_comparison(const fs::path& case_dir, const std::vector<Valid
     if (m->quantity == "eta") eta = m;
   std::ostringstream eta_csv;
   eta_csv << "case,smooth_theory_percent,experiment_percent,published_sph_percent,sph_percent,vof_percent,"
-             "sph_crest_depth_percent,vof_crest_depth_percent\n";
+             "sph_crest_depth_percent,vof_crest_depth_percent,status\n";
   if (eta)
     eta_csv << records.front().case_id << "," << text(eta->smooth_theory) << "," << text(eta->experiment) << ","
             << text(eta->published_sph) << "," << text(value(sph, "eta")) << "," << text(value(vof, "eta")) << ","
-            << text(value(sph, "eta_crest_depth")) << "," << text(value(vof, "eta_crest_depth")) << "\n";
+            << text(value(sph, "eta_crest_depth")) << "," << text(value(vof, "eta_crest_depth")) << "," << eta->status
+            << "\n";
   fs::create_directories(case_dir / "csv");
   cases::write_file_atomically(case_dir / "csv" / "metrics.csv", metrics.str());
   cases::write_file_atomically(case_dir / "csv" / "eta.csv", eta_csv.str());

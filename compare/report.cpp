@@ -300,16 +300,17 @@ void write_csvs(const CaseComparison& c, const fs::path& dir) {
   }
   {
     double sph = not_a_number, vof = not_a_number, sph_crest = not_a_number, vof_crest = not_a_number;
+    std::string status = "predicted";
     for (const auto& r : c.metrics) {
-      if (r.quantity == "eta") { sph = r.sph; vof = r.vof; }
+      if (r.quantity == "eta") { sph = r.sph; vof = r.vof; status = r.status; }
       if (r.quantity == "eta_crest_depth") { sph_crest = r.sph; vof_crest = r.vof; }
     }
     std::ostringstream s;
     s << "case,smooth_theory_percent,experiment_percent,published_sph_percent,sph_percent,vof_percent,"
-         "sph_crest_depth_percent,vof_crest_depth_percent\n"
+         "sph_crest_depth_percent,vof_crest_depth_percent,status\n"
       << c.case_id << "," << num(c.eta_smooth_theory_percent) << ","
       << num(c.lab.eta_percent.value_or(not_a_number)) << "," << num(c.lab.published_sph_eta_percent.value_or(not_a_number))
-      << "," << num(sph) << "," << num(vof) << "," << num(sph_crest) << "," << num(vof_crest) << "\n";
+      << "," << num(sph) << "," << num(vof) << "," << num(sph_crest) << "," << num(vof_crest) << "," << status << "\n";
     cases::write_file_atomically(dir / "eta.csv", s.str());
   }
 }

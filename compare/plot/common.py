@@ -21,7 +21,7 @@ METHOD_STYLE = {
 
 # Columns that hold ids and names: kept as text even when they look like numbers (a case "007" or
 # "2_5", which Python's float() would read as 7 and 25).
-TEXT_COLUMNS = frozenset({"case", "method", "section", "role", "key", "value", "quantity", "unit", "name"})
+TEXT_COLUMNS = frozenset({"case", "method", "section", "role", "key", "value", "quantity", "unit", "name", "status"})
 
 
 class PlotInputError(Exception):

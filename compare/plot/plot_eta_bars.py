@@ -5,8 +5,10 @@ this VOF.
 Usage: plot_eta_bars.py ETA_CSV [ETA_CSV ...] --out PNG
 
 Each ETA_CSV is a case's csv/eta.csv written by `hydrojump compare` (columns case,
-smooth_theory_percent, experiment_percent, published_sph_percent, sph_percent, vof_percent); missing
-values are left out of the bars.
+smooth_theory_percent, experiment_percent, published_sph_percent, sph_percent, vof_percent, and status:
+"predicted" when the run held the toe and predicted y2, "imposed" when it held the tailwater depth);
+missing values are left out of the bars. This SPH and VOF bars of an imposed case are hatched, and the
+title says which the cases are.
 """
 import math
 import os
@@ -35,7 +37,7 @@ def eta_bars(files, out):
     cases = [r["case"] for r in rows]
     x = np.arange(len(rows))
     width = 0.8 / len(SERIES)
-    fig, ax = plt.subplots(figsize=(max(4.0, 1.3 * len(rows) + 2), 3.6))
+    fig, ax = plt.subplots(figsize=(max(6.5, 1.3 * len(rows) + 2), 3.6))
     shown = []
     for i, (key, label, color) in enumerate(SERIES):
         vals = np.array([r.get(key, math.nan) for r in rows], dtype=float)
@@ -44,7 +46,12 @@ def eta_bars(files, out):
             continue
         shown.extend(vals[ok])
         pos = x - 0.4 + (i + 0.5) * width
-        ax.bar(pos[ok], vals[ok], width, color=color, label=label)
+        imposed = np.array([r.get("status", "") == "imposed" for r in rows]) & ok
+        model = key in ("sph_percent", "vof_percent")
+        ax.bar(pos[ok & ~imposed], vals[ok & ~imposed], width, color=color, label=label)
+        if model and imposed.any():
+            ax.bar(pos[imposed], vals[imposed], width, color=color, hatch="///", edgecolor="white",
+                   label=None if (ok & ~imposed).any() else label)
         for p, v in zip(pos[ok], vals[ok]):
             ax.text(p, v + 0.5, "%.1f" % v, ha="center", va="bottom", fontsize=6, rotation=90)
     ax.set_xticks(x)
@@ -53,7 +60,14 @@ def eta_bars(files, out):
     ax.set_ylabel("η = (E1 − E2)/E1 (%)")
     # 0-100 %, widened to show a value outside it (a broken run's) instead of clipping it.
     ax.set_ylim(min([0.0] + [v - 5.0 for v in shown]), max([100.0] + [v + 8.0 for v in shown]))
-    ax.set_title("Energy dissipation rate")
+    statuses = {r.get("status", "") for r in rows}
+    if statuses == {"predicted"}:
+        kind = "predicted (toe held at the basin start, y2 free)"
+    elif statuses == {"imposed"}:
+        kind = "imposed by the held tailwater depth"
+    else:
+        kind = "hatched: imposed by a held tailwater depth"
+    ax.set_title("Energy dissipation rate; this SPH and VOF: " + kind, fontsize=9)
     ax.legend(fontsize=7, loc="upper left", ncol=2)
     ax.grid(axis="y", alpha=0.3)
     save(fig, out)
