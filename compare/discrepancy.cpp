@@ -1,6 +1,7 @@
 #include "compare/discrepancy.hpp"
 
 #include "cases/hydraulics.hpp"
+#include "compare/jump_structure.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -104,10 +105,14 @@ std::vector<MetricRow> metric_table(const JumpMetrics* sph, const JumpMetrics* v
   rows.push_back({"bed_effect", "", v(sph, &JumpMetrics::sequent_depth_m, 1.0 / belanger_y2),
                   v(vof, &JumpMetrics::sequent_depth_m, 1.0 / belanger_y2), o(lab.sequent_depth_m) / belanger_y2,
                   not_a_number, 1.0});
+  // The classical jump's lengths at this inflow (jump_structure.hpp): USBR's 6 y2*, Hager et al.'s Lr.
+  const double fr1 = inflow_depth_m > 0.0 && gravity_m_s2 > 0.0
+                         ? cases::froude_number(inflow_depth_m, inflow_velocity_m_s, gravity_m_s2)
+                         : not_a_number;
   rows.push_back({"jump_length", "m", v(sph, &JumpMetrics::jump_length_m), v(vof, &JumpMetrics::jump_length_m),
-                  o(lab.jump_length_m), not_a_number, not_a_number});
+                  o(lab.jump_length_m), not_a_number, usbr_jump_length(belanger_y2, fr1)});
   rows.push_back({"roller_length", "m", v(sph, &JumpMetrics::roller_length_m), v(vof, &JumpMetrics::roller_length_m),
-                  o(lab.roller_length_m), not_a_number, not_a_number});
+                  o(lab.roller_length_m), not_a_number, hager_roller_length(inflow_depth_m, fr1)});
   rows.push_back({"eta", "%", v(sph, &JumpMetrics::eta, 100.0), v(vof, &JumpMetrics::eta, 100.0), o(lab.eta_percent),
                   o(lab.published_sph_eta_percent), smooth_theory});
   rows.push_back({"eta_alpha1", "%", v(sph, &JumpMetrics::eta_alpha1, 100.0), v(vof, &JumpMetrics::eta_alpha1, 100.0),
@@ -128,6 +133,8 @@ std::vector<MetricRow> metric_table(const JumpMetrics* sph, const JumpMetrics* v
                   v(vof, &JumpMetrics::velocity_settling_distance_m), not_a_number, not_a_number, not_a_number});
   rows.push_back({"jet_height", "", v(sph, &JumpMetrics::jet_height_fraction), v(vof, &JumpMetrics::jet_height_fraction),
                   not_a_number, not_a_number, not_a_number});
+  rows.push_back({"wall_jet_deviation", "", v(sph, &JumpMetrics::wall_jet_deviation),
+                  v(vof, &JumpMetrics::wall_jet_deviation), not_a_number, not_a_number, not_a_number});
   rows.push_back({"surface_peak", "m", v(sph, &JumpMetrics::surface_peak_m), v(vof, &JumpMetrics::surface_peak_m),
                   not_a_number, not_a_number, not_a_number});
   // What the set-up holds: the inflow always; the toe's mean under the toe-holding control; else the

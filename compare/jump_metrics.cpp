@@ -1,6 +1,7 @@
 #include "compare/jump_metrics.hpp"
 
 #include "cases/jump_toe.hpp"
+#include "compare/jump_structure.hpp"
 
 #include <algorithm>
 #include <iomanip>
@@ -87,6 +88,8 @@ double jet_height_fraction(const MethodStatistics& m, const std::string& name) {
 JumpMetrics compute_jump_metrics(const MethodStatistics& m, const JumpInputs& in) {
   JumpMetrics r;
   r.jet_height_fraction = jet_height_fraction(m, "x_2y2");
+  for (const auto& s : m.sections)
+    if (s.spec.name == "x_2y2" && s.n_wet > 0) r.wall_jet_deviation = fit_wall_jet(s).deviation;
   const double g = in.gravity_m_s2;
   const double y1 = in.inflow_depth_m;
   const ColumnStatistics* up = find_role(m, "upstream");

@@ -44,6 +44,8 @@
 //                J. Hydraul. Div. 91(HY5)): the fastest forward flow stays near the bed, a small
 //                fraction; a surface jet over reverse flow at the bed puts it near 1. Heights where
 //                fewer than half the frames had water do not count.
+//   wall jet     at the same section, the RMS deviation of the time-mean profile u/u_m from the plane
+//                wall jet's (Verhoff 1963) up to the half-velocity height (jump_structure.hpp).
 //   velocity decay  u_max(x)/U1 and U(x)/U1 along the stations from the toe; the settling distance is
 //                the first x - x_t from which u_max stays within 10 % of its value at the downstream
 //                section.
@@ -97,6 +99,7 @@ struct JumpMetrics {
   double bed_force_fraction = not_a_number;    // (M1 - M2)/M1
   double velocity_settling_distance_m = not_a_number;
   double jet_height_fraction = not_a_number;    // z(u_max) above the bed / depth at section x_2y2
+  double wall_jet_deviation = not_a_number;     // its profile against Verhoff's wall jet (jump_structure.hpp)
   double surface_peak_m = not_a_number;         // highest time-mean depth above the floor from the toe to
   double surface_peak_x_m = not_a_number;       // the downstream section (running mean), and where
   std::vector<std::string> notes;              // why a metric is missing

@@ -72,6 +72,8 @@ void metrics_json(Json& j, const JumpMetrics& m) {
       .field("specific_force_downstream_m2", m.specific_force_downstream_m2)
       .field("bed_force_fraction", m.bed_force_fraction)
       .field("velocity_settling_distance_m", m.velocity_settling_distance_m)
+      .field("jet_height_fraction", m.jet_height_fraction)
+      .field("wall_jet_deviation", m.wall_jet_deviation)
       .field("surface_peak_m", m.surface_peak_m)
       .field("surface_peak_x_m", m.surface_peak_x_m);
   j.key("notes").begin_array();
@@ -330,6 +332,8 @@ std::string pretty_quantity(const std::string& q) {
   if (q == "eta_crest_depth") return "eta, lab convention y + q²/(2gy²), y above crests (%)";
   if (q == "bed_force_fraction") return "bed force (M1-M2)/M1, M = h²/2 + βq²/(gh) (%)";
   if (q == "velocity_settling_distance") return "velocity settling distance (m)";
+  if (q == "jet_height") return "height of the fastest forward flow at x_2y2 / depth (wall jet < 0.5)";
+  if (q == "wall_jet_deviation") return "RMS of u/u_m from Verhoff's wall-jet profile at x_2y2 (classic <= 0.15)";
   if (q == "surface_peak") return "highest mean surface, toe to downstream section (m above the floor)";
   return q;
 }
@@ -478,7 +482,7 @@ std::string write_report(const CaseComparison& c, const fs::path& out, bool plot
                "y2, η, Lj, Lr and the bed force are predictions."
              : "Protocol: the outlet holds the tailwater depth (control = \"fixed_depth\"): y2 and what follows from "
                "it (η, the bed force) are imposed, not results; the toe and the lengths are predictions.");
-  d.table({"quantity", "predicted / imposed", "this SPH", "this VOF", "experiment", "inputs only (Bélanger)",
+  d.table({"quantity", "predicted / imposed", "this SPH", "this VOF", "experiment", "inputs only (smooth bed: Bélanger, USBR, Hager)",
            "published SPH", "SPH − VOF", "SPH − exp.", "VOF − exp."},
           rows);
   {

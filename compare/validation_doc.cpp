@@ -1,5 +1,7 @@
 #include "compare/validation_doc.hpp"
 
+#include "compare/jump_structure.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
@@ -59,10 +61,16 @@ std::string row_label(const ValidationRecord& r) {
   return "| " + r.case_id + " | " + (r.method == "sph" ? std::string("SPH") : std::string("VOF")) + " | " + r.resolution + " |";
 }
 
-// "wall jet (0.12)" or "surface jet (0.85)" from the jet height fraction at x_2y2.
-std::string structure_text(double jet_height) {
-  if (!std::isfinite(jet_height)) return dash;
-  return std::string(jet_height < 0.5 ? "wall jet" : "surface jet") + " (" + fix(jet_height, 2) + ")";
+// The structure check (jump_structure.hpp) from the jet height fraction and the wall-jet profile
+// deviation at x_2y2: "classic (0.12, 0.08)", "wall jet, profile off (0.12, 0.23)", "surface jet (0.85)";
+// a record without the deviation (made before it was measured) shows the jet height alone.
+std::string structure_text(const ValidationRecord& r) {
+  const double jet = value_of(r, "jet_height"), dev = value_of(r, "wall_jet_deviation");
+  if (!std::isfinite(jet)) return dash;
+  if (jet >= classic_jet_height_limit) return "surface jet (" + fix(jet, 2) + ")";
+  if (!std::isfinite(dev)) return "wall jet (" + fix(jet, 2) + ")";
+  return std::string(classic_structure(jet, dev) ? "classic" : "wall jet, profile off") + " (" + fix(jet, 2) + ", " +
+         fix(dev, 2) + ")";
 }
 
 // The targets a row is held to (the predictions issue): the toe held within one wavelength (68 mm on a
@@ -135,17 +143,21 @@ std::string validation_markdown(const std::vector<ValidationRecord>& records, co
     md << "\n### Jump length, roller and toe\n\n"
           "Lj and Lr from the time-mean surface; the toe's mean and standard deviation over the window's frames "
           "(held at the basin start under the flume's protocol: a check of the control, not a prediction).\n\n"
-          "Structure: where the fastest forward flow runs two tailwater depths past the basin start, as a "
-          "fraction of the depth there: a wall jet under a surface roller (a classic jump, Rajaratnam 1965) "
-          "below one half, a surface jet above.\n\n"
-          "| case | method | resolution | Lj (m) | Lj lab | ΔLj | Lr (m) | structure | toe mean (m) | toe sd (m) | "
-          "window (s) | solver wall time |\n"
-          "|---|---|---|---:|---:|---:|---:|---|---:|---:|---|---|\n";
+          "Lr* is a classical (smooth-bed) jump's roller length at the same inflow, Lr/y1 = −12 + 160 tanh(Fr1/20) "
+          "(Hager, Bremen & Kawagoshi 1990). Structure, two tailwater depths past the basin start (inside the "
+          "roller): the height of the fastest forward flow as a fraction of the depth (a wall jet under a surface "
+          "roller below one half, Rajaratnam 1965; a surface jet above) and the RMS deviation of the time-mean "
+          "profile u/u_m from the plane wall jet's, 1.48 η^(1/7) [1 − erf(0.68 η)] with η = z/δ (Verhoff 1963), "
+          "up to the half-velocity height δ. Classic: a wall jet within 0.15 u_m of that profile.\n\n"
+          "| case | method | resolution | Lj (m) | Lj lab | ΔLj | Lr (m) | Lr* (m) | structure (jet, profile) | toe mean (m) | "
+          "toe sd (m) | window (s) | solver wall time |\n"
+          "|---|---|---|---:|---:|---:|---:|---:|---|---:|---:|---|---|\n";
     for (const auto* r : rows) {
       const double lj = value_of(*r, "jump_length"), lj_lab = experiment_of(*r, "jump_length");
       md << row_label(*r) << " " << fix(lj, 3) << " | " << fix(lj_lab, 2) << " | "
          << (std::isfinite(lj_lab) ? fix(percent_off(lj, lj_lab), 1, true) + " %" : dash) << " | "
-         << fix(value_of(*r, "roller_length"), 3) << " | " << structure_text(value_of(*r, "jet_height")) << " | "
+         << fix(value_of(*r, "roller_length"), 3) << " | " << fix(theory_of(*r, "roller_length"), 3) << " | "
+         << structure_text(*r) << " | "
          << fix(value_of(*r, "toe_mean_of_frames"), 3) << " | "
          << fix(value_of(*r, "toe_std"), 3) << " | " << fix(r->window_start_s, 1) << "–" << fix(r->window_end_s, 1)
          << " | " << wall_text(*r) << " |\n";
@@ -153,9 +165,8 @@ std::string validation_markdown(const std::vector<ValidationRecord>& records, co
     md << "\n### Targets\n\n"
           "Toe (held): mean within one bed wavelength (68 mm on a smooth bed) of the basin start, sd at most 2 y1. "
           "Smooth bed: y2 within 3 % of Bélanger. Corrugated bed with laboratory data: y2 within 10 %, η within 3 "
-          "points, Lj within 20 %, y2/y2* within 0.05 of the laboratory's. All rows here are exploratory until a "
-          "resolution has passed the check of the jump's structure (wall jet under a surface roller) against "
-          "published smooth-bed data, which has not been made yet.\n\n"
+          "points, Lj within 20 %, y2/y2* within 0.05 of the laboratory's. A row whose structure is not classic "
+          "(above) is exploratory: its depths may be right for the wrong flow.\n\n"
           "| case | method | resolution | targets |\n|---|---|---|---|\n";
     for (const auto* r : rows) md << row_label(*r) << " " << targets_text(*r) << " |\n";
     // SPH against VOF where both methods have a record of the same case and resolution.
@@ -195,7 +206,7 @@ std::string headline_markdown(const std::vector<ValidationRecord>& records) {
     md << row_label(r) << " " << y2_text << " | " << fix(value_of(r, "eta") - experiment_of(r, "eta"), 2, true) << " | "
        << (std::isfinite(lj_lab) ? fix(percent_off(lj, lj_lab), 1, true) + " %" : dash) << " | "
        << fix(value_of(r, "bed_effect"), 3) << " (" << fix(experiment_of(r, "bed_effect"), 3) << ") | "
-       << structure_text(value_of(r, "jet_height")) << " | " << targets_text(r) << " |\n";
+       << structure_text(r) << " | " << targets_text(r) << " |\n";
   }
   if (records.empty()) md << "| no records yet | | | | | | | | |\n";
   return md.str();
@@ -211,37 +222,89 @@ std::string with_headline(const std::string& text, const std::string& block, con
   return text.substr(0, a + start.size()) + block + text.substr(b);
 }
 
+namespace {
+
+// The size of a run: SPH particles (the water under the tailwater level over the domain, dx^2 each) or
+// VOF cells (the water and the air above it, bed by bulk cell sizes): rough counts.
+double run_size(const cases::StillingBasinCase& b, const cases::Resolution& level, const std::string& method) {
+  const double length = b.upstream_length_m + b.basin_length_m + b.downstream_length_m;
+  if (method == "sph") return length * b.tailwater_depth_m / (level.particle_spacing_m * level.particle_spacing_m);
+  return length * (b.tailwater_depth_m + b.air_height_m) / (level.vof_cell_size_bed_m * level.vof_cell_size_bulk_m);
+}
+
+// A rough measure of a run's work: size x steps, with steps ~ T U1 / dx (the time step is limited by
+// the sound speed, ~U1, over dx in SPH, and by the Courant number over the bed cell size in VOF).
+double run_work(const cases::Case& c, const std::string& resolution, const std::string& method) {
+  const auto* b = c.stilling_basin();
+  const auto& level = c.resolutions.at(resolution);
+  const double dx = method == "sph" ? level.particle_spacing_m : level.vof_cell_size_bed_m;
+  return run_size(*b, level, method) * c.run.end_time_s * b->inflow_velocity_m_s / dx;
+}
+
+std::string duration_text(double seconds) {
+  const long s = std::lround(seconds);
+  std::ostringstream o;
+  if (s >= 3600) o << s / 3600 << " h " << std::setw(2) << std::setfill('0') << (s / 60) % 60 << " min";
+  else o << std::max(1L, (s + 30) / 60) << " min";
+  return o.str();
+}
+
+}  // namespace
+
 std::string not_run_markdown(const cases::Study& study, const std::vector<ValidationRecord>& records,
                              const std::string& resolution) {
+  // The reference of each method: the first record of it at this resolution, of a case of this study,
+  // with its wall time; the others' costs are scaled from it by run_work.
+  std::map<std::string, const ValidationRecord*> reference;
+  std::map<std::string, const cases::Case*> reference_case;
+  for (const auto& r : records) {
+    if (r.study != study.name || r.resolution != resolution || !r.wall_time_s || reference.count(r.method)) continue;
+    for (const auto& c : study.cases)
+      if (c.id == r.case_id && c.stilling_basin() && c.resolutions.count(resolution)) {
+        reference[r.method] = &r;
+        reference_case[r.method] = &c;
+      }
+  }
   std::ostringstream md;
   int missing = 0;
   for (const auto& c : study.cases) {
     const auto* b = c.stilling_basin();
     if (!b || !c.resolutions.count(resolution)) continue;
-    const auto& level = c.resolutions.at(resolution);
     for (const std::string method : {"sph", "vof"}) {
       const bool recorded = std::any_of(records.begin(), records.end(), [&](const ValidationRecord& r) {
         return r.study == study.name && r.case_id == c.id && r.method == method && r.resolution == resolution;
       });
       if (recorded) continue;
-      // The water under the tailwater level over the domain; the VOF mesh covers it and the air above.
-      const double length = b->upstream_length_m + b->basin_length_m + b->downstream_length_m;
-      const double water = length * b->tailwater_depth_m;
-      const double cells = length * (b->tailwater_depth_m + b->air_height_m) /
-                           (level.vof_cell_size_bed_m * level.vof_cell_size_bulk_m);
-      const std::string size = method == "sph"
-                                   ? "~" + fix(water / (level.particle_spacing_m * level.particle_spacing_m) / 1000.0, 0) + "k particles"
-                                   : "~" + fix(cells / 1000.0, 0) + "k cells";
-      md << "| " << c.id << " | " << (method == "sph" ? "SPH" : "VOF") << " | " << size << " | " << fix(c.run.end_time_s, 1)
-         << " s |\n";
+      const double size = run_size(*b, c.resolutions.at(resolution), method);
+      std::ostringstream cost;
+      if (reference.count(method)) {
+        const ValidationRecord& ref = *reference.at(method);
+        const double ratio = run_work(c, resolution, method) / run_work(*reference_case.at(method), resolution, method);
+        cost << "~" << duration_text(*ref.wall_time_s * ratio);
+        if (ref.threads)
+          cost << " on " << *ref.threads << (method == "sph" ? " thread" : " rank") << (*ref.threads == 1 ? "" : "s");
+      } else {
+        cost << dash;
+      }
+      md << "| " << c.id << " | " << (method == "sph" ? "SPH" : "VOF") << " | ~" << fix(size / 1000.0, 0)
+         << (method == "sph" ? "k particles" : "k cells") << " | " << fix(c.run.end_time_s, 1) << " s | " << cost.str() << " |\n";
       ++missing;
     }
   }
   if (missing == 0) return "";
-  return "\n## Not run at `" + resolution + "` (study `" + study.name + "`)\n\n"
-         "Cases of the study with no record of a method at the current code, with the size of the run "
-         "(particles from the water area, cells between the bed and the surface sizes: rough counts).\n\n"
-         "| case | method | size | simulated |\n|---|---|---|---:|\n" + md.str();
+  std::ostringstream out;
+  out << "\n## Not run at `" << resolution << "` (study `" << study.name << "`)\n\n"
+      << "Cases of the study with no record of a method at the current code, with the size of the run (particles "
+         "from the water area, cells between the bed and the surface sizes: rough counts) and its estimated wall "
+         "time: the measured one of ";
+  if (reference.empty()) out << "a record of the same method (none yet)";
+  for (auto it = reference.begin(); it != reference.end(); ++it)
+    out << (it == reference.begin() ? "" : " and ") << it->second->case_id << " (" << (it->first == "sph" ? "SPH" : "VOF")
+        << ")";
+  out << " scaled by size × simulated time × U1 / dx (a rough guide: the solvers' time steps differ between cases).\n\n"
+         "| case | method | size | simulated | estimated wall time |\n|---|---|---|---:|---|\n"
+      << md.str();
+  return out.str();
 }
 
 }  // namespace hydrojump::compare

@@ -4,6 +4,8 @@
 // differences are the hand-computed ones.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -173,4 +175,43 @@ TEST_CASE("The README headline table goes between its markers and a document wit
   CHECK(updated == "intro\n<!-- validation-table:start -->\n" + block + "<!-- validation-table:end -->\nafter\n");
   CHECK(with_headline(updated, block, "README.md") == updated);
   CHECK_THROWS_WITH(with_headline("no markers\n", block, "README.md"), Catch::Contains("README.md: has no"));
+}
+
+TEST_CASE("The validation document names each record's jump structure from the jet height and the wall-jet profile",
+          "[compare][record]") {
+  auto with = [](double jet, double deviation) {
+    ValidationRecord r = sample_record("sph", 0.108535);
+    r.metrics.push_back({"jet_height", "", "predicted", jet, std::nullopt, std::nullopt, std::nullopt});
+    if (std::isfinite(deviation))
+      r.metrics.push_back({"wall_jet_deviation", "", "predicted", deviation, std::nullopt, std::nullopt, std::nullopt});
+    return headline_markdown({r});
+  };
+  CHECK_THAT(with(0.12, 0.08), Catch::Contains("| classic (0.12, 0.08) |"));
+  CHECK_THAT(with(0.12, 0.23), Catch::Contains("| wall jet, profile off (0.12, 0.23) |"));
+  CHECK_THAT(with(0.85, std::nan("")), Catch::Contains("| surface jet (0.85) |"));
+  CHECK_THAT(with(0.12, std::nan("")), Catch::Contains("| wall jet (0.12) |"));
+}
+
+TEST_CASE("Cases not run are listed with a wall time scaled from a measured record of the same method",
+          "[compare][record]") {
+  const auto study = hydrojump::cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/tests/data/basins.toml");
+  ValidationRecord a = sample_record("sph", 0.108535);
+  a.study = study.name;
+  a.wall_time_s = 1800.0;
+  const std::string md = not_run_markdown(study, {a}, "quick");
+  // A's SPH has a record and is not listed; A_smooth's SPH is, scaled from A by water area x T x U1 / dx.
+  CHECK_THAT(md, !Catch::Contains("| A | SPH |"));
+  const auto& ca = *std::find_if(study.cases.begin(), study.cases.end(), [](const auto& c) { return c.id == "A"; });
+  const auto& cs = *std::find_if(study.cases.begin(), study.cases.end(), [](const auto& c) { return c.id == "A_smooth"; });
+  auto work = [](const hydrojump::cases::Case& c) {
+    const auto& b = *c.stilling_basin();
+    const double dx = c.resolutions.at("quick").particle_spacing_m;
+    return (b.upstream_length_m + b.basin_length_m + b.downstream_length_m) * b.tailwater_depth_m / (dx * dx) *
+           c.run.end_time_s * b.inflow_velocity_m_s / dx;
+  };
+  const long minutes = std::lround(1800.0 * work(cs) / work(ca) / 60.0);
+  INFO(md);
+  CHECK_THAT(md, Catch::Contains("| A_smooth | SPH |") && Catch::Contains(std::to_string(minutes) + " min on 2 threads |"));
+  // No VOF record: its rows have no estimate.
+  CHECK_THAT(md, Catch::Contains("| A | VOF |") && Catch::Contains("s | — |"));
 }
