@@ -6,6 +6,9 @@
 #include <string>
 #include <system_error>
 
+#include <cerrno>
+#include <csignal>
+
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -74,6 +77,28 @@ void write_file_atomically(const std::filesystem::path& target,
     out.close();
     if (out.fail()) throw std::runtime_error("write failed for '" + target.string() + "' (disk full?)");
   });
+}
+
+int remove_orphaned_temporaries(const std::filesystem::path& dir) {
+  std::error_code ec;
+  int removed = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    // ".<name>.tmp.<pid>.<n>" (temporary_beside)
+    const auto tag = name.rfind(".tmp.");
+    if (name.empty() || name[0] != '.' || tag == std::string::npos || tag == 0) continue;
+    const std::string rest = name.substr(tag + 5);
+    const auto dot = rest.find('.');
+    if (dot == std::string::npos || dot == 0 || dot + 1 == rest.size() ||
+        rest.find_first_not_of("0123456789.") != std::string::npos || rest.find('.', dot + 1) != std::string::npos)
+      continue;
+    const long pid = std::stol(rest.substr(0, dot));
+    if (pid <= 0 || (::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH)) {
+      std::error_code remove_error;
+      if (std::filesystem::remove(entry.path(), remove_error)) ++removed;
+    }
+  }
+  return removed;
 }
 
 void write_via_temporary(const std::filesystem::path& target,

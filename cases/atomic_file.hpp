@@ -22,4 +22,9 @@ void write_file_atomically(const std::filesystem::path& target,
 void write_via_temporary(const std::filesystem::path& target,
                          const std::function<void(const std::filesystem::path&)>& write_to);
 
+// Removes the temporary files that writers killed outright (SIGKILL, a power cut) left in `dir` (not
+// its subdirectories): ".<name>.tmp.<pid>.<n>" whose process <pid> no longer runs. Call it while holding
+// the directory's lock, so that no live writer's file can match. Returns how many were removed.
+int remove_orphaned_temporaries(const std::filesystem::path& dir);
+
 }  // namespace hydrojump::cases

@@ -500,6 +500,12 @@ int run_study(const StudyOptions& given, std::ostream& log) {
   }
   // One study per output directory (its case runs lock their own directories too).
   const cases::DirectoryLock lock(options.out, "hydrojump study " + options.spec);
+  // What a study or comparison killed outright left half-written in the study's own directories (the
+  // solvers clean theirs, under their own locks).
+  cases::remove_orphaned_temporaries(options.out);
+  for (const cases::Case* c : selected)
+    for (const auto& sub : {options.out / c->id, options.out / c->id / "csv", options.out / c->id / "figures"})
+      if (std::filesystem::is_directory(sub)) cases::remove_orphaned_temporaries(sub);
   log << "study \"" << study.name << "\": " << selected.size() << " case(s) at resolution \""
       << options.resolution << "\" into " << options.out.string() << " (" << options.jobs << " at a time"
       << (options.sph_threads > 0 ? ", " + std::to_string(options.sph_threads) + " SPH thread(s) each" : std::string())

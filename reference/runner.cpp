@@ -1203,6 +1203,9 @@ void run_vof_case_steps(const fs::path& dir, const RunOptions& options, std::ost
   }
   // One process per case directory (a second one stops here, naming the first).
   const cases::DirectoryLock lock(dir, "hydrojump vof");
+  // What a run killed outright left half-written (its complete files are all in place).
+  cases::remove_orphaned_temporaries(dir);
+  cases::remove_orphaned_temporaries(dir / "system");
   const StepPlace place{dir, out, lock};
   // Ctrl-C, SIGTERM or a hangup from here on stop the run at its next safe point.
   const StopRequestGuard stop_guard;

@@ -1,5 +1,6 @@
 #include "sph/cli.hpp"
 
+#include "cases/atomic_file.hpp"
 #include "cases/cli_checks.hpp"
 #include "cases/directory_lock.hpp"
 #include "cases/fingerprint.hpp"
@@ -77,6 +78,8 @@ int run_sph_directory(const SphOptions& opt) {
   }
   // One process per run directory (a second one stops here, naming the first).
   const cases::DirectoryLock lock(dir, "hydrojump sph");
+  // What a run killed outright left half-written (its complete files are all in place).
+  cases::remove_orphaned_temporaries(dir);
   if (opt.threads > 0) omp_set_num_threads(opt.threads);
   const cases::Study study = cases::load_study(case_file);
   if (study.cases.size() != 1)

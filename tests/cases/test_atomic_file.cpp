@@ -4,8 +4,12 @@
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "cases/atomic_file.hpp"
+
+#include <unistd.h>
 #include "cases/fingerprint.hpp"
 #include "tests/temp_dir.hpp"
 
@@ -38,6 +42,31 @@ TEST_CASE("Atomic writes replace whole files and leave no temporaries", "[cases]
   int entries = 0;
   for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++entries;
   CHECK(entries == 1);
+}
+
+TEST_CASE("Temporaries of writers that no longer run are removed and a live writer's and other files are kept",
+          "[cases][io]") {
+  const hydrojump::testing::TempDir tmp("orphans");
+  const auto dir = tmp.path();
+  // A pid no process has: the kernel's pid_max is at most 2^22.
+  const std::string dead = std::to_string((1 << 22) + 12345);
+  const std::string live = std::to_string(::getpid());
+  const std::vector<std::string> names = {".checkpoint.bin.tmp." + dead + ".0", ".run_log.csv.tmp." + dead + ".17",
+                                         ".particles.pvd.tmp." + live + ".3", "checkpoint.bin", ".hydrojump.lock",
+                                         ".notes.tmp.abc.1", "data.tmp.1.2", ".x.tmp." + dead};
+  for (const auto& name : names)
+    std::ofstream(dir / name) << "x";
+  std::filesystem::create_directories(dir / "sub");
+  std::ofstream(dir / "sub" / (".deep.tmp." + dead + ".0")) << "x";
+  CHECK(remove_orphaned_temporaries(dir) == 2);
+  CHECK_FALSE(std::filesystem::exists(dir / (".checkpoint.bin.tmp." + dead + ".0")));
+  CHECK_FALSE(std::filesystem::exists(dir / (".run_log.csv.tmp." + dead + ".17")));
+  const std::vector<std::string> kept = {".particles.pvd.tmp." + live + ".3", "checkpoint.bin", ".hydrojump.lock",
+                                        ".notes.tmp.abc.1", "data.tmp.1.2", ".x.tmp." + dead,
+                                        "sub/.deep.tmp." + dead + ".0"};
+  for (const auto& name : kept)
+    CHECK(std::filesystem::exists(dir / name));
+  CHECK(remove_orphaned_temporaries(dir / "missing") == 0);
 }
 
 TEST_CASE("fingerprint is FNV-1a 64 (published test vectors)", "[cases][fingerprint]") {

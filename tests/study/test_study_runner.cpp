@@ -5,14 +5,17 @@
 #include <algorithm>
 #include <chrono>
 #include <csignal>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <sstream>
 #include <string>
+#include <random>
 #include <thread>
 #include <vector>
 
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "cases/directory_lock.hpp"
@@ -539,4 +542,88 @@ TEST_CASE("Study runner: a case whose records match is imported instead of run a
   const auto ran = lines_of(calls);
   CHECK(std::count_if(ran.begin(), ran.end(), [](const std::string& l) { return l.find("/A") != std::string::npos; }) == 3);
   CHECK(std::count_if(ran.begin(), ran.end(), [](const std::string& l) { return l.find("/B") != std::string::npos; }) == 0);
+}
+
+namespace {
+
+// Every file under `top` whose name marks a temporary of an atomic write (cases/atomic_file.hpp).
+std::vector<std::string> temporaries_under(const fs::path& top) {
+  std::vector<std::string> found;
+  for (const auto& e : fs::recursive_directory_iterator(top))
+    if (e.path().filename().string().find(".tmp.") != std::string::npos) found.push_back(e.path().string());
+  return found;
+}
+
+}  // namespace
+
+// The study killed outright (SIGKILL: no handler runs, its stages get SIGTERM from Linux) at random
+// moments, again and again, and started once more each time, finishes every stage once, with its
+// stamps whole: a further study finds everything current and runs nothing. The stand-in's solver
+// stages take 0.3 s in steps whose progress they save atomically (as a checkpoint), resume from it, and
+// write their result at the end; its comparison takes 0.1 s.
+TEST_CASE("Study runner: killed at random moments and started again each time it finishes every stage and runs nothing more",
+          "[study][kills]") {
+  const TempDir tmp("study-kills");
+  const fs::path& dir = tmp.path();
+  const fs::path calls = dir / "calls.txt";
+  const std::string stage =
+      "echo \"$*\" >> '" + calls.string() + "'\n"
+      "case \"$1\" in\n"
+      "  sph|vof)\n"
+      "    n=0; if [ \"$3\" = --resume ] && [ -f \"$2/progress\" ]; then n=$(cat \"$2/progress\"); fi\n"
+      "    while [ \"$n\" -lt 6 ]; do sleep 0.05; n=$((n + 1)); echo $n > \"$2/.progress.new\"; mv \"$2/.progress.new\" \"$2/progress\"; done\n"
+      "    echo \"$1 done\" > \"$2/.result.new\"; mv \"$2/.result.new\" \"$2/result.txt\"; echo \"finished $1 $2\" >> '" + calls.string() + "' ;;\n"
+      "  compare) sleep 0.1; echo compared > \"$2/.compared.new\"; mv \"$2/.compared.new\" \"$2/compared.txt\" ;;\n"
+      "esac\nexit 0\n";
+  StudyOptions options = mini_study_with_stand_in(dir, stage);
+
+  const char* fixed_seed = std::getenv("HYDROJUMP_KILL_SEED");
+  const unsigned seed = fixed_seed ? static_cast<unsigned>(std::strtoul(fixed_seed, nullptr, 10)) : std::random_device{}();
+  INFO("kill seed " << seed << " (HYDROJUMP_KILL_SEED repeats it)");
+  std::mt19937 random(seed);
+  std::uniform_int_distribution<int> delay_ms(20, 250);
+  int kills = 0;
+  for (int attempt = 0; kills < 20 && attempt < 100; ++attempt) {
+    const pid_t study = ::fork();
+    REQUIRE(study >= 0);
+    if (study == 0) {
+      std::ostringstream ignored;
+      ::_exit(run_study(options, ignored));
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms(random)));
+    ::kill(study, SIGKILL);
+    int status = 0;
+    ::waitpid(study, &status, 0);
+    if (WIFEXITED(status)) break;  // it finished before the kill
+    ++kills;
+  }
+  CHECK(kills >= 20);
+  // What a study killed inside an atomic write leaves (a pid no process has: above the kernel's pid_max).
+  const std::string dead = std::to_string((1 << 22) + 99);
+  write(options.out / (".study_report.md.tmp." + dead + ".0"), "half");
+  if (fs::is_directory(options.out / "A")) write(options.out / "A" / (".compare.stamp.tmp." + dead + ".3"), "half");
+  std::ostringstream log;
+  REQUIRE(run_study(options, log) == 0);
+  INFO(log.str());
+  for (const char* id : {"A", "B"}) {
+    CHECK(hydrojump::cases::read_text_file(options.out / id / "sph" / "result.txt") == "sph done\n");
+    CHECK(hydrojump::cases::read_text_file(options.out / id / "vof" / "result.txt") == "vof done\n");
+    CHECK(hydrojump::cases::read_text_file(options.out / id / "compared.txt") == "compared\n");
+  }
+  const auto called = lines_of(calls);
+  // Each solver stage finished, and was not run again once the study had recorded it: at most once more
+  // (a kill between a stage's end and the study's record of it runs it again, resumed, which ends at once).
+  for (const char* id : {"/A/sph", "/A/vof", "/B/sph", "/B/vof"}) {
+    const auto finished = std::count_if(called.begin(), called.end(), [&](const std::string& l) {
+      return l.rfind("finished", 0) == 0 && l.find(id) != std::string::npos;
+    });
+    CHECK(finished >= 1);
+    CHECK(finished <= 2);
+  }
+  CHECK(temporaries_under(options.out).empty());
+  // Everything current: a further study runs nothing.
+  fs::remove(calls);
+  std::ostringstream again;
+  CHECK(run_study(options, again) == 0);
+  CHECK_FALSE(fs::exists(calls));
 }
