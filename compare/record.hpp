@@ -54,6 +54,7 @@ struct ValidationRecord {
   int format = current_format;
   std::string study, case_id, description, method, resolution;
   std::string run_key;             // the stage stamp's run fingerprint (settings + solver code)
+  bool stale = false;              // not in the file: set where the current key is known and differs
   std::string hydrojump_version;   // of the program that compared the results
   std::string recorded_on;         // YYYY-MM-DD
   std::string command;             // what reproduces it

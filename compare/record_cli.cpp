@@ -5,6 +5,7 @@
 #include <ctime>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "cases/atomic_file.hpp"
 #include "cases/cli_checks.hpp"
@@ -12,6 +13,7 @@
 #include "cases/spec_reader.hpp"
 #include "compare/record.hpp"
 #include "compare/validation_doc.hpp"
+#include "sph/cli.hpp"
 #include "hydrojump/version.hpp"
 
 namespace fs = std::filesystem;
@@ -79,14 +81,26 @@ struct DocOptions {
   bool check = false;
 };
 
-void validation_doc_command(const DocOptions& o) {
-  const auto records = read_records(o.records);
-  std::string text = validation_markdown(records, o.records.generic_string());
-  if (o.not_run.size() == 2) {
-    const cases::Study study = o.not_run[0] == "default" ? cases::load_embedded_default_study()
-                                                         : cases::load_study(o.not_run[0]);
-    text += not_run_markdown(study, records, o.not_run[1]);
+// Marks the records of `study` whose run key is not the one its case has now (other settings or other
+// solver code) as stale.
+void mark_stale(std::vector<ValidationRecord>& records, const cases::Study& study) {
+  for (auto& r : records) {
+    if (r.study != study.name) continue;
+    for (const auto& c : study.cases)
+      if (c.id == r.case_id && c.resolutions.count(r.resolution))
+        r.stale = sph::run_fingerprint(cases::resolved_case_text(study, c, r.resolution)) != r.run_key;
   }
+}
+
+void validation_doc_command(const DocOptions& o) {
+  auto records = read_records(o.records);
+  std::optional<cases::Study> study;
+  if (o.not_run.size() == 2) {
+    study = o.not_run[0] == "default" ? cases::load_embedded_default_study() : cases::load_study(o.not_run[0]);
+    mark_stale(records, *study);
+  }
+  std::string text = validation_markdown(records, o.records.generic_string());
+  if (study) text += not_run_markdown(*study, records, o.not_run[1]);
   std::string readme_text;
   if (!o.readme.empty()) readme_text = with_headline(cases::read_text_file(o.readme), headline_markdown(records), o.readme.string());
   if (o.check) {

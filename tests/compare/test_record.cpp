@@ -215,3 +215,15 @@ TEST_CASE("Cases not run are listed with a wall time scaled from a measured reco
   // No VOF record: its rows have no estimate.
   CHECK_THAT(md, Catch::Contains("| A | VOF |") && Catch::Contains("s | — |"));
 }
+
+TEST_CASE("A stale record is marked in every table and its case is listed as not run", "[compare][record]") {
+  const auto study = hydrojump::cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/tests/data/basins.toml");
+  ValidationRecord a = sample_record("sph", 0.108535);
+  a.study = study.name;
+  a.stale = true;
+  CHECK_THAT(validation_markdown({a}, "validation/records"), Catch::Contains("| A | SPH | quick (stale) |"));
+  CHECK_THAT(headline_markdown({a}), Catch::Contains("| A | SPH | quick (stale) |"));
+  CHECK_THAT(not_run_markdown(study, {a}, "quick"), Catch::Contains("| A | SPH |"));
+  a.stale = false;
+  CHECK_THAT(not_run_markdown(study, {a}, "quick"), !Catch::Contains("| A | SPH |"));
+}
