@@ -619,10 +619,10 @@ StillingBasinCase read_stilling_basin(TableReader& c, double g) {
   inflow.reject_unknown_keys();
 
   auto tail = c.required_table("tailwater");
-  if (tail.has("rule") && tail.has("depth_m")) {
-    tail.fail_at(tail.raw().get("rule"), "rule", "and tailwater.depth_m are both given: give one of them");
-  }
   b.tailwater_rule = tail.choice("rule", "given", {"given", "belanger"});
+  if (b.tailwater_rule == "belanger" && tail.has("depth_m")) {
+    tail.fail_at(tail.raw().get("rule"), "rule", "= \"belanger\" sets the depth, and tailwater.depth_m is given too: give one of them");
+  }
   if (b.tailwater_rule == "belanger") {
     b.tailwater_depth_m = hyd0.belanger_y2_m;
   } else {
@@ -869,7 +869,13 @@ void check_resolution(const Case& c, const Resolution& r, double gravity_m_s2, c
 //   - T_V and T_x at least one leg (the volume error decays by (1 - leg / T_V) per leg; T_x below one
 //     leg overshoots in a single leg, and the outlet just flips between its clamps).
 void check_tailwater_control(TableReader& c, Case& result, StillingBasinCase& b) {
-  if (!b.control.holds_toe()) return;
+  if (!b.control.holds_toe()) {
+    // The legs are the toe control's: a case's own leg length without that control is unused.
+    if (auto v = c.table("vof"); v && v->has("tailwater_control_interval_s"))
+      v->fail_at(v->raw().get("tailwater_control_interval_s"), "tailwater_control_interval_s",
+                 "is only used with [case.tailwater] control = \"hold_toe\" (here \"" + b.control.mode + "\")");
+    return;
+  }
   auto tail = c.required_table("tailwater");
   const auto fail = [&](const char* table, const char* key, const std::string& what) {
     if (auto t = c.table(table); t && t->has(key)) t->fail_at(t->raw().get(key), key, what);

@@ -23,7 +23,7 @@ class SpecError : public std::runtime_error {
 
 // What a spec is read for. "run": every check. "read_results": a resolved case.toml of a finished run
 // read back to compare its results; the rules that only guard how a new run is set up (the SPH inflow
-// buffer's whole rows, added in session 20) are skipped, so run directories made before them still
+// buffer's whole rows) are skipped, so run directories made before them still
 // compare.
 enum class SpecPurpose { run, read_results };
 

@@ -88,7 +88,7 @@ CaseComparison compare_case_directory(const std::filesystem::path& run_dir, cons
 // A note when water leaves the VOF domain through its top (the `atmosphere` patch; function object
 // `discharge_atmosphere`, sum of alphaPhi0.water over the patch) at a mean rate above
 // top_outflow_note_fraction of the inflow q over the window [t0, t1]; thickness_m is the one-cell span
-// of the 2D mesh. Empty below that, or when the case has no such samples (written before session 28).
+// of the 2D mesh. Empty below that, or when the case has no such samples (written by an older hydrojump).
 inline constexpr double top_outflow_note_fraction = 0.01;
 std::string vof_top_outflow_note(const std::filesystem::path& vof_dir, double t0, double t1,
                                  double inflow_q_m2_s, double thickness_m);

@@ -17,7 +17,8 @@
 //      -consistent` (mesh sequencing: a finer run started from a settled coarser one; only the
 //      fields the case starts with are mapped, and cells the source's domain does not cover, as
 //      when the air layer was raised, keep setFields' state). The run still starts at t = 0;
-//   7. with `[vof] tailwater_control = "hold_toe"` the legs are split every tailwater_control_interval_s
+//   7. with `[case.tailwater] control = "hold_toe"` the legs are split every
+//      `[vof] tailwater_control_interval_s`
 //      and, after each, the outlet's Umean in the latest time directory is reset by the control law of
 //      tailwater_control.hpp (a tailgate holding the toe at the basin start; log: tailwater_control.csv).
 // Every step logs to DIR/log.<application>.

@@ -1,5 +1,5 @@
 // Holding a hydraulic jump's toe with the tailwater, as a laboratory tailgate does
-// (`[vof] tailwater_control = "hold_toe"`; Ead & Rajaratnam 2002 set their tailgate so that the toe
+// (`[case.tailwater] control = "hold_toe"`; Ead & Rajaratnam 2002 set their tailgate so that the toe
 // stood at the start of the corrugated bed).
 //
 // Why. The generated outlet (`outletPhaseMeanVelocity`, Umean = q / y2*) lets out a fixed discharge at
@@ -28,21 +28,22 @@
 // The toe of an output is the toe criterion of cases/jump_toe.hpp applied to the free surface as
 // `compare` finds it: zeta(x) = the highest point of the alpha.water = 0.5 iso-surface (the
 // `freeSurface` function object's alpha_0.5.vtp) within each station of width y1/4, from the upstream
-// section to the outlet. (Until session 37 the control read alpha along a line at 1.5 y1 above the
-// floor; at the `default` resolution that line crosses air pockets under the roller, which put the
-// control's toe 0.23 m downstream of `compare`'s on C_smooth.)
+// section to the outlet. (Alpha read along a line at 1.5 y1 above the floor would not do: at the
+// `default` resolution that line crosses air pockets under the roller, which put the control's toe
+// 0.23 m downstream of `compare`'s on C_smooth.)
 //
-// Usage ([vof] or [case.vof])
-//   | key                           | default | meaning                                               |
-//   |-------------------------------|---------|-------------------------------------------------------|
-//   | tailwater_control             | "none"  | "hold_toe": this control (stilling basins)            |
-//   | tailwater_control_interval_s  | 0.5     | leg length dt, a whole number of output intervals,    |
-//   |                               |         | at most run.end_time_s                                |
-//   | volume_hold_time_s            | 1.0     | T_V (>= dt)                                           |
-//   | toe_hold_time_s               | 5.0     | T_x (>= dt)                                           |
+// Usage
+//   | key                                          | default         | meaning                            |
+//   |----------------------------------------------|-----------------|------------------------------------|
+//   | [case.tailwater] control                     | "hold_toe"      | this control; "fixed_depth": none  |
+//   | [case.tailwater] volume_hold_time_s          | 1.0             | T_V (>= dt)                        |
+//   | [case.tailwater] toe_hold_time_s             | 5.0             | T_x (>= dt)                        |
+//   | [vof] tailwater_control_interval_s           | whole outputs   | leg length dt, a whole number of   |
+//   |                                              | within 0.5 s    | output intervals, <= end_time_s    |
 // Example:
-//   [case.vof]
-//   tailwater_control = "hold_toe"
+//   [case.tailwater]
+//   depth_m = 0.104          # the initial level only
+//   control = "hold_toe"
 // Each step is logged in DIR/tailwater_control.csv (time_s, toe_x_m, toe_outputs, water_volume_m2,
 // volume_target_m2, outlet_mean_velocity_m_s); `--resume` continues from its last row.
 #pragma once

@@ -4,7 +4,7 @@
 // The outflow buffers (open_boundaries.hpp) hold their target depth y_t at the outlet. On a corrugated
 // bed the flow keeps losing momentum to the bed beyond the jump, so the level falls towards the outlet:
 // with y_t = y2 the depth at the downstream section (and the tailwater the jump sees) settles a few per
-// cent above y2 (1.5-4.8 % in the session-21 runs A, B, D, E). In the flume Ead & Rajaratnam (2002)
+// cent above y2 (1.5-4.8 % in runs A, B, D and E at quick). In the flume Ead & Rajaratnam (2002)
 // measured y2 at the end of the jump and set their tailgate by trial until the toe sat at the start of
 // the corrugations. With sph.outflow_level_reference = "downstream_section" an integral controller
 // moves the outlet's target depth until the section holds y2:

@@ -8,9 +8,9 @@
 
 namespace hydrojump::sph {
 
-// 4000 since session 22: run A at quick (about 7,950 particles with its tailwater held at the downstream
-// section) ran on one thread below the former 8000, at 150 steps/s; from 4000 it runs on two threads
-// at 219 steps/s with the same result to the bit (README.md, Performance).
+// Below this many particles a step runs on one thread. Measured on run A at quick (about 7,950
+// particles): with a threshold of 8000 it ran on one thread at 150 steps/s; with 4000, on two threads
+// at 219 steps/s with the same result to the bit.
 constexpr Eigen::Index kMinParticlesForThreads = 4000;
 
 inline bool use_threads(Eigen::Index particles) { return particles >= kMinParticlesForThreads; }

@@ -22,11 +22,11 @@
 //
 // Under a flowing free surface the ramp is not enough: the rows just below it (TFS <= div r < 2) still
 // have truncated kernels, so their grad C points down, every step pushes them up by A h |v| dt f |grad C|,
-// and the water column swells without gaining mass. Measured (session 19, TFS 1.5): in run A at quick
+// and the water column swells without gaining mass. Measured (TFS 1.5): in run A at quick
 // the tailwater's particles stood 21 % higher than their volume sum V_i / w and, the SPH pressure
 // gradient being short by about that factor, the bed pressure was 1.42 rho0 g h; in run E at `default`
-// the "+22 % sequent depth" of session 17 was this swelling (surface 0.380 m over 0.311 m of water).
-// Correction "taylor_volume" (below) removes it (README, note on particle shifting).
+// a "+22 % sequent depth" was this swelling (surface 0.380 m over 0.311 m of water).
+// Correction "taylor_volume" (below) removes it.
 //
 // A shifted particle keeps its velocity and density (correction "none", as in DualSPHysics), so it
 // carries them a little across the flow: per step an error delta r . grad(phi), which does not average
@@ -48,7 +48,7 @@
 // and pressure, and gravity closes it again. Known limit: this form is not volume-neutral. Summed over
 // the particles, sum_i V_i div(delta r)_i ~ -2 sum_i V_i delta r_i . grad C_i = 2 sum_i V_i D_i |grad C_i|^2
 // >= 0 (D_i = A h |v_i| dt f_i, below the cap), so where shifting keeps smoothing disorder the
-// densities can drift low. In run A at quick (session 19) the tailwater's bed pressure still averaged
+// densities can drift low. In run A at quick the tailwater's bed pressure still averaged
 // 0.95 rho0 g h over 6-10 s (1.02 without shifting, 1.42 with correction "none").
 //
 // Usage:

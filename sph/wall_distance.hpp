@@ -12,7 +12,7 @@
 //   | sph.sps_wall_distance | where d comes from (with sph.sps_mixing_length_m > 0)                  |
 //   |-----------------------|------------------------------------------------------------------------|
 //   | "kernel_support"      | the nearest wall particle within the kernel support 2h; farther        |
-//   |                       | particles take the full l_m (default; what sessions 8-13 ran)           |
+//   |                       | particles take the full l_m (default)                                   |
 //   | "whole_domain"        | within the support as above; beyond it this table, so l = kappa d holds |
 //   |                       | up to d = l_m / kappa as Prandtl's wall law has it                     |
 // Example (spec): `[case.sph]  sps_mixing_length_m = 0.031   sps_wall_distance = "whole_domain"`

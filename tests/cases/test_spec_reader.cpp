@@ -729,6 +729,19 @@ TEST_CASE("The viscous wall condition is no_slip, free_slip or wall_function, wi
   CHECK(parse_study(text, "spec.toml", ".").cases[0].sph.viscous_wall_condition == "no_slip");
 }
 
+TEST_CASE("The tailwater depth is given or set by the belanger rule and not both", "[cases][spec]") {
+  const auto with = [](const std::string& lines) { return replaced(valid_spec, "depth_m = 0.104", lines); };
+  // rule = "given" may be written out: the default, with depth_m.
+  const Study given = parse_study(with("rule = \"given\"\ndepth_m = 0.104"), "spec.toml", ".");
+  CHECK(given.cases[0].stilling_basin()->tailwater_depth_m == 0.104);
+  // rule = "belanger": y2* of y1 = 25.4 mm, U1 = 2 m/s (Fr1 = 4.007): y1/2 (sqrt(1 + 8 Fr1^2) - 1) = 0.13178 m.
+  const Study belanger = parse_study(with("rule = \"belanger\""), "spec.toml", ".");
+  CHECK(belanger.cases[0].stilling_basin()->tailwater_depth_m == Approx(0.13178).epsilon(1e-4));
+  CHECK_THAT(rejection(with("rule = \"belanger\"\ndepth_m = 0.104")),
+             Catch::Contains("tailwater.rule = \"belanger\" sets the depth") && Catch::Contains("give one of them"));
+  CHECK_THAT(rejection(with("rule = \"given\"")), Catch::Contains("depth_m"));
+}
+
 TEST_CASE("The tailwater control is hold_toe by default or fixed_depth in case.tailwater for both solvers", "[cases][spec]") {
   const auto tail = [](const std::string& lines) { return replaced(valid_spec, "depth_m = 0.104", "depth_m = 0.104\n" + lines); };
   const auto vof = [](const std::string& text, const std::string& lines) {
@@ -762,6 +775,9 @@ TEST_CASE("The tailwater control is hold_toe by default or fixed_depth in case.t
   CHECK_THAT(rejection(tail("control = \"fixed_depth\"\ntoe_hold_time_s = 5")),
              Catch::Contains("tailwater.toe_hold_time_s is only used with control = \"hold_toe\" (here \"fixed_depth\")"));
   CHECK_THAT(rejection(tail("toe_hold_time_s = 0")), Catch::Contains("tailwater.toe_hold_time_s = 0 is out of range"));
+  // A case's own VOF leg length without the toe control is unused.
+  CHECK_THAT(rejection(replaced(tail("control = \"fixed_depth\""), "[case.domain]", "[case.vof]\ntailwater_control_interval_s = 1.0\n[case.domain]")),
+             Catch::Contains("vof.tailwater_control_interval_s is only used with [case.tailwater] control = \"hold_toe\" (here \"fixed_depth\")"));
   CHECK_THAT(rejection(tail("volume_hold_time_s = 2000")), Catch::Contains("tailwater.volume_hold_time_s = 2000 is out of range"));
   CHECK_THAT(rejection(tail("volume_hold_time_s = 0.2")),
              Catch::Contains("tailwater.volume_hold_time_s is out of range") &&

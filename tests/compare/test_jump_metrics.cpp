@@ -278,7 +278,7 @@ TEST_CASE("A roller longer than the rise: the jump ends at the roller end, not i
 
 TEST_CASE("A mean surface cresting above y2 over the jump is reported as a standing wave", "[compare][metrics]") {
   // Surface: y1 up to x_t, a rise to a plateau at c y2 over (x_t + 0.2, x_t + 0.3), a trough at 0.7 y2
-  // at x_t + 0.5, then y2 from x_t + 0.7 on (run D at `default` in session 23 peaked at 1.54 y2).
+  // at x_t + 0.5, then y2 from x_t + 0.7 on (run D at `default` once peaked at 1.54 y2).
   const double y1 = 0.0508, u1 = 4.07, y2 = 0.31, x_t = 1.0, ds = 0.004;
   const auto surface = [&](double x, double c) {
     const std::vector<double> xs{0.0, x_t, x_t + 0.2, x_t + 0.3, x_t + 0.5, x_t + 0.7, 3.0};

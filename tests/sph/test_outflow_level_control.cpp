@@ -118,7 +118,7 @@ TEST_CASE("the level-controlled outlet drains at the Riemann invariant of its mo
 TEST_CASE("the level control is set from the spec, at the downstream section, and refused where it cannot work", "[sph][level_control][options]") {
   cases::Study study = cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/tests/data/basins.toml");
   cases::Case a = case_named(study, "A");
-  a.sph.outflow_level_reference = "downstream_section";  // as the study file sets it since session 22
+  a.sph.outflow_level_reference = "downstream_section";  // a level held at the measuring section
   a.sph.outflow_level_time_s = 3.0;
   const auto geometry = solver_geometry(a, study.fluid, 0.005);
   const SolverSettings s = make_settings(a, study.fluid, geometry, 0.005);

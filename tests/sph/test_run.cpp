@@ -183,7 +183,7 @@ TEST_CASE("a checkpoint whose contents are damaged is refused by name", "[sph][r
           "its step count 9223372036854775807 is impossible");
   refused([](Checkpoint& c) { c.clock.steps = -1; }, "its step count -1 is impossible");
   // A damaged string length (the fingerprint's, right after the 8-byte magic) longer than the rest of
-  // the file: refused as corrupt (since session 14 from the file's size, before 3 GB are allocated).
+  // the file: refused as corrupt (from the file's size, before 3 GB are allocated).
   write_checkpoint(good, file);
   {
     std::fstream f(file, std::ios::in | std::ios::out | std::ios::binary);
