@@ -282,6 +282,10 @@ struct Study {
   std::vector<std::string> citations;
   FluidProperties fluid;
   std::optional<RunRule> run_rule;      // [run], when the file has one
+  // [resolution] for_inflow_depth_m: the levels' spacings are for this inflow depth y1, and each
+  // stilling basin's are scaled by its own y1 over it (the same particles and cells across every
+  // basin's inflow); a case's own [case.resolution.*] values are taken as given.
+  std::optional<double> resolution_for_inflow_depth_m;
   std::vector<Case> cases;
 
   const Case* find_case(const std::string& id) const;

@@ -516,11 +516,20 @@ void read_resolution(TableReader& t, Resolution& r, bool require_all) {
   t.reject_unknown_keys();
 }
 
+// The study's [resolution] rule key: the inflow depth its levels are given for (resolution_rule below).
+constexpr const char* resolution_rule_key = "for_inflow_depth_m";
+
 void read_resolutions(TableReader& parent, std::map<std::string, Resolution>& out, bool require_all) {
   auto t = parent.table("resolution");
   if (!t) return;
   for (const auto& [name, node] : t->raw()) {
     const std::string key(name.str());
+    if (key == resolution_rule_key) {  // the study's rule (read by the study), not a level
+      if (!require_all)
+        t->fail_at(&node, key, "is a rule of the study's [resolution] table: a case's own levels are given as they are");
+      (void)t->number(key, positive("m", 10.0));
+      continue;
+    }
     if (!is_plain_name(key)) {
       t->fail_at(&node, key, std::string("is not usable as a resolution name (it names directories and TOML tables): ") + plain_name_rule);
     }
@@ -959,8 +968,6 @@ Case read_case(TableReader& c, const Study& study, const SphSettings& sph,
   result.vof = vof;
   if (auto t = c.table("sph")) read_sph(*t, result.sph);
   if (auto t = c.table("vof")) read_vof(*t, result.vof);
-  result.resolutions = resolutions;
-  read_resolutions(c, result.resolutions, false);
   const double g = study.fluid.gravity_m_s2;
   if (result.kind == "stilling_basin") {
     result.data = read_stilling_basin(c, g);
@@ -971,6 +978,16 @@ Case read_case(TableReader& c, const Study& study, const SphSettings& sph,
   } else {
     result.data = read_poiseuille(c);
   }
+  // The study's levels, scaled to this basin's inflow depth by the study's rule; then the case's own.
+  result.resolutions = resolutions;
+  if (const auto* b = std::get_if<StillingBasinCase>(&result.data); b && study.resolution_for_inflow_depth_m)
+    for (auto& [name, r] : result.resolutions) {
+      const double scale = b->inflow_depth_m / *study.resolution_for_inflow_depth_m;
+      r.particle_spacing_m *= scale;
+      r.vof_cell_size_bed_m *= scale;
+      r.vof_cell_size_bulk_m *= scale;
+    }
+  read_resolutions(c, result.resolutions, false);
   read_case_run(c, study, result);
   resolve_mixing_length_rule(c, study, result);
   // Sections need the domain, which make_geometry derives; use it (sections are not read yet).
@@ -1056,6 +1073,8 @@ Study parse_study(std::string_view toml_text, const std::string& source_name,
   VofSettings vof;
   if (auto t = top.table("vof")) read_vof(*t, vof);
   std::map<std::string, Resolution> resolutions;
+  if (auto levels = top.table("resolution"); levels && levels->has(resolution_rule_key))
+    study.resolution_for_inflow_depth_m = levels->number(resolution_rule_key, positive("m", 10.0));
   read_resolutions(top, resolutions, true);
   if (resolutions.empty()) {
     top.fail_at(nullptr, "resolution", "is missing: define at least one level, e.g. [resolution.quick] with particle_spacing_m, vof_cell_size_bed_m and vof_cell_size_bulk_m");

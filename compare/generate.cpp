@@ -111,14 +111,30 @@ void print_study_summary(const cases::Study& study, std::ostream& out) {
         << geo.z_max_m << " m; H_max " << geo.max_water_height_m << " m; expected max speed "
         << fixed(geo.max_flow_speed_m_s, 3) << " m/s\n";
   }
-  out << "\n  resolutions:";
-  if (!study.cases.empty()) {
-    for (const auto& [name, r] : study.cases.front().resolutions) {
-      out << "  " << name << " (SPH dx " << r.particle_spacing_m << " m, VOF " << r.vof_cell_size_bed_m
-          << "/" << r.vof_cell_size_bulk_m << " m)";
-    }
+  // Each case's levels, one line per distinct set (the study's rule scales them with a basin's y1).
+  std::vector<std::pair<std::string, std::vector<std::string>>> sets;  // levels text, cases
+  for (const auto& c : study.cases) {
+    std::ostringstream levels;
+    for (const auto& [name, r] : c.resolutions)
+      levels << "  " << name << " (SPH dx " << r.particle_spacing_m << " m, VOF " << r.vof_cell_size_bed_m << "/"
+             << r.vof_cell_size_bulk_m << " m)";
+    auto it = std::find_if(sets.begin(), sets.end(), [&](const auto& s) { return s.first == levels.str(); });
+    if (it == sets.end()) sets.push_back({levels.str(), {c.id}});
+    else it->second.push_back(c.id);
   }
-  out << "\n";
+  out << "\n  resolutions";
+  if (study.resolution_for_inflow_depth_m)
+    out << " (given for y1 = " << *study.resolution_for_inflow_depth_m << " m; each basin's scaled by its own y1)";
+  out << ":\n";
+  for (const auto& [levels, ids] : sets) {
+    out << "   ";
+    if (sets.size() > 1) {
+      out << " ";
+      for (std::size_t i = 0; i < ids.size(); ++i) out << (i ? "," : "") << ids[i];
+      out << ":";
+    }
+    out << levels << "\n";
+  }
 }
 
 namespace {

@@ -729,6 +729,33 @@ TEST_CASE("The viscous wall condition is no_slip, free_slip or wall_function, wi
   CHECK(parse_study(text, "spec.toml", ".").cases[0].sph.viscous_wall_condition == "no_slip");
 }
 
+TEST_CASE("Resolutions given for an inflow depth scale with each basin's own y1 and a case's own levels stand", "[cases][spec]") {
+  const auto rule = [](const std::string& text, const std::string& value) {
+    return replaced(text, "[resolution.quick]", "[resolution]\nfor_inflow_depth_m = " + value + "\n\n[resolution.quick]");
+  };
+  const Study plain = parse_study(valid_spec, "spec.toml", ".");
+  const Resolution given = plain.cases[0].resolution("quick");
+  // The study's levels are for y1 = 50.8 mm; this basin's y1 = 25.4 mm: every spacing halves.
+  const Study scaled = parse_study(rule(valid_spec, "0.0508"), "spec.toml", ".");
+  REQUIRE(scaled.resolution_for_inflow_depth_m.has_value());
+  const Resolution& r = scaled.cases[0].resolution("quick");
+  CHECK(r.particle_spacing_m == Approx(0.5 * given.particle_spacing_m));
+  CHECK(r.vof_cell_size_bed_m == Approx(0.5 * given.vof_cell_size_bed_m));
+  CHECK(r.vof_cell_size_bulk_m == Approx(0.5 * given.vof_cell_size_bulk_m));
+  // The same y1: unchanged.
+  CHECK(parse_study(rule(valid_spec, "0.0254"), "spec.toml", ".").cases[0].resolution("quick").particle_spacing_m ==
+        Approx(given.particle_spacing_m));
+  // A case's own value is taken as given; what it does not set is scaled.
+  const Study own = parse_study(replaced(rule(valid_spec, "0.0508"), "[case.domain]",
+                                         "[case.resolution.quick]\nparticle_spacing_m = 0.00423333\n[case.domain]"),
+                                "spec.toml", ".");
+  CHECK(own.cases[0].resolution("quick").particle_spacing_m == 0.00423333);
+  CHECK(own.cases[0].resolution("quick").vof_cell_size_bed_m == Approx(0.5 * given.vof_cell_size_bed_m));
+  CHECK_THAT(rejection(rule(valid_spec, "0")), Catch::Contains("resolution.for_inflow_depth_m = 0 is out of range"));
+  CHECK_THAT(rejection(replaced(valid_spec, "[case.domain]", "[case.resolution]\nfor_inflow_depth_m = 0.0254\n[case.domain]")),
+             Catch::Contains("for_inflow_depth_m is a rule of the study's [resolution] table"));
+}
+
 TEST_CASE("The tailwater depth is given or set by the belanger rule and not both", "[cases][spec]") {
   const auto with = [](const std::string& lines) { return replaced(valid_spec, "depth_m = 0.104", lines); };
   // rule = "given" may be written out: the default, with depth_m.
