@@ -326,9 +326,14 @@ TEST_CASE("Study runner: --methods runs only the chosen solvers, --force re-runs
   const TempDir tmp("study_options");
   const fs::path& dir = tmp.path();
   const fs::path calls = dir / "calls.txt";
-  // Each call is recorded; a call takes 0.5 s, so that two cases run side by side overlap.
+  // Each call is recorded and takes 0.5 s; while the file "overlap" exists, a call also waits (up to
+  // 30 s) until two calls have started, so that two cases run side by side overlap however slowly the
+  // study starts its second case (a loaded machine, a sanitizer build).
+  const fs::path overlap = dir / "overlap";
   StudyOptions options = mini_study_with_stand_in(
-      dir, "echo \"start $*\" >> '" + calls.string() + "'\nsleep 0.5\necho \"end $*\" >> '" + calls.string() + "'\nexit 0\n");
+      dir, "echo \"start $*\" >> '" + calls.string() + "'\nsleep 0.5\ni=0\nwhile [ -e '" + overlap.string() +
+               "' ] && [ \"$(grep -c '^start' '" + calls.string() + "')\" -lt 2 ] && [ $i -lt 600 ]; do sleep 0.05; i=$((i + 1)); done\n"
+               "echo \"end $*\" >> '" + calls.string() + "'\nexit 0\n");
   std::ostringstream log;
   const auto starts = [&] {
     std::vector<std::string> s;
@@ -357,7 +362,9 @@ TEST_CASE("Study runner: --methods runs only the chosen solvers, --force re-runs
   // --jobs 2: the two cases' first stages start before either ends.
   fs::remove(calls);
   options.jobs = 2;
+  write(overlap, "");
   REQUIRE(run_study(options, log) == 0);
+  fs::remove(overlap);
   const auto lines = lines_of(calls);
   REQUIRE(lines.size() >= 2);
   CHECK(lines[0].rfind("start ", 0) == 0);
