@@ -65,31 +65,16 @@ static const ColumnStatistics* find_role(const MethodStatistics& m, const std::s
   return nullptr;
 }
 
-namespace {
-
-// (z(u_max) - z_bed) / h at the section named `name`: where the fastest forward flow runs in the depth.
-double jet_height_fraction(const MethodStatistics& m, const std::string& name) {
-  for (const auto& s : m.sections) {
-    if (s.spec.name != name || s.n_wet == 0) continue;
-    const double depth = s.depth.mean;
-    std::size_t best = s.z.size();
-    for (std::size_t i = 0; i < s.z.size(); ++i)
-      if (i < s.u_mean.size() && i < s.wet_fraction.size() && s.wet_fraction[i] >= 0.5 && std::isfinite(s.u_mean[i]) &&
-          (best == s.z.size() || s.u_mean[i] > s.u_mean[best]))
-        best = i;
-    if (best == s.z.size() || !(depth > 0.0)) return not_a_number;
-    return (s.z[best] - s.spec.z_bed_m) / depth;
-  }
-  return not_a_number;
-}
-
-}  // namespace
-
 JumpMetrics compute_jump_metrics(const MethodStatistics& m, const JumpInputs& in) {
   JumpMetrics r;
-  r.jet_height_fraction = jet_height_fraction(m, "x_2y2");
-  for (const auto& s : m.sections)
-    if (s.spec.name == "x_2y2" && s.n_wet > 0) r.wall_jet_deviation = fit_wall_jet(s).deviation;
+  // The structure at x_2y2: (z(u_max) - z_bed) / h, and the profile against the wall jet's.
+  for (const auto& s : m.sections) {
+    if (s.spec.name != "x_2y2" || s.n_wet == 0) continue;
+    const WallJetFit fit = fit_wall_jet(s);
+    if (s.depth.mean > 0.0) r.jet_height_fraction = fit.max_height_m / s.depth.mean;
+    r.wall_jet_deviation = fit.deviation;
+    break;
+  }
   const double g = in.gravity_m_s2;
   const double y1 = in.inflow_depth_m;
   const ColumnStatistics* up = find_role(m, "upstream");

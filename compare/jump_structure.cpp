@@ -35,10 +35,11 @@ WallJetFit fit_wall_jet(const ColumnStatistics& s) {
   std::size_t best = s.z.size();
   for (std::size_t i = 0; i < s.z.size(); ++i)
     if (usable(s, i) && (best == s.z.size() || s.u_mean[i] > s.u_mean[best])) best = i;
-  if (best == s.z.size() || !(s.u_mean[best] > 0.0)) return fit;
+  if (best == s.z.size()) return fit;
   const double um = s.u_mean[best], z_bed = s.spec.z_bed_m;
   fit.max_velocity_m_s = um;
   fit.max_height_m = s.z[best] - z_bed;
+  if (!(um > 0.0)) return fit;  // no forward flow: no half-velocity height
   // delta: the first height above u_m where u falls to u_m / 2 (linear between the grid heights).
   std::size_t below = best;
   for (std::size_t i = best + 1; i < s.z.size(); ++i) {

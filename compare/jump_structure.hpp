@@ -49,7 +49,8 @@ struct WallJetFit {
 };
 
 // The fit of a section's time-mean profile (heights where fewer than half the frames had water do not
-// count); a NaN delta and deviation when u never falls to u_m / 2 above the maximum or u_m <= 0.
+// count): the fastest forward flow and its height (NaN without a usable height); a NaN delta and
+// deviation when u never falls to u_m / 2 above the maximum or u_m <= 0.
 WallJetFit fit_wall_jet(const ColumnStatistics& section);
 
 // Tolerances of the structure check above.

@@ -47,14 +47,25 @@ std::string status_of(const ValidationRecord& r, const std::string& quantity) {
 // 100 (a / b - 1)
 double percent_off(double a, double b) { return 100.0 * (a / b - 1.0); }
 
-std::string wall_text(const ValidationRecord& r) {
-  if (!r.wall_time_s) return dash;
-  const long s = std::lround(*r.wall_time_s);
+// "29 min", "1 h 42 min": a wall time rounded to the minute.
+std::string duration_text(double seconds) {
+  const long s = std::lround(seconds);
   std::ostringstream o;
   if (s >= 3600) o << s / 3600 << " h " << std::setw(2) << std::setfill('0') << (s / 60) % 60 << " min";
   else o << (s + 30) / 60 << " min";
-  if (r.threads) o << " (" << *r.threads << (r.method == "sph" ? " thread" : " rank") << (*r.threads == 1 ? ")" : "s)");
   return o.str();
+}
+
+// "2 threads" (SPH) or "1 rank" (VOF).
+std::string workers_text(const std::string& method, int n) {
+  return std::to_string(n) + (method == "sph" ? " thread" : " rank") + (n == 1 ? "" : "s");
+}
+
+std::string wall_text(const ValidationRecord& r) {
+  if (!r.wall_time_s) return dash;
+  std::string text = duration_text(*r.wall_time_s);
+  if (r.threads) text += " (" + workers_text(r.method, *r.threads) + ")";
+  return text;
 }
 
 std::string row_label(const ValidationRecord& r) {
@@ -243,14 +254,6 @@ double run_work(const cases::Case& c, const std::string& resolution, const std::
   return run_size(*b, level, method) * c.run.end_time_s * b->inflow_velocity_m_s / dx;
 }
 
-std::string duration_text(double seconds) {
-  const long s = std::lround(seconds);
-  std::ostringstream o;
-  if (s >= 3600) o << s / 3600 << " h " << std::setw(2) << std::setfill('0') << (s / 60) % 60 << " min";
-  else o << std::max(1L, (s + 30) / 60) << " min";
-  return o.str();
-}
-
 }  // namespace
 
 std::string not_run_markdown(const cases::Study& study, const std::vector<ValidationRecord>& records,
@@ -283,8 +286,7 @@ std::string not_run_markdown(const cases::Study& study, const std::vector<Valida
         const ValidationRecord& ref = *reference.at(method);
         const double ratio = run_work(c, resolution, method) / run_work(*reference_case.at(method), resolution, method);
         cost << "~" << duration_text(*ref.wall_time_s * ratio);
-        if (ref.threads)
-          cost << " on " << *ref.threads << (method == "sph" ? " thread" : " rank") << (*ref.threads == 1 ? "" : "s");
+        if (ref.threads) cost << " on " << workers_text(method, *ref.threads);
       } else {
         cost << dash;
       }
