@@ -15,16 +15,9 @@ targets=("$@")
 ((${#targets[@]})) || targets=(fuzz_spec fuzz_tables fuzz_checkpoint fuzz_pvd fuzz_record)
 build_dir="${FUZZ_BUILD_DIR:-$here/build-fuzz}"
 
-missing=()
-for p in clang libclang-rt-14-dev; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if ((${#missing[@]})); then
-  echo "fuzz: installing missing Debian packages: ${missing[*]}"
-  sudo_cmd=()
-  if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
-  DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
-fi
+# shellcheck source=scripts/packages.sh
+source "$here/scripts/packages.sh"
+install_missing_packages clang libclang-rt-14-dev
 
 cmake -S "$here" -B "$build_dir" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DHYDROJUMP_SANITIZE=fuzzer-no-link,address -DHYDROJUMP_FUZZ=ON -DHYDROJUMP_BUILD_TESTS=OFF

@@ -7,20 +7,9 @@ build_dir="${1:-$here/build}"
 
 packages=(build-essential cmake libeigen3-dev libvtk9-dev libtomlplusplus-dev libcli11-dev catch2
           openfoam openmpi-bin libopenmpi-dev python3 python3-matplotlib python3-numpy)
-missing=()
-for p in "${packages[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if ((${#missing[@]})); then
-  echo "setup: installing missing Debian packages: ${missing[*]}"
-  sudo_cmd=()
-  if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
-  export DEBIAN_FRONTEND=noninteractive
-  "${sudo_cmd[@]}" apt-get update -q
-  "${sudo_cmd[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
-else
-  echo "setup: all Debian packages present"
-fi
+# shellcheck source=scripts/packages.sh
+source "$here/scripts/packages.sh"
+install_missing_packages "${packages[@]}"
 
 echo "setup: building in $build_dir"
 cmake -S "$here" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release

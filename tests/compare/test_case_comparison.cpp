@@ -141,7 +141,7 @@ const MetricRow& row(const CaseComparison& c, const std::string& q) {
 }  // namespace
 
 TEST_CASE("compare_case_directory on a synthetic jump gives both methods with metrics and report and plots",
-          "[compare][case]") {
+          "[compare][case][long]") {
   RunFixture fx;
   const double dx = 0.005;
   fx.write_sph(dx, {5.0, 6.5, 8.0, 9.5});
@@ -267,7 +267,7 @@ TEST_CASE("compare_case_directory on a synthetic jump gives both methods with me
 // says why with the plot log where it ends up (figures/plot.log); the real plot_case.py makes the
 // figures whose inputs are sound and names the file and column of the one that is not.
 TEST_CASE("A plot script that fails is named with its log, and one bad table costs only its own figure",
-          "[compare][case]") {
+          "[compare][case][long]") {
   RunFixture fx;
   fx.write_sph(0.005, {5.0, 6.5, 8.0, 9.5});
   fx.write_vof(352, 60, {"5", "7", "9"});

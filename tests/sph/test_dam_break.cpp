@@ -124,7 +124,7 @@ TEST_CASE("dam break surge front against Koshizuka and Oka at dx 0.04 m in the e
 }
 
 // Particle shifting (sph/particle_shifting.hpp) keeps the surge front: the same checks.
-TEST_CASE("dam break surge front with particle shifting at dx 0.04 m", "[sph][dam_break][shifting]") {
+TEST_CASE("dam break surge front with particle shifting at dx 0.04 m", "[sph][dam_break][shifting][long]") {
   check_front(compare_and_print(run_dam_break(0.04, 0.0, "fickian"), "instant gate, fickian shifting"));
 }
 
@@ -143,7 +143,7 @@ TEST_CASE("dam break surge front against Koshizuka and Oka at dx 0.02 m and 0.01
 // on); a gate lifted at 1000 m/s (out of the column in 2 ms) releases the column as the instant gate
 // does (front within 0.03 L at every measured point, released water within 3 %). A lifted gate models
 // the opening itself, so it is compared in the unshifted time origin.
-TEST_CASE("dam break: a lifted gate delays the surge, a very fast one releases it at once", "[sph][dam_break][wall_motion]") {
+TEST_CASE("dam break: a lifted gate delays the surge, a very fast one releases it at once", "[sph][dam_break][wall_motion][long]") {
   const DamBreakRun instant_run = run_dam_break(0.04);
   const DamBreakRun lifted_run = run_dam_break(0.04, 5.16);
   const DamBreakRun fast_run = run_dam_break(0.04, 1000.0);

@@ -134,7 +134,7 @@ TEST_CASE("piston inflow: an opening of fewer than 5 particle spacings is refuse
   CHECK_NOTHROW(sph::solver_geometry(c, study.fluid, 0.005));
 }
 
-TEST_CASE("piston inflow: a short run pushes water under the gate, contracting as a jet does", "[sph][piston]") {
+TEST_CASE("piston inflow: a short run pushes water under the gate, contracting as a jet does", "[sph][piston][long]") {
   auto c = piston_basin();
   const double q = 0.0254 * 2.0, rho0 = c.settings.eos.rho0;
   const double u_p = c.geometry.moving_walls.front().velocity_m_s.x();

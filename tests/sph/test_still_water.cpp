@@ -65,7 +65,7 @@ StillWaterResult run_still_water(double dx, const std::string& boundary, double 
 
 }  // namespace
 
-TEST_CASE("still water stays at rest with hydrostatic pressure (dx 0.02 m)", "[sph][still_water]") {
+TEST_CASE("still water stays at rest with hydrostatic pressure (dx 0.02 m)", "[sph][still_water][long]") {
   for (const std::string boundary : {"mdbc", "dbc"}) {
     INFO(boundary);
     const StillWaterResult r = run_still_water(0.02, boundary, 2.0);
@@ -77,7 +77,7 @@ TEST_CASE("still water stays at rest with hydrostatic pressure (dx 0.02 m)", "[s
 
 // Particle shifting (sph/particle_shifting.hpp) must not stir water at rest: its displacement scales
 // with |v|, and the free surface is not shifted, so the same limits hold.
-TEST_CASE("still water stays at rest with particle shifting (mDBC dx 0.02 m)", "[sph][still_water][shifting]") {
+TEST_CASE("still water stays at rest with particle shifting (mDBC dx 0.02 m)", "[sph][still_water][shifting][long]") {
   const StillWaterResult r = run_still_water(0.02, "mdbc", 2.0, "fickian");
   CHECK(r.max_speed < 0.01 * r.sqrt_gh);
   CHECK(std::abs(r.bottom_pressure / r.rho_g_h - 1.0) < 0.03);

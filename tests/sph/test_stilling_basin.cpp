@@ -84,7 +84,7 @@ sph::OpenBoundaries open_boundaries_of(const ShortBasin& b) {
 
 }  // namespace
 
-TEST_CASE("smooth-bed stilling basin: stable, mass balance and inflow discharge", "[sph][stilling_basin]") {
+TEST_CASE("smooth-bed stilling basin: stable, mass balance and inflow discharge", "[sph][stilling_basin][long]") {
   ShortBasin b = short_smooth_basin();
   const auto& basin = *b.spec.stilling_basin();
   const auto& settings = b.settings;

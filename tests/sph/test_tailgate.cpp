@@ -114,7 +114,7 @@ TEST_CASE("tailgate removes only the water beyond its plate", "[sph][tailgate]")
 }
 
 TEST_CASE("tailgate basin: a short coupled run spills over the crest, stays watertight and balances its mass",
-          "[sph][tailgate]") {
+          "[sph][tailgate][long]") {
   auto b = gate_basin(0.0);
   const auto open = sph::OpenBoundaries::from_geometry(b.geometry, sph::buffer_parameters(b.settings));
   const sph::Tailgate gate = open.tailgates().front();

@@ -130,7 +130,7 @@ TEST_CASE("the toe-holding law by hand: the first output, a toe downstream, no t
 }
 
 TEST_CASE("the held toe goes to the basin start: two basins starting 0.1 m apart hold their toes 0.1 m apart",
-          "[sph][toe_hold][toe_hold_steering]") {
+          "[sph][toe_hold][toe_hold_steering][long]") {
   // The same 0.5-m smooth channel and the same initial water (the toe ramp at x = 0.2 m, the tailwater
   // 0.8 y2*, so the jump first runs downstream to about 0.4 m), the basin starting at 0.15 m or at
   // 0.25 m: only the control's target differs (and the sections). Without the control both runs would
@@ -171,7 +171,7 @@ TEST_CASE("the held toe goes to the basin start: two basins starting 0.1 m apart
   CHECK(toe[1] - toe[0] > 0.05);
 }
 
-TEST_CASE("a held run resumed from its checkpoint ends as the uninterrupted one", "[sph][toe_hold][restart]") {
+TEST_CASE("a held run resumed from its checkpoint ends as the uninterrupted one", "[sph][toe_hold][restart][long]") {
   const auto c = held_basin("hold_toe", 0.05, 0.9);
   const double end = 0.3;
   const hydrojump::testing::TempDir tmp_a("toe_hold_whole"), tmp_b("toe_hold_resumed");
