@@ -66,12 +66,14 @@ double cell(const std::map<std::string, std::string>& row, const std::string& ke
   return it == row.end() ? std::nan("") : cases::csv_number(it->second);
 }
 
-// OUT/<case>/<method>.stage.toml, written by the study when the stage finished: wall time and threads.
+// OUT/<case>/<method>.stage.toml, written by the study when the stage finished: wall time (all legs),
+// legs and threads.
 void read_stage_info(const fs::path& file, ValidationRecord& r) {
   if (!fs::exists(file)) return;
   try {
     const toml::table t = toml::parse_file(file.string());
     if (auto v = t["wall_time_s"].value<double>()) r.wall_time_s = *v;
+    if (auto v = t["legs"].value<int64_t>(); v && *v >= 1) r.legs = static_cast<int>(*v);
     if (auto v = t["threads"].value<int64_t>()) r.threads = static_cast<int>(*v);
   } catch (const toml::parse_error&) {
     // A damaged stage file loses only the timing.
@@ -199,6 +201,7 @@ std::string record_text(const ValidationRecord& r) {
       << "\nbed_wavelength_m = " << number(r.bed_wavelength_m) << "\n";
   }
   if (r.wall_time_s) s << "wall_time_s = " << number(*r.wall_time_s) << "\n";
+  if (r.legs) s << "legs = " << *r.legs << "\n";
   if (r.threads) s << "threads = " << *r.threads << "\n";
   s << "window_s = " << numbers({r.window_start_s, r.window_end_s}) << "\n";
   for (const auto& m : r.metrics) {
@@ -245,6 +248,10 @@ ValidationRecord parse_record(const std::string& text, const std::string& file) 
   r.basin_start_m = t["basin_start_m"].value_or(0.0);
   r.bed_wavelength_m = t["bed_wavelength_m"].value_or(0.0);
   if (auto v = t["wall_time_s"].value<double>()) r.wall_time_s = *v;
+  if (auto v = t["legs"].value<int64_t>()) {
+    if (*v < 1) fail(file, "legs", "= " + std::to_string(*v) + " must be at least 1");
+    r.legs = static_cast<int>(*v);
+  }
   if (auto v = t["threads"].value<int64_t>()) r.threads = static_cast<int>(*v);
   const auto window = number_array(t, "window_s", file);
   if (window.size() != 2 || !(window[0] < window[1])) fail(file, "window_s", "is not [start, end] with start < end");

@@ -63,7 +63,8 @@ struct ValidationRecord {
   double inflow_depth_m = 0.0;     // y1
   double basin_start_m = 0.0;      // where the held toe is steered to
   double bed_wavelength_m = 0.0;   // S of a corrugated bed (0: smooth)
-  std::optional<double> wall_time_s;  // the solver stage's, when the study logged it
+  std::optional<double> wall_time_s;  // the solver stage's over all its legs, when the study logged it
+  std::optional<int> legs;         // the legs that time covers (a run stopped and resumed: several)
   std::optional<int> threads;      // SPH threads or OpenFOAM ranks of that stage
   double window_start_s = 0.0, window_end_s = 0.0;
   std::vector<RecordMetric> metrics;

@@ -226,6 +226,8 @@ class StudyRunner {
       // An SPH run of this study that stopped before its first checkpoint (its outputs and failure.txt
       // are the study's own) starts over; `hydrojump sph` refuses to overwrite them otherwise.
       else if (std::filesystem::exists(started) && method == "sph") args.push_back("--restart");
+      // A run that starts from the beginning has no earlier legs.
+      if (args.back() != "--resume") std::filesystem::remove(dir / (method + ".legs"));
       const auto stage = run_stage(c.id, method, args, dir, run_fingerprint, started);
       any_solver_ok = any_solver_ok || stage.state == "done" || stage.state == "cached";
       // A stopped run wrote new outputs too: the comparison is stale.
@@ -283,17 +285,37 @@ class StudyRunner {
     return result;
   }
 
-  // OUT/<case>/<stage>.stage.toml beside a finished solver stage: its wall time and threads (or MPI ranks),
-  // which `hydrojump record` keeps.
+  // OUT/<case>/<stage>.legs: the wall time and count of the legs of a solver stage that ended unfinished
+  // (stopped or failed) and will be resumed, "seconds legs" (a leg of a study killed outright is not
+  // counted). Gone once the stage finishes or starts over.
+  static std::pair<double, int> earlier_legs(const std::filesystem::path& dir, const std::string& stage) {
+    std::istringstream in(cases::read_text_file(dir / (stage + ".legs")));
+    double seconds = 0.0;
+    int legs = 0;
+    if (!(in >> seconds >> legs) || !(seconds >= 0.0) || legs < 0) return {0.0, 0};
+    return {seconds, legs};
+  }
+
+  static void add_leg(const std::filesystem::path& dir, const std::string& stage, double seconds) {
+    const auto [before, legs] = earlier_legs(dir, stage);
+    cases::write_file_atomically(dir / (stage + ".legs"), cases::number_text(before + seconds) + " " + std::to_string(legs + 1) + "\n");
+  }
+
+  // OUT/<case>/<stage>.stage.toml beside a finished solver stage: its wall time over all its legs (a run
+  // stopped and resumed counts every leg the study saw end) and threads (or MPI ranks), which
+  // `hydrojump record` keeps.
   void write_stage_info(const std::filesystem::path& dir, const std::string& stage, double seconds) {
     if (stage != "sph" && stage != "vof") return;
     const int threads = stage == "sph" ? (options_.sph_threads > 0 ? options_.sph_threads
                                                                     : static_cast<int>(std::max(1u, std::thread::hardware_concurrency())))
                                        : options_.mpi_ranks;
+    const auto [before, legs] = earlier_legs(dir, stage);
+    const double total = before + seconds;
     cases::write_file_atomically(dir / (stage + ".stage.toml"),
-                                 "# the last leg of this stage (a resumed run counts from its resume)\nwall_time_s = " +
-                                     cases::number_text(seconds) + (seconds == std::floor(seconds) ? ".0" : "") +
-                                     "\nthreads = " + std::to_string(threads) + "\n");
+                                 "# all legs of this stage (a run stopped and resumed counts each leg)\nwall_time_s = " +
+                                     cases::number_text(total) + (total == std::floor(total) ? ".0" : "") +
+                                     "\nlegs = " + std::to_string(legs + 1) + "\nthreads = " + std::to_string(threads) + "\n");
+    std::filesystem::remove(dir / (stage + ".legs"));
   }
 
   StageResult run_stage(const std::string& id, const std::string& stage, const std::vector<std::string>& args,
@@ -340,6 +362,7 @@ class StudyRunner {
       say(id + ": " + stage + " FAILED: " + start_error);
       return {stage, "failed", seconds, status, start_error};
     }
+    if (status != 0 && !started_marker.empty()) add_leg(dir, stage, seconds);
     if (stopped && status != 0) {
       say(id + ": " + stage + " stopped on request after " + duration_text(seconds) + " (the next study resumes it)");
       return {stage, "stopped", seconds, status, {}};

@@ -64,7 +64,12 @@ std::string workers_text(const std::string& method, int n) {
 std::string wall_text(const ValidationRecord& r) {
   if (!r.wall_time_s) return dash;
   std::string text = duration_text(*r.wall_time_s);
-  if (r.threads) text += " (" + workers_text(r.method, *r.threads) + ")";
+  if (r.threads || (r.legs && *r.legs > 1)) {
+    text += " (";
+    if (r.threads) text += workers_text(r.method, *r.threads);
+    if (r.legs && *r.legs > 1) text += std::string(r.threads ? ", " : "") + "in " + std::to_string(*r.legs) + " legs";
+    text += ")";
+  }
   return text;
 }
 

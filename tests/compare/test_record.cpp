@@ -34,6 +34,7 @@ ValidationRecord sample_record(const std::string& method, double y2) {
   r.command = "hydrojump study mini.toml --cases A --resolution quick --methods " + method;
   r.tailwater_control = "hold_toe";
   r.wall_time_s = 1234.5;
+  r.legs = 2;
   r.threads = 2;
   r.window_start_s = 6.2;
   r.window_end_s = 9.3;
@@ -61,6 +62,7 @@ TEST_CASE("A validation record reads back exactly as written", "[compare][record
   CHECK(back.run_key == r.run_key);
   CHECK(back.command == r.command);
   CHECK(*back.wall_time_s == 1234.5);
+  CHECK(*back.legs == 2);
   CHECK(*back.threads == 2);
   CHECK(back.window_start_s == 6.2);
   REQUIRE(back.metrics.size() == 3);
@@ -96,6 +98,7 @@ TEST_CASE("A damaged validation record is refused by file and key", "[compare][r
   CHECK_THAT(refusal(replaced("method = \"sph\"", "method = \"lbm\"")), Catch::Contains("method = \"lbm\" is not"));
   CHECK_THAT(refusal(replaced("window_s = [6.2, 9.3]", "window_s = [9.3, 6.2]")), Catch::Contains("rec.toml: window_s"));
   CHECK_THAT(refusal(replaced("value = 0.11", "value = \"high\"")), Catch::Contains("metrics.sequent_depth: value"));
+  CHECK_THAT(refusal(replaced("legs = 2", "legs = 0")), Catch::Contains("rec.toml: legs = 0 must be at least 1"));
   CHECK_THAT(refusal(good + "\n[[[\n"), Catch::Contains("rec.toml:") && Catch::Contains("not a valid record"));
 }
 
@@ -108,7 +111,7 @@ TEST_CASE("A compared case directory gives one record per finished method with t
   fs::create_directories(dir / "sph");
   hydrojump::cases::write_resolved_case(study, *study.find_case("A_smooth"), "quick", dir / "sph" / "case.toml");
   write(dir / "sph.stamp", "feedfacefeedface");
-  write(dir / "sph.stage.toml", "wall_time_s = 600.0\nthreads = 2\n");
+  write(dir / "sph.stage.toml", "wall_time_s = 600.0\nlegs = 3\nthreads = 2\n");
   // The VOF stage did not finish (no stamp): no VOF record.
   write(dir / "csv" / "metrics.csv",
         "quantity,unit,sph,vof,experiment,published_sph,smooth_theory,status\n"
@@ -131,6 +134,7 @@ TEST_CASE("A compared case directory gives one record per finished method with t
   CHECK(r.window_start_s == 6.0);
   CHECK(r.window_end_s == 10.0);
   CHECK(*r.wall_time_s == 600.0);
+  CHECK(*r.legs == 3);
   CHECK(r.tailwater_control == "hold_toe");
   CHECK(r.metric("sequent_depth")->value == 0.1331);
   CHECK(*r.metric("sequent_depth")->smooth_theory == 0.131781);
@@ -159,7 +163,7 @@ TEST_CASE("The validation document gives the hand-computed differences and is th
   CHECK_THAT(md, Catch::Contains("| A | SPH | quick | predicted | 0.1085 | 0.104 | +4.4 % | 0.1318 |"));
   CHECK_THAT(md, Catch::Contains("| 45.45 | 48.43 | -2.98 | 39.22 |"));
   CHECK_THAT(md, Catch::Contains("| A | quick | 0.1085 | 0.1138 | -4.6 % |"));
-  CHECK_THAT(md, Catch::Contains("21 min (2 threads)"));
+  CHECK_THAT(md, Catch::Contains("21 min (2 threads, in 2 legs)"));
   CHECK_THAT(md, Catch::Contains("`hydrojump study mini.toml --cases A --resolution quick --methods vof`"));
   CHECK(validation_markdown(records, "validation/records") == md);
   CHECK_THAT(validation_markdown({}, "validation/records"), Catch::Contains("No records yet."));

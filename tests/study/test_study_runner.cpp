@@ -16,6 +16,7 @@
 #include <vector>
 
 #include <sys/wait.h>
+#include <toml++/toml.h>
 #include <unistd.h>
 
 #include "cases/directory_lock.hpp"
@@ -454,7 +455,7 @@ TEST_CASE("Study runner: a stop request stops the running stage with its state w
   // The stand-in's SPH run goes on until it gets SIGTERM, which it records (the real one writes a
   // checkpoint) before it exits as a stopped process does.
   StudyOptions options = mini_study_with_stand_in(
-      dir, "echo \"$*\" >> '" + calls.string() + "'\ncase \"$1\" in\n  sph) trap 'echo TERM > \"$2/term\"; exit 143' TERM\n"
+      dir, "echo \"$*\" >> '" + calls.string() + "'\ncase \"$1\" in\n  sph) trap 'echo TERM > \"$2/term\"; touch \"$2/checkpoint.bin\"; exit 143' TERM\n"
            "    touch \"$2/running\"\n    while true; do sleep 0.05; done ;;\nesac\nexit 0\n");
   options.cases = {"A", "B"};
   std::ostringstream log;
@@ -473,6 +474,30 @@ TEST_CASE("Study runner: a stop request stops the running stage with its state w
   CHECK_THAT(report, Catch::Contains("| A | sph | stopped |") &&
                          Catch::Contains("| A | vof | skipped (the study was stopped) |") &&
                          Catch::Contains("| B | setup | skipped (the study was stopped) |"));
+
+  // The next study resumes the run (a stand-in that finishes after 0.3 s): its stage's wall time counts
+  // both legs.
+  const double first_leg = [&] {
+    std::istringstream in(hydrojump::cases::read_text_file(options.out / "A" / "sph.legs"));
+    double seconds = -1.0;
+    int legs = 0;
+    in >> seconds >> legs;
+    CHECK(legs == 1);
+    return seconds;
+  }();
+  CHECK(first_leg > 0.0);
+  write(dir / "fake_hydrojump", "#!/bin/sh\necho \"$*\" >> '" + calls.string() + "'\nsleep 0.3\nexit 0\n");
+  options.cases = {"A"};
+  std::ostringstream resumed;
+  REQUIRE(run_study(options, resumed) == 0);
+  INFO(resumed.str());
+  CHECK(lines_of(calls).at(1).find("--resume") != std::string::npos);
+  const auto info = toml::parse_file((options.out / "A" / "sph.stage.toml").string());
+  CHECK(info["legs"].value_or(0) == 2);
+  CHECK(info["wall_time_s"].value_or(0.0) >= first_leg + 0.3);
+  CHECK_FALSE(fs::exists(options.out / "A" / "sph.legs"));
+  // A VOF stage that ran in one leg.
+  CHECK(toml::parse_file((options.out / "A" / "vof.stage.toml").string())["legs"].value_or(0) == 1);
 }
 
 TEST_CASE("Study runner: an output directory OpenFOAM cannot run in is refused before anything runs", "[study]") {
