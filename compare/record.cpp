@@ -152,14 +152,19 @@ std::vector<ValidationRecord> records_from_case_dir(const fs::path& case_dir, co
     r.window_start_s = c.run.average_start_s;
     r.window_end_s = c.run.average_end_s;
     read_stage_info(case_dir / (method + ".stage.toml"), r);
+    // A quantity the method could not give (nan: e.g. no reverse surface flow, so no roller length) is
+    // kept as value = nan where it has a laboratory, published or inputs-only value to stand beside.
+    bool any_value = false;
     for (const auto& row : metric_rows) {
       const double v = cell(row, method);
-      if (!std::isfinite(v)) continue;
-      r.metrics.push_back({row.at("quantity"), row.count("unit") ? row.at("unit") : "",
-                           row.count("status") ? row.at("status") : "predicted", v, finite(cell(row, "experiment")),
-                           finite(cell(row, "published_sph")), finite(cell(row, "smooth_theory"))});
+      RecordMetric m{row.at("quantity"), row.count("unit") ? row.at("unit") : "",
+                     row.count("status") ? row.at("status") : "predicted", v, finite(cell(row, "experiment")),
+                     finite(cell(row, "published_sph")), finite(cell(row, "smooth_theory"))};
+      if (!std::isfinite(v) && !m.experiment && !m.published_sph && !m.smooth_theory) continue;
+      any_value = any_value || std::isfinite(v);
+      r.metrics.push_back(m);
     }
-    if (r.metrics.empty()) continue;  // the method's results were not readable
+    if (!any_value) continue;  // the method's results were not readable
     for (const auto& row : profile_rows) {
       if (row.at("method") != method) continue;
       const double u = cell(row, "u_mean_m_s");

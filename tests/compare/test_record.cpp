@@ -116,7 +116,11 @@ TEST_CASE("A compared case directory gives one record per finished method with t
   write(dir / "csv" / "metrics.csv",
         "quantity,unit,sph,vof,experiment,published_sph,smooth_theory,status\n"
         "sequent_depth,m,0.1331,0.1286,nan,nan,0.131781,predicted\n"
-        "toe_std,m,0.041,nan,nan,nan,nan,predicted\n");
+        "toe_std,m,0.041,nan,nan,nan,nan,predicted\n"
+        // SPH gave no roller length, which has an inputs-only value (kept as nan beside it), nor a jump
+        // length, which has none (left out).
+        "roller_length,m,nan,0.2,nan,nan,0.301256,predicted\n"
+        "jump_length,m,nan,0.5,nan,nan,nan,predicted\n");
   write(dir / "csv" / "profiles.csv", "method,section,x_m,z_m,u_mean_m_s,u_std_m_s,w_mean_m_s,wet_fraction\n"
                                       "sph,up,0.1,0,1.99,0.03,0.0,1\nsph,up,0.1,0.01,1.98,0.03,0.0,1\n"
                                       "vof,up,0.1,0,1.5,0.03,0.0,1\nsph,down,1.0,0,0.4,0.1,0.0,1\n");
@@ -140,6 +144,14 @@ TEST_CASE("A compared case directory gives one record per finished method with t
   CHECK(*r.metric("sequent_depth")->smooth_theory == 0.131781);
   CHECK_FALSE(r.metric("sequent_depth")->experiment);
   CHECK(r.metric("toe_std")->value == 0.041);
+  REQUIRE(r.metric("roller_length"));
+  CHECK(std::isnan(r.metric("roller_length")->value));
+  CHECK(*r.metric("roller_length")->smooth_theory == 0.301256);
+  CHECK_FALSE(r.metric("jump_length"));
+  // ... and reads back so.
+  const ValidationRecord back = parse_record(record_text(r), "A_smooth/sph-quick.toml");
+  CHECK(std::isnan(back.metric("roller_length")->value));
+  CHECK(*back.metric("roller_length")->smooth_theory == 0.301256);
   REQUIRE(r.profiles.size() == 2);
   CHECK(r.profiles[0].u_mean_m_s == std::vector<double>{1.99, 1.98});
   CHECK(r.surface_mean_m == std::vector<double>{0.026});
