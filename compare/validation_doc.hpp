@@ -15,8 +15,9 @@ namespace hydrojump::compare {
 // `records_root` is printed as the folder the records live in (e.g. "validation/records").
 std::string validation_markdown(const std::vector<ValidationRecord>& records, const std::string& records_root);
 
-// The headline table of README.md: one row per record, each prediction against the laboratory (or
-// Belanger on a smooth bed) and the targets met or missed.
+// The headline table of README.md: one row per case and resolution with SPH and VOF side by side, each
+// prediction against the laboratory (or Belanger on a smooth bed), SPH against VOF, and the targets met
+// or missed.
 std::string headline_markdown(const std::vector<ValidationRecord>& records);
 
 // `text` with the lines between "<!-- validation-table:start -->" and "<!-- validation-table:end -->"

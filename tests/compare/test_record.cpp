@@ -184,8 +184,12 @@ TEST_CASE("The validation document gives the hand-computed differences and is th
 TEST_CASE("The README headline table goes between its markers and a document without them is refused", "[compare][record]") {
   const std::vector<ValidationRecord> records = {sample_record("sph", 0.108535)};
   const std::string block = headline_markdown(records);
-  // y2 against the lab: 0.108535 / 0.104 - 1 = +4.4 %; eta 45.448 - 48.43 = -2.98 points.
-  CHECK_THAT(block, Catch::Contains("| A | SPH | quick | +4.4 % of lab | -2.98 |"));
+  // y2 against the lab: 0.108535 / 0.104 - 1 = +4.4 %; eta 45.448 - 48.43 = -2.98 points; no VOF record.
+  CHECK_THAT(block, Catch::Contains("| A | quick | +4.4 % of lab / not run | -2.98 / not run |"));
+  // Both methods of a case share its row: SPH - VOF on y2 = 0.108535 / 0.113782 - 1 = -4.6 %.
+  const std::string both = headline_markdown({sample_record("sph", 0.108535), sample_record("vof", 0.113782)});
+  CHECK_THAT(both, Catch::Contains("| A | quick | +4.4 % of lab / +9.4 % of lab |") && Catch::Contains("| -4.6 % |"));
+  CHECK(std::count(both.begin(), both.end(), '\n') == 3);
   const std::string doc = "intro\n<!-- validation-table:start -->\nold table\n<!-- validation-table:end -->\nafter\n";
   const std::string updated = with_headline(doc, block, "README.md");
   CHECK(updated == "intro\n<!-- validation-table:start -->\n" + block + "<!-- validation-table:end -->\nafter\n");
@@ -200,7 +204,7 @@ TEST_CASE("The validation document names each record's jump structure from the j
     r.metrics.push_back({"jet_height", "", "predicted", jet, std::nullopt, std::nullopt, std::nullopt});
     if (std::isfinite(deviation))
       r.metrics.push_back({"wall_jet_deviation", "", "predicted", deviation, std::nullopt, std::nullopt, std::nullopt});
-    return headline_markdown({r});
+    return validation_markdown({r}, "validation/records");
   };
   CHECK_THAT(with(0.12, 0.08), Catch::Contains("| classic (0.12, 0.08) |"));
   CHECK_THAT(with(0.12, 0.23), Catch::Contains("| wall jet, profile off (0.12, 0.23) |"));
@@ -238,7 +242,7 @@ TEST_CASE("A stale record is marked in every table and its case is listed as not
   a.study = study.name;
   a.stale = true;
   CHECK_THAT(validation_markdown({a}, "validation/records"), Catch::Contains("| A | SPH | quick (stale) |"));
-  CHECK_THAT(headline_markdown({a}), Catch::Contains("| A | SPH | quick (stale) |"));
+  CHECK_THAT(headline_markdown({a}), Catch::Contains("| A | quick | +4.4 % of lab (stale) / not run |"));
   CHECK_THAT(not_run_markdown(study, {a}, "quick"), Catch::Contains("| A | SPH |"));
   a.stale = false;
   CHECK_THAT(not_run_markdown(study, {a}, "quick"), !Catch::Contains("| A | SPH |"));
