@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds, and runs the test suite (everything not tagged [slow]); then, unless
 # --unit-only, the CI's reliability steps: the short set of unit tests under AddressSanitizer and
-# UndefinedBehaviorSanitizer (scripts/sanitize.sh --short, its own build in ./build-sanitize) and every
-# fuzz target for FUZZ_SECONDS (default 60) each (scripts/fuzz.sh, Clang, ./build-fuzz).
+# UndefinedBehaviorSanitizer (scripts/sanitize.sh --short, its own build in ./build-sanitize: about
+# 15 min on 2 cores) and every fuzz target for FUZZ_SECONDS (default 60) each (scripts/fuzz.sh, Clang,
+# ./build-fuzz: about 10 min).
 # The long validation runs have their own command: scripts/validate.sh
 # Usage: scripts/test.sh [--unit-only]
 set -euo pipefail
