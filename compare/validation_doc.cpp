@@ -320,19 +320,24 @@ std::string not_run_markdown(const cases::Study& study, const std::vector<Valida
   }
   std::ostringstream md;
   int missing = 0;
+  std::map<std::string, double> measured, estimated;  // seconds, by method: recorded runs, estimates
   for (const auto& c : study.cases) {
     const auto* b = c.stilling_basin();
     if (!b || !c.resolutions.count(resolution)) continue;
     for (const std::string method : {"sph", "vof"}) {
-      const bool recorded = std::any_of(records.begin(), records.end(), [&](const ValidationRecord& r) {
+      const auto recorded = std::find_if(records.begin(), records.end(), [&](const ValidationRecord& r) {
         return r.study == study.name && r.case_id == c.id && r.method == method && r.resolution == resolution && !r.stale;
       });
-      if (recorded) continue;
+      if (recorded != records.end()) {
+        if (recorded->wall_time_s) measured[method] += *recorded->wall_time_s;
+        continue;
+      }
       const double size = run_size(*b, c.resolutions.at(resolution), method);
       std::ostringstream cost;
       if (reference.count(method)) {
         const ValidationRecord& ref = *reference.at(method);
         const double ratio = run_work(c, resolution, method) / run_work(*reference_case.at(method), resolution, method);
+        estimated[method] += *ref.wall_time_s * ratio;
         cost << "~" << duration_text(*ref.wall_time_s * ratio);
         if (ref.threads) cost << " on " << workers_text(method, *ref.threads);
       } else {
@@ -356,6 +361,14 @@ std::string not_run_markdown(const cases::Study& study, const std::vector<Valida
   out << " scaled by size × simulated time × U1 / dx (a rough guide: the solvers' time steps differ between cases).\n\n"
          "| case | method | size | simulated | estimated wall time |\n|---|---|---|---:|---|\n"
       << md.str();
+  // The whole study's projected cost: what the current records took plus the estimates above.
+  out << "\nThe whole study at `" << resolution << "`, projected (the recorded runs' measured wall times, on their own "
+         "threads or ranks, plus the estimates above):";
+  for (const std::string method : {"sph", "vof"}) {
+    out << (method == "sph" ? " SPH " : "; VOF ") << duration_text(measured[method]) << " measured + ";
+    out << (reference.count(method) ? "~" + duration_text(estimated[method]) : std::string("unknown")) << " estimated";
+  }
+  out << ".\n";
   return out.str();
 }
 

@@ -234,6 +234,15 @@ TEST_CASE("Cases not run are listed with a wall time scaled from a measured reco
   CHECK_THAT(md, Catch::Contains("| A_smooth | SPH |") && Catch::Contains(std::to_string(minutes) + " min on 2 threads |"));
   // No VOF record: its rows have no estimate.
   CHECK_THAT(md, Catch::Contains("| A | VOF |") && Catch::Contains("s | — |"));
+  // The whole study: A's measured 30 min plus every other basin scaled from it.
+  double estimated_s = 0.0;
+  for (const auto& c : study.cases)
+    if (c.id != "A" && c.stilling_basin() && c.resolutions.count("quick")) estimated_s += 1800.0 * work(c) / work(ca);
+  const long total_min = std::lround(estimated_s / 60.0);
+  const std::string estimate = total_min >= 60 ? std::to_string(total_min / 60) + " h " +
+                                                     (total_min % 60 < 10 ? "0" : "") + std::to_string(total_min % 60) + " min"
+                                               : std::to_string(total_min) + " min";
+  CHECK_THAT(md, Catch::Contains("SPH 30 min measured + ~" + estimate + " estimated; VOF 0 min measured + unknown estimated."));
 }
 
 TEST_CASE("A stale record is marked in every table and its case is listed as not run", "[compare][record]") {
