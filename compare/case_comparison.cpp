@@ -112,7 +112,7 @@ std::vector<std::vector<double>> csv_columns(const fs::path& file, const std::ve
 // The comparison window's balance from the run's basin.csv (cases::window_balance), as a clause of the
 // note: "; over this comparison's window (...) outflow - inflow = ..." or why it cannot be given.
 std::string sph_window_balance_clause(const fs::path& basin_csv, double t0, double t1, double time_tolerance_s, double q,
-                                      double toe_drift_tolerance_m) {
+                                      double toe_drift_tolerance_m, RunBalance& balance) {
   const std::string name = basin_csv.filename().string();
   if (!fs::exists(basin_csv)) return "; no " + name + " beside it to recompute them";
   std::size_t damaged_rows = 0;
@@ -142,13 +142,17 @@ std::string sph_window_balance_clause(const fs::path& basin_csv, double t0, doub
   const bool steady = damaged_rows == 0 && b.toe_missing == 0 && b.reaches_window_end &&
                       cases::steady_by_means(b.outflow_minus_inflow_over_q, b.toe_trend_m_per_s, toe_drift_tolerance_m);
   o << (steady ? " (steady by the window means)" : " (NOT steady by the window means)");
+  balance.imbalance = b.outflow_minus_inflow_over_q;
+  balance.steady = steady;
   return o.str();
 }
 
 }  // namespace
 
 std::string sph_run_note(const fs::path& summary_file, double window_start_s, double window_end_s,
-                         double time_tolerance_s) {
+                         double time_tolerance_s, RunBalance* balance) {
+  RunBalance ignored;
+  RunBalance& out = balance ? *balance : ignored;
   if (!fs::exists(summary_file)) return {};
   const std::string name = summary_file.filename().string();
   std::string json;
@@ -195,6 +199,10 @@ std::string sph_run_note(const fs::path& summary_file, double window_start_s, do
     o << "; over the window outflow - inflow = " << *imbalance * 100.0 << " % of q";
     if (trend) o << ", toe trend " << *trend << " m/s";
     o << (by_means == "true" ? " (steady by the window means)" : " (NOT steady by the window means)");
+    if (!other_window) {
+      out.imbalance = *imbalance;
+      out.steady = by_means == "true";
+    }
   }
   if (other_window) {
     o << "; these verdicts are for the run's window, not for this comparison's " << window_start_s << "-"
@@ -203,7 +211,7 @@ std::string sph_run_note(const fs::path& summary_file, double window_start_s, do
     const auto tolerance = summary_number(json, "toe_drift_tolerance_m", problems);
     if (q && tolerance)
       o << sph_window_balance_clause(summary_file.parent_path() / "basin.csv", window_start_s, window_end_s,
-                                     time_tolerance_s, *q, *tolerance);
+                                     time_tolerance_s, *q, *tolerance, out);
     else
       o << "; " << name << " lacks the prescribed discharge or the toe drift tolerance to recompute them";
   }
@@ -249,13 +257,14 @@ std::string vof_tailwater_control_note(const fs::path& vof_dir, double t0, doubl
   return o.str();
 }
 
-std::string vof_run_note(const VofRunNoteInputs& in) {
+std::string vof_run_note(const VofRunNoteInputs& in, RunBalance* balance) {
   const auto q = reference::patch_discharges(in.vof_dir, in.window_start_s, in.window_end_s, in.thickness_m);
   if (!q || !(in.inflow_q_m2_s > 0.0)) return {};
   const double imbalance = (q->outflow_m2_s + q->top_outflow_m2_s - q->inflow_m2_s) / in.inflow_q_m2_s;
   const bool trend_known = std::isfinite(in.toe_trend_m_per_s);
   const bool steady = in.frames_without_toe == 0 && in.reaches_window_end &&
                       cases::steady_by_means(imbalance, in.toe_trend_m_per_s, in.toe_drift_tolerance_m);
+  if (balance) *balance = {imbalance, steady};
   std::ostringstream o;
   o << std::setprecision(4) << "water balance over the window (postProcessing/discharge_inlet, _outlet"
     << (q->top_sampled ? ", _atmosphere" : "") << "): in " << q->inflow_m2_s << ", out " << q->outflow_m2_s;
@@ -275,6 +284,11 @@ std::string vof_run_note(const VofRunNoteInputs& in) {
 }
 
 namespace {
+
+void set_run_balance(JumpMetrics& m, const RunBalance& b) {
+  m.window_imbalance = b.imbalance;
+  m.steady_by_means = b.steady ? (*b.steady ? 1.0 : 0.0) : not_a_number;
+}
 
 // Progress lines "sph: frame 3/40 at t = 5.15 s (elapsed 12 s, ETA 2 min)".
 class Progress {
@@ -537,8 +551,10 @@ CaseComparison compare_case(const cases::Study& study, const fs::path& run_dir, 
       // As the SPH rule: some output at or after the window's end (the window itself may end off the grid).
       const std::optional<double> latest = reference::latest_time(run_dir / "vof");
       balance_inputs.reaches_window_end = latest && *latest >= r.window_end_s - time_tolerance_s;
-      const std::string balance = vof_run_note(balance_inputs);
+      RunBalance numbers;
+      const std::string balance = vof_run_note(balance_inputs, &numbers);
       if (!balance.empty()) r.vof.metrics.notes.push_back(balance);
+      set_run_balance(r.vof.metrics, numbers);
     } catch (const std::exception& e) {
       r.vof.metrics.notes.push_back(std::string("water balance unavailable: ") + e.what());
     }
@@ -555,8 +571,11 @@ CaseComparison compare_case(const cases::Study& study, const fs::path& run_dir, 
   }
   // The SPH run's own verdict (summary.json of sph/basin_monitor.hpp), when it wrote one.
   if (r.sph.available) {
-    const std::string note = sph_run_note(run_dir / "sph" / "summary.json", r.window_start_s, r.window_end_s, time_tolerance_s);
+    RunBalance numbers;
+    const std::string note =
+        sph_run_note(run_dir / "sph" / "summary.json", r.window_start_s, r.window_end_s, time_tolerance_s, &numbers);
     if (!note.empty()) r.sph.metrics.notes.push_back(note);
+    set_run_balance(r.sph.metrics, numbers);
   }
   if (r.sph.available && r.vof.available) {
     r.surface = surface_difference(r.sph.stats, r.vof.stats, r.basin_start_m, r.basin_end_m);

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <filesystem>
+#include <limits>
 #include <iosfwd>
 #include <optional>
 #include <string>
@@ -123,7 +124,14 @@ struct VofRunNoteInputs {
   int frames_without_toe = 0;
   bool reaches_window_end = true;
 };
-std::string vof_run_note(const VofRunNoteInputs& in);
+// The numbers behind a run note's verdict: (outflow - inflow) / q over the window and whether the run is
+// steady by the window means (unset where the note could not judge).
+struct RunBalance {
+  double imbalance = std::numeric_limits<double>::quiet_NaN();
+  std::optional<bool> steady;
+};
+
+std::string vof_run_note(const VofRunNoteInputs& in, RunBalance* balance = nullptr);
 
 // One line on the SPH run's own verdict from its summary.json (jump state, steady or not, inflow
 // discharge error, over the run's averaging window, which the line names); when the comparison's
@@ -136,7 +144,8 @@ std::string vof_run_note(const VofRunNoteInputs& in);
 // rows (other than a torn last line, which a running run writes). window_end_s <= window_start_s: no
 // comparison window.
 // basin.csv's outputs within time_tolerance_s of the window are in it (cases/output_times.hpp).
+// `balance`, when given, gets the verdict's numbers (for the comparison's window).
 std::string sph_run_note(const std::filesystem::path& summary_file, double window_start_s = 0.0,
-                         double window_end_s = 0.0, double time_tolerance_s = 1e-9);
+                         double window_end_s = 0.0, double time_tolerance_s = 1e-9, RunBalance* balance = nullptr);
 
 }  // namespace hydrojump::compare

@@ -94,6 +94,11 @@ std::vector<MetricRow> metric_table(const JumpMetrics* sph, const JumpMetrics* v
                   not_a_number, not_a_number});
   rows.push_back({"toe_trend", "m/s", v(sph, &JumpMetrics::toe_trend_m_per_s), v(vof, &JumpMetrics::toe_trend_m_per_s),
                   not_a_number, not_a_number, not_a_number});
+  // The run's water balance and steadiness over the window: checks of the run, not predictions.
+  rows.push_back({"water_imbalance", "%", v(sph, &JumpMetrics::window_imbalance, 100.0),
+                  v(vof, &JumpMetrics::window_imbalance, 100.0), not_a_number, not_a_number, not_a_number, "check"});
+  rows.push_back({"steady", "", v(sph, &JumpMetrics::steady_by_means), v(vof, &JumpMetrics::steady_by_means),
+                  not_a_number, not_a_number, not_a_number, "check"});
   const double belanger_y2 = inflow_depth_m > 0.0 && inflow_velocity_m_s > 0.0 && gravity_m_s2 > 0.0
                                  ? cases::belanger_sequent_depth(inflow_depth_m,
                                                                  cases::froude_number(inflow_depth_m, inflow_velocity_m_s,

@@ -43,7 +43,7 @@ struct MetricRow {
   std::string unit;            // "m", "%"
   double sph = not_a_number, vof = not_a_number, experiment = not_a_number,
          published_sph = not_a_number, smooth_theory = not_a_number;
-  std::string status = "predicted";  // "predicted" | "imposed" | "input"
+  std::string status = "predicted";  // "predicted" | "imposed" | "input" | "check" (of the run: balance, steadiness)
 };
 
 struct MeasuredReference {

@@ -82,6 +82,10 @@ struct JumpMetrics {
   int toe_frames_found = 0;                     // and the number of frames with a toe,
   int toe_frames_at_search_start = 0;           // of which at the upstream section (the roller reaches it)
   double toe_trend_m_per_s = not_a_number;      // least-squares slope of the frames' toes over time
+  // The run's water balance over the window, from its own discharge records (case_comparison.hpp's
+  // RunBalance): (outflow - inflow) / q, and steady by the window means (1), not (0), unknown (NaN).
+  double window_imbalance = not_a_number;
+  double steady_by_means = not_a_number;
   std::vector<double> toe_frames_x_m;           // each frame's toe (NaN: none), aligned with the frames' times
   double sequent_depth_m = not_a_number;       // y2
   double sequent_depth_std_m = not_a_number;

@@ -323,6 +323,8 @@ std::string pretty_quantity(const std::string& q) {
   if (q == "toe_mean_of_frames") return "toe position, mean of the frames' toes (m)";
   if (q == "toe_std") return "toe standard deviation over the frames (m)";
   if (q == "toe_trend") return "toe trend over the window, least-squares slope of the frames' toes (m/s)";
+  if (q == "water_imbalance") return "outflow − inflow over the window, from the run's discharges (% of q)";
+  if (q == "steady") return "steady by the window means (1 yes, 0 no: |outflow − inflow| < 2 % of q, toe drift)";
   if (q == "sequent_depth") return "sequent depth y2 (m)";
   if (q == "bed_effect") return "bed effect y2/y2* (Bélanger's y2*)";
   if (q == "jump_length") return "jump length Lj (m)";

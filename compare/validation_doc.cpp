@@ -123,11 +123,16 @@ std::string targets_text(const ValidationRecord& r) {
     const double d_bed = value_of(r, "bed_effect") - experiment_of(r, "bed_effect");
     if (std::isfinite(d_bed)) judge(std::abs(d_bed) <= 0.05, "y2/y2* " + fix(d_bed, 3, true));
   }
-  if (judged == 0) return dash;
-  if (misses.empty()) return "met (" + std::to_string(judged) + ")";
+  // A run not steady over its window (its water balance or toe still moving): its numbers are those of
+  // a jump still settling, whatever the targets say.
+  const std::string unsteady = value_of(r, "steady") == 0.0
+                                   ? "; NOT steady (outflow − inflow " + fix(value_of(r, "water_imbalance"), 1, true) + " % of q)"
+                                   : "";
+  if (judged == 0) return dash + unsteady;
+  if (misses.empty()) return "met (" + std::to_string(judged) + ")" + unsteady;
   std::string out = "missed " + std::to_string(misses.size()) + " of " + std::to_string(judged) + ": ";
   for (std::size_t i = 0; i < misses.size(); ++i) out += (i ? ", " : "") + misses[i];
-  return out;
+  return out + unsteady;
 }
 
 }  // namespace
@@ -186,7 +191,9 @@ std::string validation_markdown(const std::vector<ValidationRecord>& records, co
           "Toe (held): mean within one bed wavelength (68 mm on a smooth bed) of the basin start, sd at most 2 y1. "
           "Smooth bed: y2 within 3 % of Bélanger. Corrugated bed with laboratory data: y2 within 10 %, η within 3 "
           "points, Lj within 20 %, y2/y2* within 0.05 of the laboratory's. A row whose structure is not classic "
-          "(above) is exploratory: its depths may be right for the wrong flow.\n\n"
+          "(above) is exploratory: its depths may be right for the wrong flow. NOT steady: the run's water balance "
+          "or toe was still moving over its window (|outflow − inflow| ≥ 2 % of q, or the toe drifting a bed "
+          "wavelength, on a smooth bed 2 y1, a second): its numbers are those of a jump still settling.\n\n"
           "| case | method | resolution | targets |\n|---|---|---|---|\n";
     for (const auto* r : rows) md << row_label(*r) << " " << targets_text(*r) << " |\n";
     // SPH against VOF where both methods have a record of the same case and resolution.

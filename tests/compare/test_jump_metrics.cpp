@@ -192,6 +192,14 @@ TEST_CASE("The metric table labels what the set-up held and sets the inputs-only
                         "jump_length", "roller_length", "toe_std", "toe_trend"})
     CHECK(metric_row(held, q).status == "predicted");
   CHECK(metric_row(held, "upstream_depth").status == "input");
+  // The run's water balance and steadiness are checks of the run: 1.5 % of q draining, steady.
+  sph.window_imbalance = 0.015;
+  sph.steady_by_means = 1.0;
+  const auto checked = metric_table(&sph, nullptr, lab, 0.0254, 3.0, 9.81, true);
+  CHECK(metric_row(checked, "water_imbalance").sph == Approx(1.5));
+  CHECK(metric_row(checked, "steady").sph == 1.0);
+  CHECK(metric_row(checked, "water_imbalance").status == "check");
+  CHECK(metric_row(checked, "steady").status == "check");
   // With the outlet holding a depth it is the other way round (the lengths stay predictions).
   const auto fixed = metric_table(&sph, nullptr, lab, 0.0254, 3.0, 9.81, false);
   for (const char* q : {"sequent_depth", "bed_effect", "eta", "eta_alpha1", "eta_crest_depth", "bed_force_fraction"})

@@ -263,15 +263,20 @@ TEST_CASE("the VOF water balance over the window: filling, draining and steady, 
   // The outlet passes 95 % of the inflow: filling by 5 % of q, not steady whatever the toe does.
   write_patch("discharge_inlet", -flux);
   write_patch("discharge_outlet", 0.95 * flux);
-  std::string note = vof_run_note(in);
+  RunBalance balance;
+  std::string note = vof_run_note(in, &balance);
   CHECK_THAT(note, Catch::Contains("in 0.0508, out 0.04826 m^2/s") && Catch::Contains("= -5 % of q (filling)") &&
                        Catch::Contains("toe trend 0.01 m/s") && Catch::Contains("NOT steady by the window means"));
+  CHECK(balance.imbalance == Approx(-0.05));
+  CHECK(balance.steady == false);
   // 99 % at the outlet and 1 % through the top: balanced.
   write_patch("discharge_outlet", 0.99 * flux);
   write_patch("discharge_atmosphere", 0.01 * flux);
-  note = vof_run_note(in);
+  note = vof_run_note(in, &balance);
   CHECK_THAT(note, Catch::Contains("+ top 0.000508") && Catch::Contains("(steady by the window means") &&
                        Catch::Contains("< 0.068 m"));
+  CHECK(balance.imbalance == Approx(0.0).margin(1e-12));
+  CHECK(balance.steady == true);
   // The same balance with the toe moving 0.1 m/s (more than a 68 mm wavelength per second): not steady;
   // an unknown trend is not steady either.
   in.toe_trend_m_per_s = -0.1;

@@ -106,9 +106,13 @@ TEST_CASE("The comparator reads the SPH run monitor's verdict from its summary.j
   CHECK_THAT(note, Catch::Contains("(steady by the window means)"));
   CHECK_THAT(note, Catch::Contains("its averaging window 1.5-2 s"));
   CHECK_THAT(note, !Catch::Contains("not for this comparison"));
-  // Compared over the run's own window: nothing to warn; over another: the verdicts are not for it.
-  CHECK_THAT(hydrojump::compare::sph_run_note(dir.path() / "summary.json", 1.5, 2.0),
+  // Compared over the run's own window: nothing to warn, and the verdict's numbers; over another: the
+  // verdicts are not for it.
+  hydrojump::compare::RunBalance balance;
+  CHECK_THAT(hydrojump::compare::sph_run_note(dir.path() / "summary.json", 1.5, 2.0, 1e-9, &balance),
              !Catch::Contains("not for this comparison"));
+  CHECK(balance.imbalance == Approx(0.0).margin(1e-12));
+  CHECK(balance.steady == true);
   CHECK_THAT(hydrojump::compare::sph_run_note(dir.path() / "summary.json", 0.5, 1.0),
              Catch::Contains("these verdicts are for the run's window, not for this comparison's 0.5-1 s"));
   CHECK(hydrojump::compare::sph_run_note(dir.path() / "absent.json").empty());
@@ -182,8 +186,11 @@ TEST_CASE("Over another window the comparator recomputes the SPH water balance f
   CHECK_THAT(hydrojump::compare::sph_run_note(summary, 0.5, 1.0), Catch::Contains("no basin.csv beside it to recompute them"));
   std::ofstream(dir.path() / "basin.csv") << monitor.csv();
   // 0.5-1 s: q_out = 1.1 q throughout, so outflow - inflow = +10 % of q and the window is not steady.
-  const std::string early = hydrojump::compare::sph_run_note(summary, 0.5, 1.0);
+  hydrojump::compare::RunBalance balance;
+  const std::string early = hydrojump::compare::sph_run_note(summary, 0.5, 1.0, 1e-9, &balance);
   INFO(early);
+  CHECK(balance.imbalance == Approx(0.1));
+  CHECK(balance.steady == false);
   CHECK_THAT(early, Catch::Contains("over this comparison's window (basin.csv, outputs 0.5-1 s) outflow - inflow = 10 % of q"));
   CHECK_THAT(early, Catch::Contains("toe trend 0 m/s (NOT steady by the window means)"));
   // 0.5-1.5 s: half the window drains at +10 %, so +5 %.

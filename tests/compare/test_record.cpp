@@ -256,3 +256,18 @@ TEST_CASE("A stale record is marked in every table and its case is listed as not
   a.stale = false;
   CHECK_THAT(not_run_markdown(study, {a}, "quick"), !Catch::Contains("| A | SPH |"));
 }
+
+TEST_CASE("The targets are judged from a record's numbers, and a run not steady over its window is flagged",
+          "[compare][record]") {
+  // y2 0.108535 against the lab's 0.104: +4.4 % (within 10 %); eta 45.448 against 48.43: -2.98 points
+  // (within 3): both met. y2 0.12: +15.4 %, missed.
+  CHECK_THAT(headline_markdown({sample_record("sph", 0.108535)}), Catch::Contains("| met (2) | not run |"));
+  CHECK_THAT(headline_markdown({sample_record("sph", 0.12)}), Catch::Contains("| missed 1 of 2: y2 +15.4 % | not run |"));
+  // The run's water balance still filling by 4.3 % of q over the window: not steady, whatever the targets.
+  ValidationRecord r = sample_record("sph", 0.108535);
+  r.metrics.push_back({"water_imbalance", "%", "check", -4.3, std::nullopt, std::nullopt, std::nullopt});
+  r.metrics.push_back({"steady", "", "check", 0.0, std::nullopt, std::nullopt, std::nullopt});
+  CHECK_THAT(headline_markdown({r}), Catch::Contains("| met (2); NOT steady (outflow − inflow -4.3 % of q) | not run |"));
+  r.metrics.back().value = 1.0;
+  CHECK_THAT(headline_markdown({r}), Catch::Contains("| met (2) | not run |"));
+}
