@@ -199,9 +199,9 @@ std::string sph_run_note(const fs::path& summary_file, double window_start_s, do
     o << "; over the window outflow - inflow = " << *imbalance * 100.0 << " % of q";
     if (trend) o << ", toe trend " << *trend << " m/s";
     o << (by_means == "true" ? " (steady by the window means)" : " (NOT steady by the window means)");
-    if (!other_window) {
+    if (!other_window && !run_window.empty()) {  // the numbers are for the comparison's window
       out.imbalance = *imbalance;
-      out.steady = by_means == "true";
+      if (!by_means.empty()) out.steady = by_means == "true";
     }
   }
   if (other_window) {

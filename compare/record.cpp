@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -73,7 +74,8 @@ void read_stage_info(const fs::path& file, ValidationRecord& r) {
   try {
     const toml::table t = toml::parse_file(file.string());
     if (auto v = t["wall_time_s"].value<double>()) r.wall_time_s = *v;
-    if (auto v = t["legs"].value<int64_t>(); v && *v >= 1) r.legs = static_cast<int>(*v);
+    if (auto v = t["legs"].value<int64_t>(); v && *v >= 1 && *v <= std::numeric_limits<int>::max())
+      r.legs = static_cast<int>(*v);
     if (auto v = t["threads"].value<int64_t>()) r.threads = static_cast<int>(*v);
   } catch (const toml::parse_error&) {
     // A damaged stage file loses only the timing.
@@ -254,7 +256,8 @@ ValidationRecord parse_record(const std::string& text, const std::string& file) 
   r.bed_wavelength_m = t["bed_wavelength_m"].value_or(0.0);
   if (auto v = t["wall_time_s"].value<double>()) r.wall_time_s = *v;
   if (auto v = t["legs"].value<int64_t>()) {
-    if (*v < 1) fail(file, "legs", "= " + std::to_string(*v) + " must be at least 1");
+    if (*v < 1 || *v > std::numeric_limits<int>::max())
+      fail(file, "legs", "= " + std::to_string(*v) + " must be at least 1 (and a count of runs)");
     r.legs = static_cast<int>(*v);
   }
   if (auto v = t["threads"].value<int64_t>()) r.threads = static_cast<int>(*v);

@@ -311,10 +311,10 @@ class StudyRunner {
                                        : options_.mpi_ranks;
     const auto [before, legs] = earlier_legs(dir, stage);
     const double total = before + seconds;
-    cases::write_file_atomically(dir / (stage + ".stage.toml"),
-                                 "# all legs of this stage (a run stopped and resumed counts each leg)\nwall_time_s = " +
-                                     cases::number_text(total) + (total == std::floor(total) ? ".0" : "") +
-                                     "\nlegs = " + std::to_string(legs + 1) + "\nthreads = " + std::to_string(threads) + "\n");
+    std::ostringstream text;  // fixed notation: always a TOML float
+    text << "# all legs of this stage (a run stopped and resumed counts each leg)\nwall_time_s = " << std::fixed
+         << std::setprecision(3) << total << "\nlegs = " << legs + 1 << "\nthreads = " << threads << "\n";
+    cases::write_file_atomically(dir / (stage + ".stage.toml"), text.str());
     std::filesystem::remove(dir / (stage + ".legs"));
   }
 

@@ -1,6 +1,7 @@
 #include "compare/validation_doc.hpp"
 
 #include "compare/jump_structure.hpp"
+#include "cases/jump_toe.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -51,10 +52,10 @@ double percent_off(double a, double b) { return 100.0 * (a / b - 1.0); }
 
 // "29 min", "1 h 42 min": a wall time rounded to the minute.
 std::string duration_text(double seconds) {
-  const long s = std::lround(seconds);
+  const long minutes = (std::lround(seconds) + 30) / 60;
   std::ostringstream o;
-  if (s >= 3600) o << s / 3600 << " h " << std::setw(2) << std::setfill('0') << (s / 60) % 60 << " min";
-  else o << (s + 30) / 60 << " min";
+  if (minutes >= 60) o << minutes / 60 << " h " << std::setw(2) << std::setfill('0') << minutes % 60 << " min";
+  else o << minutes << " min";
   return o.str();
 }
 
@@ -125,9 +126,13 @@ std::string targets_text(const ValidationRecord& r) {
   }
   // A run not steady over its window (its water balance or toe still moving): its numbers are those of
   // a jump still settling, whatever the targets say.
-  const std::string unsteady = value_of(r, "steady") == 0.0
-                                   ? "; NOT steady (outflow − inflow " + fix(value_of(r, "water_imbalance"), 1, true) + " % of q)"
-                                   : "";
+  std::string unsteady;
+  if (value_of(r, "steady") == 0.0) {
+    const double imbalance = value_of(r, "water_imbalance");  // % of q
+    unsteady = std::abs(imbalance) >= 100.0 * cases::steady_discharge_tolerance
+                   ? "; NOT steady (outflow − inflow " + fix(imbalance, 1, true) + " % of q)"
+                   : "; NOT steady (the toe drifting, lost or the window not reached)";
+  }
   if (judged == 0) return dash + unsteady;
   if (misses.empty()) return "met (" + std::to_string(judged) + ")" + unsteady;
   std::string out = "missed " + std::to_string(misses.size()) + " of " + std::to_string(judged) + ": ";
@@ -328,6 +333,7 @@ std::string not_run_markdown(const cases::Study& study, const std::vector<Valida
   std::ostringstream md;
   int missing = 0;
   std::map<std::string, double> measured, estimated;  // seconds, by method: recorded runs, estimates
+  std::map<std::string, int> untimed, missing_of;      // records without a wall time; runs not recorded
   for (const auto& c : study.cases) {
     const auto* b = c.stilling_basin();
     if (!b || !c.resolutions.count(resolution)) continue;
@@ -337,8 +343,10 @@ std::string not_run_markdown(const cases::Study& study, const std::vector<Valida
       });
       if (recorded != records.end()) {
         if (recorded->wall_time_s) measured[method] += *recorded->wall_time_s;
+        else ++untimed[method];
         continue;
       }
+      ++missing_of[method];
       const double size = run_size(*b, c.resolutions.at(resolution), method);
       std::ostringstream cost;
       if (reference.count(method)) {
@@ -372,8 +380,10 @@ std::string not_run_markdown(const cases::Study& study, const std::vector<Valida
   out << "\nThe whole study at `" << resolution << "`, projected (the recorded runs' measured wall times, on their own "
          "threads or ranks, plus the estimates above):";
   for (const std::string method : {"sph", "vof"}) {
-    out << (method == "sph" ? " SPH " : "; VOF ") << duration_text(measured[method]) << " measured + ";
-    out << (reference.count(method) ? "~" + duration_text(estimated[method]) : std::string("unknown")) << " estimated";
+    out << (method == "sph" ? " SPH " : "; VOF ") << duration_text(measured[method]) << " measured";
+    if (untimed[method] > 0) out << " (and " << untimed[method] << " run(s) without a wall time)";
+    if (missing_of[method] == 0) out << ", nothing left to run";
+    else out << " + " << (reference.count(method) ? "~" + duration_text(estimated[method]) : std::string("unknown")) << " estimated";
   }
   out << ".\n";
   return out.str();

@@ -35,7 +35,7 @@ for t in "${targets[@]}"; do
     failed+=("$t")
     tail -40 "$build_dir/$t.log"
   fi
-  grep -E "stat::number_of_executed_units|stat::new_units_added" "$build_dir/$t.log" | tr '\n' ' '
+  grep -E "stat::number_of_executed_units|stat::new_units_added" "$build_dir/$t.log" | tr '\n' ' ' || true
   echo
 done
 if ((${#failed[@]})); then

@@ -9,9 +9,10 @@
 # solver runs take several times longer, and OpenFOAM's own processes are not instrumented.
 # --short leaves out the cases labelled "long" as well (tagged [long]: over ~20 s each under the
 # sanitizers: the longer verification runs, e.g. still water, the lifted dam-break gate, the piston and
-# held-toe basins, the whole-directory comparisons): what the CI runs, ~5 minutes on two cores. The
-# short set still runs every reader, the checkpoint write/resume, the Poiseuille and dam-break runs at
-# dx 0.04 m, every combination of the SPH options, and the study runner with its kills.
+# held-toe basins, the whole-directory comparisons): what the CI runs, the tests ~5 minutes on two
+# cores after a build of ~10. The short set still runs every reader, the checkpoint write/resume, the
+# Poiseuille and dam-break runs at dx 0.04 m, every combination of the SPH options, and the study
+# runner with its kills. --short must come first.
 # Needs the Debian packages of scripts/setup.sh (scripts/test.sh installs them first).
 # Usage: scripts/sanitize.sh [--short] [extra ctest arguments, e.g. -R "kernels"]
 set -euo pipefail

@@ -10,6 +10,7 @@ set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build_dir="${BUILD_DIR:-$here/build}"
 unit_only=0
+if (($# > 1)); then echo "usage: scripts/test.sh [--unit-only]" >&2; exit 2; fi
 case "${1:-}" in
   "") ;;
   --unit-only) unit_only=1 ;;

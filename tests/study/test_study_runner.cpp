@@ -496,6 +496,15 @@ TEST_CASE("Study runner: a stop request stops the running stage with its state w
   CHECK(info["legs"].value_or(0) == 2);
   CHECK(info["wall_time_s"].value_or(0.0) >= first_leg + 0.3);
   CHECK_FALSE(fs::exists(options.out / "A" / "sph.legs"));
+  // Legs left over beside a stage that then runs from the beginning (no started marker: not a resume)
+  // are not counted.
+  write(options.out / "A" / "vof.legs", "100 3\n");
+  fs::remove(options.out / "A" / "vof.stamp");
+  std::ostringstream again;
+  REQUIRE(run_study(options, again) == 0);
+  const auto vof_info = toml::parse_file((options.out / "A" / "vof.stage.toml").string());
+  CHECK(vof_info["legs"].value_or(0) == 1);
+  CHECK(vof_info["wall_time_s"].value_or(1e9) < 100.0);
   // A VOF stage that ran in one leg.
   CHECK(toml::parse_file((options.out / "A" / "vof.stage.toml").string())["legs"].value_or(0) == 1);
 }
