@@ -68,7 +68,7 @@ double cell(const std::map<std::string, std::string>& row, const std::string& ke
 }
 
 // OUT/<case>/<method>.stage.toml, written by the study when the stage finished: wall time (all legs),
-// legs and threads.
+// legs, threads and the machine.
 void read_stage_info(const fs::path& file, ValidationRecord& r) {
   if (!fs::exists(file)) return;
   try {
@@ -77,6 +77,7 @@ void read_stage_info(const fs::path& file, ValidationRecord& r) {
     if (auto v = t["legs"].value<int64_t>(); v && *v >= 1 && *v <= std::numeric_limits<int>::max())
       r.legs = static_cast<int>(*v);
     if (auto v = t["threads"].value<int64_t>()) r.threads = static_cast<int>(*v);
+    r.machine = t["machine"].value_or(std::string());
   } catch (const toml::parse_error&) {
     // A damaged stage file loses only the timing.
   }
@@ -210,6 +211,7 @@ std::string record_text(const ValidationRecord& r) {
   if (r.wall_time_s) s << "wall_time_s = " << number(*r.wall_time_s) << "\n";
   if (r.legs) s << "legs = " << *r.legs << "\n";
   if (r.threads) s << "threads = " << *r.threads << "\n";
+  if (!r.machine.empty()) s << "machine = " << quoted(r.machine) << "\n";
   s << "window_s = " << numbers({r.window_start_s, r.window_end_s}) << "\n";
   for (const auto& m : r.metrics) {
     s << "\n[[metrics]]\nquantity = " << quoted(m.quantity) << "\nunit = " << quoted(m.unit)
@@ -261,6 +263,7 @@ ValidationRecord parse_record(const std::string& text, const std::string& file) 
     r.legs = static_cast<int>(*v);
   }
   if (auto v = t["threads"].value<int64_t>()) r.threads = static_cast<int>(*v);
+  r.machine = t["machine"].value_or(std::string());
   const auto window = number_array(t, "window_s", file);
   if (window.size() != 2 || !(window[0] < window[1])) fail(file, "window_s", "is not [start, end] with start < end");
   r.window_start_s = window[0];

@@ -66,6 +66,7 @@ struct ValidationRecord {
   std::optional<double> wall_time_s;  // the solver stage's over all its legs, when the study logged it
   std::optional<int> legs;         // the legs that time covers (a run stopped and resumed: several)
   std::optional<int> threads;      // SPH threads or OpenFOAM ranks of that stage
+  std::string machine;             // where it ran: "<CPU model>, N cores" (empty: not logged)
   double window_start_s = 0.0, window_end_s = 0.0;
   std::vector<RecordMetric> metrics;
   std::vector<RecordProfile> profiles;

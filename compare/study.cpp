@@ -285,6 +285,24 @@ class StudyRunner {
     return result;
   }
 
+  // "<CPU model>, N cores" (/proc/cpuinfo's first model name; "unknown CPU" without it), for the records:
+  // wall times are only comparable on one machine. Quotes and backslashes are dropped (a TOML string).
+  static std::string machine_text() {
+    std::ifstream in("/proc/cpuinfo");
+    std::string model = "unknown CPU";
+    for (std::string line; std::getline(in, line);) {
+      if (line.rfind("model name", 0) != 0) continue;
+      const auto colon = line.find(':');
+      if (colon == std::string::npos) break;
+      model = line.substr(line.find_first_not_of(' ', colon + 1));
+      break;
+    }
+    std::string clean;
+    for (char ch : model)
+      if (ch != '"' && ch != '\\' && static_cast<unsigned char>(ch) >= 0x20) clean += ch;
+    return clean + ", " + std::to_string(std::max(1u, std::thread::hardware_concurrency())) + " cores";
+  }
+
   // OUT/<case>/<stage>.legs: the wall time and count of the legs of a solver stage that ended unfinished
   // (stopped or failed) and will be resumed, "seconds legs" (a leg of a study killed outright is not
   // counted). Gone once the stage finishes or starts over.
@@ -313,7 +331,8 @@ class StudyRunner {
     const double total = before + seconds;
     std::ostringstream text;  // fixed notation: always a TOML float
     text << "# all legs of this stage (a run stopped and resumed counts each leg)\nwall_time_s = " << std::fixed
-         << std::setprecision(3) << total << "\nlegs = " << legs + 1 << "\nthreads = " << threads << "\n";
+         << std::setprecision(3) << total << "\nlegs = " << legs + 1 << "\nthreads = " << threads << "\nmachine = \""
+         << machine_text() << "\"\n";
     cases::write_file_atomically(dir / (stage + ".stage.toml"), text.str());
     std::filesystem::remove(dir / (stage + ".legs"));
   }

@@ -36,6 +36,7 @@ ValidationRecord sample_record(const std::string& method, double y2) {
   r.wall_time_s = 1234.5;
   r.legs = 2;
   r.threads = 2;
+  r.machine = "Test CPU @ 2.0GHz, 2 cores";
   r.window_start_s = 6.2;
   r.window_end_s = 9.3;
   r.metrics = {{"sequent_depth", "m", "predicted", y2, 0.104, std::nullopt, 0.1317813053},
@@ -63,6 +64,7 @@ TEST_CASE("A validation record reads back exactly as written", "[compare][record
   CHECK(back.command == r.command);
   CHECK(*back.wall_time_s == 1234.5);
   CHECK(*back.legs == 2);
+  CHECK(back.machine == r.machine);
   CHECK(*back.threads == 2);
   CHECK(back.window_start_s == 6.2);
   REQUIRE(back.metrics.size() == 3);
@@ -111,7 +113,7 @@ TEST_CASE("A compared case directory gives one record per finished method with t
   fs::create_directories(dir / "sph");
   hydrojump::cases::write_resolved_case(study, *study.find_case("A_smooth"), "quick", dir / "sph" / "case.toml");
   write(dir / "sph.stamp", "feedfacefeedface");
-  write(dir / "sph.stage.toml", "wall_time_s = 600.0\nlegs = 3\nthreads = 2\n");
+  write(dir / "sph.stage.toml", "wall_time_s = 600.0\nlegs = 3\nthreads = 2\nmachine = \"Some CPU, 2 cores\"\n");
   // The VOF stage did not finish (no stamp): no VOF record.
   write(dir / "csv" / "metrics.csv",
         "quantity,unit,sph,vof,experiment,published_sph,smooth_theory,status\n"
@@ -139,6 +141,7 @@ TEST_CASE("A compared case directory gives one record per finished method with t
   CHECK(r.window_end_s == 10.0);
   CHECK(*r.wall_time_s == 600.0);
   CHECK(*r.legs == 3);
+  CHECK(r.machine == "Some CPU, 2 cores");
   CHECK(r.tailwater_control == "hold_toe");
   CHECK(r.metric("sequent_depth")->value == 0.1331);
   CHECK(*r.metric("sequent_depth")->smooth_theory == 0.131781);

@@ -494,6 +494,7 @@ TEST_CASE("Study runner: a stop request stops the running stage with its state w
   CHECK(lines_of(calls).at(1).find("--resume") != std::string::npos);
   const auto info = toml::parse_file((options.out / "A" / "sph.stage.toml").string());
   CHECK(info["legs"].value_or(0) == 2);
+  CHECK_THAT(info["machine"].value_or(std::string()), Catch::EndsWith(" cores"));
   CHECK(info["wall_time_s"].value_or(0.0) >= first_leg + 0.3);
   CHECK_FALSE(fs::exists(options.out / "A" / "sph.legs"));
   // Legs left over beside a stage that then runs from the beginning (no started marker: not a resume)
