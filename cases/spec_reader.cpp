@@ -951,6 +951,23 @@ void resolve_mixing_length_rule(TableReader& c, const Study& study, Case& result
   result.sph.sps_mixing_length_m = mixing_length_from_sequent_depth(coefficient, *b, study.fluid.gravity_m_s2);
 }
 
+// The study's levels scaled to a basin's inflow depth stay within the range a level is read with,
+// (0, 10] m (read_resolution), so that the resolved case.toml the solvers read back holds them.
+void check_scaled_resolutions(TableReader& c, const Study& study, const Case& result) {
+  const auto* b = result.stilling_basin();
+  if (!b || !study.resolution_for_inflow_depth_m) return;
+  for (const auto& [name, r] : result.resolutions)
+    for (const auto& [key, value] : {std::pair{"particle_spacing_m", r.particle_spacing_m},
+                                     std::pair{"vof_cell_size_bed_m", r.vof_cell_size_bed_m},
+                                     std::pair{"vof_cell_size_bulk_m", r.vof_cell_size_bulk_m}})
+      if (!(value > 0.0 && value <= 10.0))
+        c.fail_at(nullptr, "resolution." + name + "." + key,
+                  "= " + number_text(value) + " m, the study's level scaled to this basin's inflow depth (" +
+                      number_text(b->inflow_depth_m) + " m / [resolution] " + resolution_rule_key + " = " +
+                      number_text(*study.resolution_for_inflow_depth_m) +
+                      " m), is out of range: must be > 0 and <= 10 m; give the case its own [case.resolution." + name + "]");
+}
+
 Case read_case(TableReader& c, const Study& study, const SphSettings& sph,
                const VofSettings& vof, const std::map<std::string, Resolution>& resolutions,
                const std::filesystem::path& base_dir) {
@@ -988,6 +1005,7 @@ Case read_case(TableReader& c, const Study& study, const SphSettings& sph,
       r.vof_cell_size_bulk_m *= scale;
     }
   read_resolutions(c, result.resolutions, false);
+  check_scaled_resolutions(c, study, result);
   read_case_run(c, study, result);
   resolve_mixing_length_rule(c, study, result);
   // Sections need the domain, which make_geometry derives; use it (sections are not read yet).

@@ -752,6 +752,12 @@ TEST_CASE("Resolutions given for an inflow depth scale with each basin's own y1 
   CHECK(own.cases[0].resolution("quick").particle_spacing_m == 0.00423333);
   CHECK(own.cases[0].resolution("quick").vof_cell_size_bed_m == Approx(0.5 * given.vof_cell_size_bed_m));
   CHECK_THAT(rejection(rule(valid_spec, "0")), Catch::Contains("resolution.for_inflow_depth_m = 0 is out of range"));
+  // A level that scales past the range a level is read with (found by fuzz_spec: the resolved case.toml
+  // then did not read back): 6 m bulk cells given for y1 = 12.7 mm become 12 m at y1 = 25.4 mm.
+  CHECK_THAT(rejection(replaced(rule(valid_spec, "0.0127"), "vof_cell_size_bulk_m = 0.01", "vof_cell_size_bulk_m = 6")),
+             Catch::Contains("resolution.quick.vof_cell_size_bulk_m = 12 m, the study's level scaled to this basin's "
+                             "inflow depth (0.0254 m / [resolution] for_inflow_depth_m = 0.0127 m), is out of range: "
+                             "must be > 0 and <= 10 m"));
   CHECK_THAT(rejection(replaced(valid_spec, "[case.domain]", "[case.resolution]\nfor_inflow_depth_m = 0.0254\n[case.domain]")),
              Catch::Contains("for_inflow_depth_m is a rule of the study's [resolution] table"));
 }
