@@ -226,17 +226,19 @@ std::string validation_markdown(const std::vector<ValidationRecord>& records, co
 
 namespace {
 
-// One method's cells of a headline row: its value text, with "(stale)" where its record is.
-std::string method_cell(const ValidationRecord* r, const std::function<std::string(const ValidationRecord&)>& text) {
+// One method's cells of a headline row: its value text, with "(stale)" where its record is and `mark`
+// (the y2 and targets cells carry the mark; the others of the row would only repeat it).
+std::string method_cell(const ValidationRecord* r, const std::function<std::string(const ValidationRecord&)>& text,
+                        bool mark = true) {
   if (!r) return "not run";
   const std::string t = text(*r);
-  return t + (r->stale && t != dash ? " (stale)" : "");
+  return t + (mark && r->stale && t != dash ? " (stale)" : "");
 }
 
 // "a / b": SPH's then VOF's.
 std::string pair_text(const ValidationRecord* sph, const ValidationRecord* vof,
-                      const std::function<std::string(const ValidationRecord&)>& text) {
-  return method_cell(sph, text) + " / " + method_cell(vof, text);
+                      const std::function<std::string(const ValidationRecord&)>& text, bool mark = false) {
+  return method_cell(sph, text, mark) + " / " + method_cell(vof, text, mark);
 }
 
 }  // namespace
@@ -275,7 +277,7 @@ std::string headline_markdown(const std::vector<ValidationRecord>& records) {
     }
     const double between = sph && vof ? percent_off(value_of(*sph, "sequent_depth"), value_of(*vof, "sequent_depth"))
                                       : std::nan("");
-    md << "| " << case_id << " | " << resolution << " | " << pair_text(sph, vof, y2_text) << " | "
+    md << "| " << case_id << " | " << resolution << " | " << pair_text(sph, vof, y2_text, true) << " | "
        << pair_text(sph, vof, eta_text) << " | " << pair_text(sph, vof, lj_text) << " | "
        << pair_text(sph, vof, bed_text) << " (" << fix(experiment_of(*any, "bed_effect"), 3) << ") | "
        << (std::isfinite(between) ? fix(between, 1, true) + " %" + (sph->stale || vof->stale ? " (stale)" : "") : dash) << " | "
