@@ -292,9 +292,8 @@ class StudyRunner {
     std::string model = "unknown CPU";
     for (std::string line; std::getline(in, line);) {
       if (line.rfind("model name", 0) != 0) continue;
-      const auto colon = line.find(':');
-      if (colon == std::string::npos) break;
-      model = line.substr(line.find_first_not_of(' ', colon + 1));
+      const auto start = line.find_first_not_of(" \t", line.find(':') == std::string::npos ? line.size() : line.find(':') + 1);
+      if (start != std::string::npos) model = line.substr(start);  // "model name\t:" alone keeps "unknown CPU"
       break;
     }
     std::string clean;
