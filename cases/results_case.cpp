@@ -5,9 +5,9 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "cases/atomic_file.hpp"
-#include "cases/fingerprint.hpp"
-#include "cases/time_directories.hpp"
+#include "util/atomic_file.hpp"
+#include "util/fingerprint.hpp"
+#include "util/time_directories.hpp"
 
 namespace fs = std::filesystem;
 
@@ -95,14 +95,14 @@ bool holds_results(const fs::path& solver_dir) {
   for (const char* name : {"checkpoint.bin", "particles.pvd", "summary.json", "log.interFoam"})
     if (fs::exists(solver_dir / name)) return true;
   // An OpenFOAM run without its log (interFoam run by hand): its time directories, serial or decomposed.
-  return !time_directories(solver_dir, 0.0).empty() || !time_directories(solver_dir / "processor0", 0.0).empty();
+  return !util::time_directories(solver_dir, 0.0).empty() || !util::time_directories(solver_dir / "processor0", 0.0).empty();
 }
 
 void record_results_case(const fs::path& solver_dir) {
   const fs::path case_toml = solver_dir / "case.toml";
-  const std::string text = read_text_file(case_toml);
+  const std::string text = util::read_text_file(case_toml);
   if (text.empty()) throw std::runtime_error("cannot read " + case_toml.string());
-  write_file_atomically(solver_dir / results_case_file_name, text);
+  util::write_file_atomically(solver_dir / results_case_file_name, text);
 }
 
 fs::path recorded_case_file(const fs::path& solver_dir) {
@@ -117,11 +117,11 @@ void require_results_of(const fs::path& solver_dir, const fs::path& case_toml) {
                              "told apart from another case's (move the directory away, or generate the case again "
                              "and rerun it)");
   std::error_code ec;
-  const std::string recorded_text = fs::is_regular_file(recorded, ec) ? read_text_file(recorded) : std::string();
+  const std::string recorded_text = fs::is_regular_file(recorded, ec) ? util::read_text_file(recorded) : std::string();
   if (recorded_text.empty())
     throw std::runtime_error(recorded.string() + " is empty or not a readable file, so the results in " + solver_dir.string() +
                              " cannot be told apart from another case's (restore it, or generate the case again and rerun it)");
-  const std::string case_text = fs::is_regular_file(case_toml, ec) ? read_text_file(case_toml) : std::string();
+  const std::string case_text = fs::is_regular_file(case_toml, ec) ? util::read_text_file(case_toml) : std::string();
   if (case_text.empty())
     throw std::runtime_error(case_toml.string() + " is empty or not a readable file, so the results in " +
                              solver_dir.string() + " cannot be checked against it (restore it, or generate the case again)");

@@ -12,13 +12,13 @@
 
 #include <toml++/toml.h>
 
-#include "cases/atomic_file.hpp"
+#include "util/atomic_file.hpp"
 #include "cases/case_rules.hpp"
-#include "cases/csv_table.hpp"
-#include "cases/fingerprint.hpp"
+#include "util/csv_table.hpp"
+#include "util/fingerprint.hpp"
 #include "cases/geometry.hpp"
 #include "cases/hydraulics.hpp"
-#include "cases/number_text.hpp"
+#include "util/number_text.hpp"
 #include "cases/output_times.hpp"
 
 namespace hydrojump::cases {
@@ -49,7 +49,7 @@ std::string front_file_problem(const std::filesystem::path& file) {
     ++line_number;
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.empty() || line.front() == '#') continue;
-    const std::vector<std::string> cells = split_csv_line(line);
+    const std::vector<std::string> cells = util::split_csv_line(line);
     if (header.empty()) {
       header = cells;
       for (std::size_t k = 0; k < header.size(); ++k) {
@@ -61,8 +61,8 @@ std::string front_file_problem(const std::filesystem::path& file) {
                "comment is line " + std::to_string(line_number) + ")";
       continue;
     }
-    const double t = cells.size() == header.size() ? csv_number(cells[*t_column]) : std::nan("");
-    const double x = cells.size() == header.size() ? csv_number(cells[*x_column]) : std::nan("");
+    const double t = cells.size() == header.size() ? util::csv_number(cells[*t_column]) : std::nan("");
+    const double x = cells.size() == header.size() ? util::csv_number(cells[*x_column]) : std::nan("");
     if (!std::isfinite(t) || !std::isfinite(x))
       return "line " + std::to_string(line_number) + " is not a row of " + std::to_string(header.size()) +
              " cells with numbers for t_s and x_front_over_L";
@@ -84,7 +84,7 @@ std::string rounded_text(double v, int digits) {
 
 // The same as a TOML float (which needs a '.' or an exponent).
 std::string toml_number(double v) {
-  std::string s = number_text(v);
+  std::string s = util::number_text(v);
   if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
   return s;
 }
@@ -117,11 +117,11 @@ struct Range {
     std::string s = "must be ";
     bool any = false;
     if (low != -HUGE_VAL) {
-      s += (low_open ? "> " : ">= ") + number_text(low);
+      s += (low_open ? "> " : ">= ") + util::number_text(low);
       any = true;
     }
     if (high != HUGE_VAL) {
-      s += (any ? " and " : "") + std::string(high_open ? "< " : "<= ") + number_text(high);
+      s += (any ? " and " : "") + std::string(high_open ? "< " : "<= ") + util::number_text(high);
       any = true;
     }
     if (!any) s += "a finite number";
@@ -139,7 +139,7 @@ std::string node_text(const toml::node& node) {
   if (node.is_string()) {
     out << '"' << *node.value<std::string>() << '"';
   } else if (node.is_floating_point()) {
-    out << number_text(*node.value<double>());
+    out << util::number_text(*node.value<double>());
   } else if (node.is_integer()) {
     out << *node.value<std::int64_t>();
   } else if (node.is_boolean()) {
@@ -326,7 +326,7 @@ class TableReader {
     } else {
       fail_at(node, key, "= " + node_text(*node) + " has the wrong type: expected a number that " + range.describe().substr(8));
     }
-    if (!range.contains(v)) fail_at(node, key, "= " + number_text(v) + " is out of range: " + range.describe());
+    if (!range.contains(v)) fail_at(node, key, "= " + util::number_text(v) + " is out of range: " + range.describe());
     return v;
   }
 
@@ -415,7 +415,7 @@ void read_sph(TableReader& t, SphSettings& s) {
     if (s.open_boundary_layers < needed)
       t.fail_at(t.raw().get("open_boundary_layers"), "open_boundary_layers",
                 "= " + std::to_string(s.open_boundary_layers) + " makes the inflow/outflow buffers thinner than the kernel support 2h = " +
-                    number_text(2.0 * std::sqrt(2.0) * s.coef_h) + " dx (coef_h = " + number_text(s.coef_h) +
+                    util::number_text(2.0 * std::sqrt(2.0) * s.coef_h) + " dx (coef_h = " + util::number_text(s.coef_h) +
                     "): use 0 (automatic) or at least " + std::to_string(needed));
   }
   s.particle_shifting = t.choice("particle_shifting", s.particle_shifting, {"none", "fickian"});
@@ -446,7 +446,7 @@ void read_sph(TableReader& t, SphSettings& s) {
   const bool mixing_length = s.sps_mixing_length_m > 0.0 || s.sps_mixing_length_per_sequent_depth > 0.0;
   only_with("sps_wall_distance", s.viscosity == "laminar_sps" && mixing_length,
             "viscosity = \"laminar_sps\" and a mixing length, sps_mixing_length_m or " + std::string(kRule) +
-                " > 0 (here \"" + s.viscosity + "\", " + number_text(s.sps_mixing_length_m) + " m)");
+                " > 0 (here \"" + s.viscosity + "\", " + util::number_text(s.sps_mixing_length_m) + " m)");
   // A case without a mixing length does not use the distance rule it inherits, nor the length rule.
   if (s.viscosity != "laminar_sps" || !mixing_length) s.sps_wall_distance = "kernel_support";
   if (s.viscosity != "laminar_sps") s.sps_mixing_length_per_sequent_depth = 0.0;
@@ -464,7 +464,7 @@ void read_sph(TableReader& t, SphSettings& s) {
             "time_integrator = \"verlet\" (here \"" + s.time_integrator + "\")");
   for (const char* key : {"sound_speed_coefficient", "sound_speed_min_flow_ratio"})
     only_with(key, s.sound_speed_m_s == 0.0,
-              "sound_speed_m_s = 0 (here " + number_text(s.sound_speed_m_s) + " m/s gives c0 directly)");
+              "sound_speed_m_s = 0 (here " + util::number_text(s.sound_speed_m_s) + " m/s gives c0 directly)");
   t.reject_unknown_keys();
 }
 
@@ -511,7 +511,7 @@ void read_resolution(TableReader& t, Resolution& r, bool require_all) {
   }
   if (r.vof_cell_size_bulk_m < r.vof_cell_size_bed_m) {
     t.fail_at(t.raw().get("vof_cell_size_bulk_m"), "vof_cell_size_bulk_m",
-              "= " + number_text(r.vof_cell_size_bulk_m) + " is out of range: must be >= vof_cell_size_bed_m (" + number_text(r.vof_cell_size_bed_m) + " m)");
+              "= " + util::number_text(r.vof_cell_size_bulk_m) + " is out of range: must be >= vof_cell_size_bed_m (" + util::number_text(r.vof_cell_size_bed_m) + " m)");
   }
   t.reject_unknown_keys();
 }
@@ -549,13 +549,13 @@ void read_run(TableReader& t, RunSettings& run) {
   run.end_time_s = t.number("end_time_s", positive("s", max_end_time_s));
   run.output_interval_s = t.number_or("output_interval_s", run.output_interval_s, positive("s", max_end_time_s));
   if (run.output_interval_s > run.end_time_s) {
-    t.fail_at(t.raw().get("output_interval_s"), "output_interval_s", "= " + number_text(run.output_interval_s) + " is out of range: must be <= run.end_time_s (" + number_text(run.end_time_s) + " s)");
+    t.fail_at(t.raw().get("output_interval_s"), "output_interval_s", "= " + util::number_text(run.output_interval_s) + " is out of range: must be <= run.end_time_s (" + util::number_text(run.end_time_s) + " s)");
   }
   // Every output is a file per method: at most max_outputs_per_run of them.
   if (run.end_time_s / run.output_interval_s > max_outputs_per_run) {
     t.fail_at(t.raw().get("output_interval_s"), "output_interval_s",
-              "= " + number_text(run.output_interval_s) + " is out of range: must be >= run.end_time_s / " + number_text(max_outputs_per_run) + " (" +
-                  number_text(run.end_time_s / max_outputs_per_run) + " s; at most " + number_text(max_outputs_per_run) + " outputs a run)");
+              "= " + util::number_text(run.output_interval_s) + " is out of range: must be >= run.end_time_s / " + util::number_text(max_outputs_per_run) + " (" +
+                  util::number_text(run.end_time_s / max_outputs_per_run) + " s; at most " + util::number_text(max_outputs_per_run) + " outputs a run)");
   }
   run.average_start_s = t.number_or("average_start_s", 0.5 * run.end_time_s, Range{0.0, run.end_time_s, false, true, "s, within the run and before its end"});
   run.average_end_s = t.number_or("average_end_s", run.end_time_s, Range{run.average_start_s, run.end_time_s, true, false, "s, after average_start_s and within the run"});
@@ -570,10 +570,10 @@ void read_run(TableReader& t, RunSettings& run) {
                           : key == "output_interval_s" ? run.output_interval_s
                                                        : run.end_time_s;
     t.fail_at(t.raw().get(key), key,
-              "= " + number_text(value) + " leaves the averaging window [" +
-                  number_text(run.average_start_s) + ", " + number_text(run.average_end_s) + "] s with " +
-                  number_text(static_cast<double>(n)) + " output time(s) (one every output_interval_s = " +
-                  number_text(run.output_interval_s) + " s): it must hold at least 2");
+              "= " + util::number_text(value) + " leaves the averaging window [" +
+                  util::number_text(run.average_start_s) + ", " + util::number_text(run.average_end_s) + "] s with " +
+                  util::number_text(static_cast<double>(n)) + " output time(s) (one every output_interval_s = " +
+                  util::number_text(run.output_interval_s) + " s): it must hold at least 2");
   }
   t.reject_unknown_keys();
 }
@@ -608,7 +608,7 @@ MeasuredValues read_measured(TableReader& t) {
 void check_stated(TableReader& t, std::string_view key, std::optional<double> stated, double derived,
                   const std::string& derivation) {
   if (stated && std::abs(*stated - derived) > 0.02 * std::abs(derived)) {
-    t.fail_at(t.raw().get(key), key, "= " + number_text(*stated) + " disagrees with the value derived from " + derivation + ", " + number_text(derived) + ", by " + number_text(std::round(1000.0 * std::abs(*stated / derived - 1.0)) / 10.0) + " % (allowed: 2 %)");
+    t.fail_at(t.raw().get(key), key, "= " + util::number_text(*stated) + " disagrees with the value derived from " + derivation + ", " + util::number_text(derived) + ", by " + util::number_text(std::round(1000.0 * std::abs(*stated / derived - 1.0)) / 10.0) + " % (allowed: 2 %)");
   }
 }
 
@@ -623,7 +623,7 @@ StillingBasinCase read_stilling_basin(TableReader& c, double g) {
   check_stated(inflow, "discharge_m2_s", b.stated_discharge_m2_s, hyd0.discharge_m2_s, "depth_m * velocity_m_s");
   check_stated(inflow, "froude", b.stated_froude, hyd0.froude1, "velocity_m_s / sqrt(g depth_m)");
   if (!(hyd0.froude1 > 1.0)) {
-    inflow.fail_at(inflow.raw().get("velocity_m_s"), "velocity_m_s", "= " + number_text(b.inflow_velocity_m_s) + " gives Fr1 = " + number_text(hyd0.froude1) + ": a hydraulic jump needs supercritical inflow, Fr1 > 1, i.e. velocity_m_s > " + number_text(std::sqrt(g * b.inflow_depth_m)) + " m/s");
+    inflow.fail_at(inflow.raw().get("velocity_m_s"), "velocity_m_s", "= " + util::number_text(b.inflow_velocity_m_s) + " gives Fr1 = " + util::number_text(hyd0.froude1) + ": a hydraulic jump needs supercritical inflow, Fr1 > 1, i.e. velocity_m_s > " + util::number_text(std::sqrt(g * b.inflow_depth_m)) + " m/s");
   }
   inflow.reject_unknown_keys();
 
@@ -663,12 +663,12 @@ StillingBasinCase read_stilling_basin(TableReader& c, double g) {
     b.bed.reach_start_m = bed.number_or("reach_start_m", basin_start, between(0.0, basin_end, "m, within the domain upstream of the basin end"));
     const double whole = std::floor((basin_end - b.bed.reach_start_m) / s + 1e-9);
     if (whole < 1.0) {
-      bed.fail_at(bed.raw().get("wavelength_m"), "wavelength_m", "= " + number_text(s) + " is out of range: the basin from reach_start_m to its end (" + number_text(basin_end - b.bed.reach_start_m) + " m) must hold at least one wavelength");
+      bed.fail_at(bed.raw().get("wavelength_m"), "wavelength_m", "= " + util::number_text(s) + " is out of range: the basin from reach_start_m to its end (" + util::number_text(basin_end - b.bed.reach_start_m) + " m) must hold at least one wavelength");
     }
     b.bed.reach_end_m = bed.number_or("reach_end_m", b.bed.reach_start_m + whole * s, Range{b.bed.reach_start_m, basin_end + 1e-9, true, false, "m, after reach_start_m and not past the basin end"});
     const double n = (b.bed.reach_end_m - b.bed.reach_start_m) / s;
     if (std::abs(n - std::round(n)) > 1e-6 * std::max(1.0, n)) {
-      bed.fail_at(bed.raw().get("reach_end_m"), "reach_end_m", "= " + number_text(b.bed.reach_end_m) + " is out of range: the corrugated reach must be a whole number of wavelengths so it ends on a crest; nearest allowed values are " + number_text(b.bed.reach_start_m + std::floor(n) * s) + " and " + number_text(b.bed.reach_start_m + std::ceil(n) * s) + " m");
+      bed.fail_at(bed.raw().get("reach_end_m"), "reach_end_m", "= " + util::number_text(b.bed.reach_end_m) + " is out of range: the corrugated reach must be a whole number of wavelengths so it ends on a crest; nearest allowed values are " + util::number_text(b.bed.reach_start_m + std::floor(n) * s) + " and " + util::number_text(b.bed.reach_start_m + std::ceil(n) * s) + " m");
     }
   } else {
     for (const char* key : {"wavelength_m", "height_m", "reach_start_m", "reach_end_m"}) {
@@ -762,12 +762,12 @@ std::vector<Section> read_sections(TableReader& c, const toml::array& array, dou
     s.x_m = t.number("x_m", Range{x_min, x_max, false, false, "m, inside the domain"});
     s.role = t.choice("role", "interior", {"upstream", "toe", "interior", "downstream", "gauge"});
     if (std::isfinite(basin_start) && s.role == "upstream" && !(s.x_m < basin_start))
-      t.fail_at(t.raw().get("x_m"), "x_m", "= " + number_text(s.x_m) + " is out of range for the upstream section \"" + s.name +
-                                               "\": must be < " + number_text(basin_start) +
+      t.fail_at(t.raw().get("x_m"), "x_m", "= " + util::number_text(s.x_m) + " is out of range for the upstream section \"" + s.name +
+                                               "\": must be < " + util::number_text(basin_start) +
                                                " m, the basin start (E1 and the toe search are taken upstream of the jump)");
     if (std::isfinite(basin_start) && s.role == "downstream" && !(s.x_m > basin_start))
-      t.fail_at(t.raw().get("x_m"), "x_m", "= " + number_text(s.x_m) + " is out of range for the downstream section \"" + s.name +
-                                               "\": must be > " + number_text(basin_start) +
+      t.fail_at(t.raw().get("x_m"), "x_m", "= " + util::number_text(s.x_m) + " is out of range for the downstream section \"" + s.name +
+                                               "\": must be > " + util::number_text(basin_start) +
                                                " m, the basin start (y2 and E2 are taken behind the jump)");
     // E1 and the toe search start at the one upstream section, y2 and E2 come from the one downstream
     // section: a second one of either would be ignored, and a downstream section upstream of the
@@ -779,9 +779,9 @@ std::vector<Section> read_sections(TableReader& c, const toml::array& array, dou
       const Section* up = s.role == "upstream" ? &s : (earlier.role == "upstream" ? &earlier : nullptr);
       const Section* down = s.role == "downstream" ? &s : (earlier.role == "downstream" ? &earlier : nullptr);
       if (up && down && up != down && down->x_m <= up->x_m)
-        t.fail_at(t.raw().get("x_m"), "x_m", "= " + number_text(s.x_m) + " puts the downstream section \"" + down->name +
-                                                 "\" (x_m = " + number_text(down->x_m) + ") at or upstream of the upstream section \"" +
-                                                 up->name + "\" (x_m = " + number_text(up->x_m) + "): it must lie downstream");
+        t.fail_at(t.raw().get("x_m"), "x_m", "= " + util::number_text(s.x_m) + " puts the downstream section \"" + down->name +
+                                                 "\" (x_m = " + util::number_text(down->x_m) + ") at or upstream of the upstream section \"" +
+                                                 up->name + "\" (x_m = " + util::number_text(up->x_m) + "): it must lie downstream");
     }
     t.reject_unknown_keys();
     sections.push_back(s);
@@ -826,16 +826,16 @@ void check_resolution(const Case& c, const Resolution& r, double gravity_m_s2, c
   // Fluid particles ~ area / dx^2; each takes ~0.3 kB with its neighbour lists and checkpoint copy.
   if (water_area_m2 / (dx * dx) > max_fluid_particles) {
     const double count = std::min(water_area_m2 / (dx * dx), 1e18);  // dx = 1e-200 would square to 0
-    fail("resolution." + r.name + ".particle_spacing_m = " + number_text(dx) + " gives about " + std::to_string(std::llround(count)) +
+    fail("resolution." + r.name + ".particle_spacing_m = " + util::number_text(dx) + " gives about " + std::to_string(std::llround(count)) +
          " fluid particles: must be at most " + std::to_string(std::llround(max_fluid_particles)) + ", i.e. particle_spacing_m >= " +
-         number_text(std::sqrt(water_area_m2 / max_fluid_particles)) + " m");
+         util::number_text(std::sqrt(water_area_m2 / max_fluid_particles)) + " m");
   }
   if (const auto* b = c.stilling_basin()) {
     if (b->bed.profile == "sinusoidal" && b->bed.wavelength_m < 4.0 * dx - 1e-12) {
-      fail("resolution." + r.name + ".particle_spacing_m = " + number_text(dx) + " resolves bed.wavelength_m = " + number_text(b->bed.wavelength_m) + " with " + number_text(b->bed.wavelength_m / dx) + " spacings: must be at least 4, i.e. particle_spacing_m <= " + number_text(b->bed.wavelength_m / 4.0) + " m");
+      fail("resolution." + r.name + ".particle_spacing_m = " + util::number_text(dx) + " resolves bed.wavelength_m = " + util::number_text(b->bed.wavelength_m) + " with " + util::number_text(b->bed.wavelength_m / dx) + " spacings: must be at least 4, i.e. particle_spacing_m <= " + util::number_text(b->bed.wavelength_m / 4.0) + " m");
     }
     if (b->inflow_depth_m < 5.0 * dx - 1e-12) {
-      fail("resolution." + r.name + ".particle_spacing_m = " + number_text(dx) + " puts " + number_text(b->inflow_depth_m / dx) + " particles across inflow.depth_m = " + number_text(b->inflow_depth_m) + ": must be at least 5, i.e. particle_spacing_m <= " + number_text(b->inflow_depth_m / 5.0) + " m");
+      fail("resolution." + r.name + ".particle_spacing_m = " + util::number_text(dx) + " puts " + util::number_text(b->inflow_depth_m / dx) + " particles across inflow.depth_m = " + util::number_text(b->inflow_depth_m) + ": must be at least 5, i.e. particle_spacing_m <= " + util::number_text(b->inflow_depth_m / 5.0) + " m");
     }
     // The inflow buffer (sph/open_boundaries.hpp) is N = inflow_buffer_rows(y1, dx) whole rows deep and
     // carries the spec's q, so its jet enters N dx deep at q/(N dx): Fr1 = (q^2/(g (N dx)^3))^(1/2) is off
@@ -847,23 +847,23 @@ void check_resolution(const Case& c, const Resolution& r, double gravity_m_s2, c
       const double q = unit_discharge(b->inflow_depth_m, b->inflow_velocity_m_s);
       const double fr_spec = froude_number(b->inflow_depth_m, b->inflow_velocity_m_s, gravity_m_s2);
       const double fr_jet = froude_number(jet_depth, q / jet_depth, gravity_m_s2);
-      fail("resolution." + r.name + ".particle_spacing_m = " + number_text(dx) + " makes the inflow buffer " +
-           number_text(rows) + " particle rows (" + number_text(jet_depth) + " m) deep for inflow.depth_m = " +
-           number_text(b->inflow_depth_m) + ": the jet would enter with Fr1 = " + rounded_text(fr_jet, 4) + " instead of " +
+      fail("resolution." + r.name + ".particle_spacing_m = " + util::number_text(dx) + " makes the inflow buffer " +
+           util::number_text(rows) + " particle rows (" + util::number_text(jet_depth) + " m) deep for inflow.depth_m = " +
+           util::number_text(b->inflow_depth_m) + ": the jet would enter with Fr1 = " + rounded_text(fr_jet, 4) + " instead of " +
            rounded_text(fr_spec, 4) + "; the rows must match the inflow depth within 2 %, i.e. particle_spacing_m = inflow.depth_m / N, e.g. " +
-           rounded_text(b->inflow_depth_m / rows, 6) + " (N = " + number_text(rows) + ") or " +
-           rounded_text(b->inflow_depth_m / (rows + 1.0), 6) + " (N = " + number_text(rows + 1.0) + ") m");
+           rounded_text(b->inflow_depth_m / rows, 6) + " (N = " + util::number_text(rows) + ") or " +
+           rounded_text(b->inflow_depth_m / (rows + 1.0), 6) + " (N = " + util::number_text(rows + 1.0) + ") m");
     }
   } else if (const auto* d = c.dam_break()) {
-    if (d->column_width_m < 4.0 * dx) fail("particle_spacing_m = " + number_text(dx) + " puts fewer than 4 particles across column.width_m");
+    if (d->column_width_m < 4.0 * dx) fail("particle_spacing_m = " + util::number_text(dx) + " puts fewer than 4 particles across column.width_m");
   } else if (const auto* s = c.still_water()) {
-    if (s->water_depth_m < 4.0 * dx) fail("particle_spacing_m = " + number_text(dx) + " puts fewer than 4 particles across water.depth_m");
+    if (s->water_depth_m < 4.0 * dx) fail("particle_spacing_m = " + util::number_text(dx) + " puts fewer than 4 particles across water.depth_m");
   } else if (const auto* p = c.poiseuille()) {
-    if (p->channel_width_m < 8.0 * dx) fail("particle_spacing_m = " + number_text(dx) + " puts fewer than 8 particles across channel.width_m");
+    if (p->channel_width_m < 8.0 * dx) fail("particle_spacing_m = " + util::number_text(dx) + " puts fewer than 8 particles across channel.width_m");
     // The periodic length must hold at least 3 kernel supports 2h, h = coef_h sqrt(2) dx.
     const double support = 2.0 * c.sph.coef_h * std::sqrt(2.0) * dx;
     if (p->channel_length_m < 3.0 * support - 1e-12) {
-      fail("channel.length_m = " + number_text(p->channel_length_m) + " is out of range: the periodic channel must be at least 3 kernel supports long at particle_spacing_m = " + number_text(dx) + ", i.e. >= " + number_text(3.0 * support) + " m");
+      fail("channel.length_m = " + util::number_text(p->channel_length_m) + " is out of range: the periodic channel must be at least 3 kernel supports long at particle_spacing_m = " + util::number_text(dx) + ", i.e. >= " + util::number_text(3.0 * support) + " m");
     }
   }
 }
@@ -907,21 +907,21 @@ void check_tailwater_control(TableReader& c, Case& result, StillingBasinCase& b)
     const double ratio = leg / out;
     if (std::abs(ratio - std::round(ratio)) > 1e-6 * ratio || std::round(ratio) < 1.0)
       fail("vof", "tailwater_control_interval_s",
-           "= " + number_text(leg) + " is out of range: must be a whole number of run.output_interval_s (" +
-               number_text(out) + " s), since the control reads the outputs of each leg");
+           "= " + util::number_text(leg) + " is out of range: must be a whole number of run.output_interval_s (" +
+               util::number_text(out) + " s), since the control reads the outputs of each leg");
     if (leg > result.run.end_time_s)
       fail("vof", "tailwater_control_interval_s",
-           "= " + number_text(leg) + " is out of range: must be <= run.end_time_s (" +
-               number_text(result.run.end_time_s) + " s), or the control never acts during the run");
+           "= " + util::number_text(leg) + " is out of range: must be <= run.end_time_s (" +
+               util::number_text(result.run.end_time_s) + " s), or the control never acts during the run");
   }
   for (const auto& [key, value] : {std::pair<const char*, double>{"volume_hold_time_s", b.control.volume_hold_time_s},
                                    std::pair<const char*, double>{"toe_hold_time_s", b.control.toe_hold_time_s}}) {
     if (!(value < leg)) continue;
-    const std::string what = "is out of range: " + std::string(key) + " (" + number_text(value) +
+    const std::string what = "is out of range: " + std::string(key) + " (" + util::number_text(value) +
                              " s) must be >= the VOF legs' length [vof] tailwater_control_interval_s (" +
-                             number_text(leg) + " s), or the control overshoots";
+                             util::number_text(leg) + " s), or the control overshoots";
     if (tail.has(key)) tail.fail_at(tail.raw().get(key), key, what);
-    fail("vof", "tailwater_control_interval_s", "= " + number_text(leg) + ": [case.tailwater] " + what);
+    fail("vof", "tailwater_control_interval_s", "= " + util::number_text(leg) + ": [case.tailwater] " + what);
   }
 }
 
@@ -945,7 +945,7 @@ void resolve_mixing_length_rule(TableReader& c, const Study& study, Case& result
   if (coefficient == 0.0) return;
   const auto* b = result.stilling_basin();
   if (!b)
-    c.fail_at(nullptr, "sph", "inherits sps_mixing_length_per_sequent_depth = " + number_text(coefficient) +
+    c.fail_at(nullptr, "sph", "inherits sps_mixing_length_per_sequent_depth = " + util::number_text(coefficient) +
                                   ", a rule for stilling basins (l = c_l y2*): give this " + result.kind +
                                   " case sps_mixing_length_m in [case.sph]");
   result.sph.sps_mixing_length_m = mixing_length_from_sequent_depth(coefficient, *b, study.fluid.gravity_m_s2);
@@ -962,9 +962,9 @@ void check_scaled_resolutions(TableReader& c, const Study& study, const Case& re
                                      std::pair{"vof_cell_size_bulk_m", r.vof_cell_size_bulk_m}})
       if (!(value > 0.0 && value <= 10.0))
         c.fail_at(nullptr, "resolution." + name + "." + key,
-                  "= " + number_text(value) + " m, the study's level scaled to this basin's inflow depth (" +
-                      number_text(b->inflow_depth_m) + " m / [resolution] " + resolution_rule_key + " = " +
-                      number_text(*study.resolution_for_inflow_depth_m) +
+                  "= " + util::number_text(value) + " m, the study's level scaled to this basin's inflow depth (" +
+                      util::number_text(b->inflow_depth_m) + " m / [resolution] " + resolution_rule_key + " = " +
+                      util::number_text(*study.resolution_for_inflow_depth_m) +
                       " m), is out of range: must be > 0 and <= 10 m; give the case its own [case.resolution." + name + "]");
 }
 
@@ -1021,7 +1021,7 @@ Case read_case(TableReader& c, const Study& study, const SphSettings& sph,
     if (result.sections.back().x_m <= b->upstream_length_m + b->tailwater_depth_m) {
       auto domain = c.required_table("domain");
       domain.fail_at(domain.raw().get("basin_length_m"), "basin_length_m",
-                     "= " + number_text(b->basin_length_m) + " is too short for the default sections: basin_length_m + downstream_length_m must exceed " + number_text(needed + b->tailwater_depth_m) + " m (4 tailwater depths" + (b->bed.profile == "sinusoidal" ? std::string(" plus a wavelength") : std::string()) + "), or list [[case.sections]] explicitly");
+                     "= " + util::number_text(b->basin_length_m) + " is too short for the default sections: basin_length_m + downstream_length_m must exceed " + util::number_text(needed + b->tailwater_depth_m) + " m (4 tailwater depths" + (b->bed.profile == "sinusoidal" ? std::string(" plus a wavelength") : std::string()) + "), or list [[case.sections]] explicitly");
     }
   } else if (const auto* d = result.dam_break()) {
     for (std::size_t i = 0; i < d->gauges_x_m.size(); ++i) {
@@ -1289,9 +1289,9 @@ void write_resolved_case(const Study& study, const Case& c, const std::string& r
     const std::filesystem::path copy = out_file.parent_path() / kResolvedFrontFileName;
     std::error_code ec;
     if (!std::filesystem::equivalent(d->measured_front_file, copy, ec))
-      write_file_atomically(copy, read_text_file(d->measured_front_file));
+      util::write_file_atomically(copy, util::read_text_file(d->measured_front_file));
   }
-  write_file_atomically(out_file, resolved_case_text(study, c, resolution));
+  util::write_file_atomically(out_file, resolved_case_text(study, c, resolution));
 }
 
 std::string resolved_case_text(const Study& study, const Case& c, const std::string& resolution) {

@@ -2,12 +2,12 @@
 #   version_string      the project VERSION and, when SRC is a git checkout, the commit it was built
 #                       from (`git describe --always --dirty`), e.g. "0.1.0+3399944e07aa-dirty":
 #                       provenance, printed in reports and by --version;
-#   source_fingerprint  a hash of the program's code only: the content of the files under cases/,
-#                       sph/, reference/, compare/, cmake/ and CMakeLists.txt that git tracks or
+#   source_fingerprint  a hash of the program's code only: the content of the files under util/,
+#                       cases/, sph/, reference/, compare/, app/, cmake/ and CMakeLists.txt that git tracks or
 #                       would track, as they are in the working tree (committed or not). The study
 #                       runner's compare stage keys its cache on it;
 #   solver_fingerprint  the same over the code that generates and runs the solvers only (all of the
-#                       above but compare/, except compare/generate.*, which writes the case
+#                       above but compare/ and app/, except app/generate.*, which writes the case
 #                       directories): the study's generate, sph and vof stages and
 #                       `hydrojump sph --resume` key on it, so a change to the comparator re-runs the
 #                       comparison but keeps hours of solver results.
@@ -30,8 +30,8 @@ if(EXISTS "${SRC}/.git")
   # (*.md), spec files (*.toml: each case's own resolved settings are in its fingerprint already) and
   # data (*.csv), so that editing those keeps finished results. Content, not commits: committing a
   # change does not change a fingerprint. Each file is hashed once; the solver manifest is the part
-  # of the full one outside compare/, plus compare/generate.*.
-  set(code_paths cases sph reference compare cmake CMakeLists.txt)
+  # of the full one outside compare/ and app/, plus app/generate.*.
+  set(code_paths util cases sph reference compare app cmake CMakeLists.txt)
   set(excludes ":(exclude)*.md" ":(exclude)*.toml" ":(exclude)*.csv")
   execute_process(COMMAND git -C "${SRC}" ls-files --cached --others --exclude-standard -- ${code_paths} ${excludes}
                   OUTPUT_VARIABLE listing ERROR_VARIABLE list_error RESULT_VARIABLE list_status)
@@ -41,7 +41,7 @@ if(EXISTS "${SRC}/.git")
   list(REMOVE_DUPLICATES files)
   list(SORT files)
   # A path that git does not know (renamed or deleted) would silently drop out of the hash.
-  foreach(p IN LISTS code_paths ITEMS compare/generate.cpp compare/generate.hpp)
+  foreach(p IN LISTS code_paths ITEMS app/generate.cpp app/generate.hpp)
     set(known FALSE)
     foreach(f IN LISTS files)
       if(f STREQUAL p OR f MATCHES "^${p}/")
@@ -64,7 +64,7 @@ if(EXISTS "${SRC}/.git")
         set(h "deleted")
       endif()
       string(APPEND manifest "${f} ${h}\n")
-      if(NOT f MATCHES "^compare/" OR f MATCHES "^compare/generate\\.(cpp|hpp)$")
+      if(NOT f MATCHES "^(compare|app)/" OR f MATCHES "^app/generate\\.(cpp|hpp)$")
         string(APPEND solver_manifest "${f} ${h}\n")
       endif()
     endforeach()

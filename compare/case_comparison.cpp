@@ -12,12 +12,12 @@
 #include <string>
 #include <vector>
 
-#include "cases/csv_table.hpp"
-#include "cases/fingerprint.hpp"
+#include "util/csv_table.hpp"
+#include "util/fingerprint.hpp"
 #include "cases/geometry.hpp"
 #include "cases/hydraulics.hpp"
 #include "cases/jump_toe.hpp"
-#include "cases/number_text.hpp"
+#include "util/number_text.hpp"
 #include "cases/output_times.hpp"
 #include "cases/results_case.hpp"
 #include "cases/spec_reader.hpp"
@@ -79,7 +79,7 @@ std::optional<double> summary_number(const std::string& json, const std::string&
 std::vector<std::vector<double>> csv_columns(const fs::path& file, const std::vector<std::string>& names,
                                              std::size_t& damaged_rows) {
   damaged_rows = 0;
-  const cases::CsvTable table = cases::read_csv_table(file);
+  const util::CsvTable table = util::read_csv_table(file);
   std::vector<std::size_t> index;
   for (const auto& name : names) {
     const auto at = table.column(name);
@@ -97,7 +97,7 @@ std::vector<std::vector<double>> csv_columns(const fs::path& file, const std::ve
     bool damaged = false;
     for (std::size_t c = 0; c < names.size(); ++c) {
       const std::string& cell = cells[index[c]];
-      values[c] = cases::csv_number(cell);
+      values[c] = util::csv_number(cell);
       if (std::isnan(values[c]) && !cell.empty() && cell != "nan") damaged = true;  // text, not a number
     }
     if (damaged || !std::isfinite(values[0])) {
@@ -157,7 +157,7 @@ std::string sph_run_note(const fs::path& summary_file, double window_start_s, do
   const std::string name = summary_file.filename().string();
   std::string json;
   try {
-    json = cases::read_text_file(summary_file);
+    json = util::read_text_file(summary_file);
   } catch (const std::exception& e) {
     return "run monitor (" + name + "): unreadable (" + e.what() + "), so its verdict is not shown";
   }
@@ -330,8 +330,8 @@ std::string skipped_status(const std::vector<std::string>& skipped) {
 std::string window_coverage_clause(double last_output_s, double first_in_window_s, double last_in_window_s, double t1,
                                    double tolerance_s) {
   if (last_output_s >= t1 - tolerance_s) return {};
-  return "; PART OF THE WINDOW ONLY: the results end at t = " + cases::number_text(last_output_s) +
-         " s, before the window's end " + cases::number_text(t1) + " s, so the averages are over the outputs of " +
+  return "; PART OF THE WINDOW ONLY: the results end at t = " + util::number_text(last_output_s) +
+         " s, before the window's end " + util::number_text(t1) + " s, so the averages are over the outputs of " +
          window_text(first_in_window_s, last_in_window_s) + " (run on, or give --window)";
 }
 
@@ -375,15 +375,15 @@ CaseComparison compare_case(const cases::Study& study, const fs::path& run_dir, 
   // No run of the case reaches beyond its latest end time (sph and vof --end-time are bounded by it).
   if (r.window_end_s > c.run.latest_end_time_s())
     throw std::runtime_error("case \"" + c.id + "\": the averaging window " + window_text(r.window_start_s, r.window_end_s) +
-                             " ends after " + cases::number_text(c.run.latest_end_time_s()) +
+                             " ends after " + util::number_text(c.run.latest_end_time_s()) +
                              " s, the latest time a run of this case can reach (at most " +
-                             cases::number_text(cases::max_outputs_per_run) + " outputs, one every " +
-                             cases::number_text(c.run.output_interval_s) + " s): give --window within it");
+                             util::number_text(cases::max_outputs_per_run) + " outputs, one every " +
+                             util::number_text(c.run.output_interval_s) + " s): give --window within it");
   // A time mean, its standard deviation and trend need two outputs at least.
   if (const long n = cases::outputs_in_window(r.window_start_s, r.window_end_s, c.run.output_interval_s); n < 2)
     throw std::runtime_error("case \"" + c.id + "\": the averaging window " + window_text(r.window_start_s, r.window_end_s) +
                              " holds " + std::to_string(n) + " output time(s) (one every " +
-                             cases::number_text(c.run.output_interval_s) + " s): give a window with at least 2");
+                             util::number_text(c.run.output_interval_s) + " s): give a window with at least 2");
   const cases::JumpHydraulics jh = cases::jump_hydraulics(r.inflow_depth_m, r.inflow_velocity_m_s, r.tailwater_depth_m, g);
   r.belanger_y2_m = jh.belanger_y2_m;
   r.eta_smooth_theory_percent = 100.0 * jh.eta_smooth;
@@ -406,8 +406,8 @@ CaseComparison compare_case(const cases::Study& study, const fs::path& run_dir, 
   double ds = options.station_spacing_m;
   // The toe, the lengths and the surface are found on the stations: they must be finer than y1.
   if (ds > r.inflow_depth_m)
-    throw std::runtime_error("--station-spacing " + cases::number_text(ds) + " m is coarser than the inflow depth y1 = " +
-                             cases::number_text(r.inflow_depth_m) + " m of case \"" + c.id +
+    throw std::runtime_error("--station-spacing " + util::number_text(ds) + " m is coarser than the inflow depth y1 = " +
+                             util::number_text(r.inflow_depth_m) + " m of case \"" + c.id +
                              "\": the toe and the jump's lengths need stations finer than y1 (default: the finer of the "
                              "SPH particle spacing and the VOF bed cell)");
   if (!(ds > 0.0)) {
@@ -418,8 +418,8 @@ CaseComparison compare_case(const cases::Study& study, const fs::path& run_dir, 
   // At most 3,000 stations (a finer spacing costs time and adds nothing at the kernel's or the cells'
   // scale); a finer --station-spacing is said, not silently coarsened.
   if (options.station_spacing_m > 0.0 && ds < length / 3000.0)
-    log << "compare: --station-spacing " << cases::number_text(ds) << " m is finer than the limit of 3000 stations over "
-        << cases::number_text(length) << " m: using " << std::setprecision(4) << length / 3000.0 << std::setprecision(6)
+    log << "compare: --station-spacing " << util::number_text(ds) << " m is finer than the limit of 3000 stations over "
+        << util::number_text(length) << " m: using " << std::setprecision(4) << length / 3000.0 << std::setprecision(6)
         << " m" << std::endl;
   ds = std::max(ds, length / 3000.0);
   const int n_stations = std::max(3, static_cast<int>(std::floor(length / ds)));
@@ -449,7 +449,7 @@ CaseComparison compare_case(const cases::Study& study, const fs::path& run_dir, 
     // case's, as the one in RUN_DIR/sph is (load_run_case). Results of other programs have none.
     if (const fs::path other = pvd.parent_path(); !options.sph_pvd.empty() && fs::exists(cases::recorded_case_file(other))) {
       const fs::path recorded = cases::recorded_case_file(other);
-      const auto d = cases::first_setting_difference(cases::read_text_file(recorded), cases::read_text_file(study.source_file));
+      const auto d = cases::first_setting_difference(util::read_text_file(recorded), util::read_text_file(study.source_file));
       if (d.any()) {
         throw std::runtime_error(pvd.string() + " was made with other settings than " + study.source_file.string() + ": " +
                                  recorded.string() + " has '" + d.a + "' where it has '" + d.b + "'");

@@ -5,7 +5,7 @@
 #include <string>
 #include <memory>
 
-#include "cases/cli_checks.hpp"
+#include "util/cli_checks.hpp"
 #include "compare/case_comparison.hpp"
 #include "compare/dam_break_report.hpp"
 
@@ -59,7 +59,7 @@ void register_commands(CLI::App& app) {
       "(t_model = t_exp - 0.175 sqrt(L/(2g)), the gate's opening) and unshifted: comparison.json, csv/front.csv, "
       "figures/front.png, report.md.");
   cmd->add_option("RUN_DIR", o->run_dir, "case directory (holds sph/ and vof/)")->required()->check(CLI::ExistingDirectory);
-  cmd->add_option("--out,-o", o->out_dir, "output directory (default: RUN_DIR)")->check(cases::non_empty_path());
+  cmd->add_option("--out,-o", o->out_dir, "output directory (default: RUN_DIR)")->check(util::non_empty_path());
   cmd->add_option("--interpolation", o->interpolation,
                   "mls_linear: Shepard with a linear (moving-least-squares) correction, exact for linear fields; "
                   "shepard: plain Shepard normalisation")
@@ -71,7 +71,7 @@ void register_commands(CLI::App& app) {
       ->check(CLI::ExistingFile);
   cmd->add_option("--station-spacing", o->station_spacing_m,
                   "spacing of the columns along the channel in m, at most y1 (default: the finer of SPH dx and the VOF bed cell; at most 3000 columns)")
-      ->check(cases::positive_finite_number());
+      ->check(util::positive_finite_number());
   cmd->add_flag("--no-plots", o->no_plots, "skip the matplotlib figures");
   cmd->callback([o] {
     CompareOptions options;

@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "cases/csv_table.hpp"
+#include "util/csv_table.hpp"
 
 namespace hydrojump::compare {
 
@@ -58,17 +58,17 @@ std::vector<MeasuredFrontPoint> read_measured_front(const std::filesystem::path&
   for (std::string line; std::getline(in, line);) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.empty() || line.front() == '#') continue;
-    const std::vector<std::string> cells = cases::split_csv_line(line);
+    const std::vector<std::string> cells = util::split_csv_line(line);
     if (header.empty()) {
       header = cells;
-      const cases::CsvTable named{header, {}};
+      const util::CsvTable named{header, {}};
       t = named.column("t_s");
       x = named.column("x_front_over_L");
       if (!t || !x) throw std::runtime_error(file.string() + ": no header with the columns t_s and x_front_over_L");
       continue;
     }
-    const double tv = cells.size() == header.size() ? cases::csv_number(cells[*t]) : std::nan("");
-    const double xv = cells.size() == header.size() ? cases::csv_number(cells[*x]) : std::nan("");
+    const double tv = cells.size() == header.size() ? util::csv_number(cells[*t]) : std::nan("");
+    const double xv = cells.size() == header.size() ? util::csv_number(cells[*x]) : std::nan("");
     if (!std::isfinite(tv) || !std::isfinite(xv))
       throw std::runtime_error(file.string() + ": a row without numbers for t_s and x_front_over_L: " + line);
     points.push_back({tv, xv});

@@ -5,9 +5,9 @@
 #include <ostream>
 #include <sstream>
 
-#include "cases/atomic_file.hpp"
-#include "cases/csv_table.hpp"
-#include "cases/time_directories.hpp"
+#include "util/atomic_file.hpp"
+#include "util/csv_table.hpp"
+#include "util/time_directories.hpp"
 #include "compare/json_writer.hpp"
 #include "compare/plots.hpp"
 #include "hydrojump/version.hpp"
@@ -23,7 +23,7 @@ namespace {
 void read_sph_front(const fs::path& run_dir, DamBreakMethodFront& m) {
   const fs::path file = run_dir / "sph" / "gauges.csv";
   m.source = file.string();
-  const cases::CsvTable table = cases::read_csv_table(file);
+  const util::CsvTable table = util::read_csv_table(file);
   const auto t = table.column("t_s");
   const auto x = table.column("front_x_m");
   if (table.header.empty()) {
@@ -36,7 +36,7 @@ void read_sph_front(const fs::path& run_dir, DamBreakMethodFront& m) {
   }
   for (const auto& row : table.rows) {
     if (row.size() != table.header.size()) continue;
-    const double tv = cases::csv_number(row[*t]), xv = cases::csv_number(row[*x]);
+    const double tv = util::csv_number(row[*t]), xv = util::csv_number(row[*x]);
     if (!std::isfinite(tv) || !std::isfinite(xv)) continue;
     if (!m.trace.t_s.empty() && !(tv > m.trace.t_s.back())) continue;
     m.trace.t_s.push_back(tv);
@@ -55,7 +55,7 @@ void read_vof_front(const fs::path& run_dir, double cell_size_m, DamBreakMethodF
     m.status = "no " + dir.string() + " (run `hydrojump vof " + (run_dir / "vof").string() + "`)";
     return;
   }
-  for (const auto& [t, path] : cases::time_directories(dir)) {
+  for (const auto& [t, path] : util::time_directories(dir)) {
     const fs::path line = path / "floor_alpha.water.xy";
     if (!fs::exists(line)) continue;
     try {
@@ -203,8 +203,8 @@ DamBreakComparison compare_dam_break(const cases::Study& study, const fs::path& 
 
 std::string write_dam_break_report(const DamBreakComparison& c, const fs::path& out, bool plots, std::ostream& log) {
   fs::create_directories(out / "csv");
-  cases::write_file_atomically(out / "csv" / "front.csv", front_csv(c));
-  cases::write_file_atomically(out / "comparison.json", dam_break_json(c));
+  util::write_file_atomically(out / "csv" / "front.csv", front_csv(c));
+  util::write_file_atomically(out / "comparison.json", dam_break_json(c));
   std::string problem;
   if (plots) {
     fs::create_directories(out / "figures");
@@ -213,7 +213,7 @@ std::string write_dam_break_report(const DamBreakComparison& c, const fs::path& 
                               out / "figures" / "plot.log");
   }
   const std::string figure = plots && problem.empty() ? "figures/front.png" : "";
-  cases::write_file_atomically(out / "report.md", report_markdown(c, figure));
+  util::write_file_atomically(out / "report.md", report_markdown(c, figure));
   log << "wrote " << (out / "comparison.json").string() << ", " << (out / "csv" / "front.csv").string() << ", "
       << (out / "report.md").string() << (figure.empty() ? "" : ", " + (out / figure).string()) << "\n";
   return problem;

@@ -9,7 +9,7 @@
 
 #include <unistd.h>
 
-#include "cases/child_process.hpp"
+#include "util/child_process.hpp"
 
 namespace fs = std::filesystem;
 
@@ -63,14 +63,14 @@ std::string run_plot_script(const std::string& script, const std::vector<std::st
   std::vector<std::string> argv = {python, "-s", (dir / script).string()};
   argv.insert(argv.end(), args.begin(), args.end());
   fs::create_directories(log_file.parent_path());
-  cases::ChildCommand command(argv, log_file);
+  util::ChildCommand command(argv, log_file);
   // Unbuffered: the script's last line (its summary of what failed, on stderr) stays the log's last line,
   // after its "wrote ..." lines on stdout.
   command.environment = {"MPLBACKEND=Agg", "PYTHONPATH", "PYTHONUNBUFFERED=1"};
   command.parent_death_signal = SIGTERM;
-  cases::ChildExit ended;
+  util::ChildExit ended;
   try {
-    ended = cases::run_child(command);
+    ended = util::run_child(command);
   } catch (const std::exception& e) {
     return e.what();
   }

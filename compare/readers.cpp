@@ -1,8 +1,8 @@
 #include "compare/readers.hpp"
 
-#include "cases/number_text.hpp"
+#include "util/number_text.hpp"
 #include "cases/output_times.hpp"
-#include "cases/time_directories.hpp"
+#include "util/time_directories.hpp"
 #include "sph/particles.hpp"
 
 #include <algorithm>
@@ -90,7 +90,7 @@ std::vector<PvdEntry> read_pvd(const fs::path& pvd_file) {
   for (std::size_t k = 1; k < order.size(); ++k) {
     const std::size_t i = order[k - 1], j = order[k];
     if (out[i].time_s == out[j].time_s && parts[i] == parts[j])
-      throw std::runtime_error(pvd_file.string() + ": the time " + cases::number_text(out[i].time_s) +
+      throw std::runtime_error(pvd_file.string() + ": the time " + util::number_text(out[i].time_s) +
                                " s is listed twice (" + out[i].file.filename().string() + " and " +
                                out[j].file.filename().string() + "): the collection is damaged or merged");
   }
@@ -369,7 +369,7 @@ std::string missing_openfoam_results(const fs::path& vof_dir) {
   if (!fs::exists(vof_dir / "constant" / "polyMesh" / "owner") &&
       !fs::exists(vof_dir / "constant" / "polyMesh" / "owner.gz"))
     return "no mesh (constant/polyMesh/owner): it was not meshed, or its mesh was removed";
-  for (const auto& [t, time_dir] : cases::time_directories(vof_dir, 0.0))
+  for (const auto& [t, time_dir] : util::time_directories(vof_dir, 0.0))
     if (fs::exists(time_dir / "alpha.water") || fs::exists(time_dir / "alpha.water.gz")) return {};
   return "no time directory after 0 with alpha.water (not run yet)";
 }

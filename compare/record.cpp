@@ -8,10 +8,10 @@
 
 #include <toml++/toml.h>
 
-#include "cases/atomic_file.hpp"
-#include "cases/csv_table.hpp"
-#include "cases/fingerprint.hpp"
-#include "cases/number_text.hpp"
+#include "util/atomic_file.hpp"
+#include "util/csv_table.hpp"
+#include "util/fingerprint.hpp"
+#include "util/number_text.hpp"
 #include "cases/spec_reader.hpp"
 
 namespace fs = std::filesystem;
@@ -36,7 +36,7 @@ std::string quoted(const std::string& s) {
 
 // A TOML number that reads back to the same double ("1.0" for integral values: a float, not an integer).
 std::string number(double v) {
-  std::string t = cases::number_text(v);
+  std::string t = util::number_text(v);
   if (t.find_first_of(".eEn") == std::string::npos) t += ".0";
   return t;
 }
@@ -49,7 +49,7 @@ std::string numbers(const std::vector<double>& v) {
 
 // The rows of a small CSV as column -> cell maps.
 std::vector<std::map<std::string, std::string>> csv_rows(const fs::path& file) {
-  const cases::CsvTable table = cases::read_csv_table(file);
+  const util::CsvTable table = util::read_csv_table(file);
   std::vector<std::map<std::string, std::string>> rows;
   for (const auto& cells : table.rows) {
     if (cells.size() != table.header.size()) continue;  // a torn line
@@ -64,7 +64,7 @@ std::optional<double> finite(double v) { return std::isfinite(v) ? std::optional
 
 double cell(const std::map<std::string, std::string>& row, const std::string& key) {
   const auto it = row.find(key);
-  return it == row.end() ? std::nan("") : cases::csv_number(it->second);
+  return it == row.end() ? std::nan("") : util::csv_number(it->second);
 }
 
 // OUT/<case>/<method>.stage.toml, written by the study when the stage finished: wall time (all legs),
@@ -129,7 +129,7 @@ std::vector<ValidationRecord> records_from_case_dir(const fs::path& case_dir, co
   const auto surface_rows = csv_rows(case_dir / "csv" / "longitudinal.csv");
   std::vector<ValidationRecord> out;
   for (const std::string method : {"sph", "vof"}) {
-    const std::string key = cases::read_text_file(case_dir / (method + ".stamp"));
+    const std::string key = util::read_text_file(case_dir / (method + ".stamp"));
     const fs::path resolved = case_dir / method / "case.toml";
     if (key.empty() || !fs::exists(resolved)) continue;  // not run by the study, or not finished
     const cases::Study study = cases::load_study(resolved);
@@ -310,12 +310,12 @@ fs::path record_file(const fs::path& root, const std::string& study, const std::
 void write_record(const fs::path& root, const ValidationRecord& r) {
   const fs::path file = record_file(root, r.study, r.case_id, r.method, r.resolution);
   fs::create_directories(file.parent_path());
-  cases::write_file_atomically(file, record_text(r));
+  util::write_file_atomically(file, record_text(r));
 }
 
 std::optional<ValidationRecord> read_record_if_present(const fs::path& file) {
   if (!fs::exists(file)) return std::nullopt;
-  return parse_record(cases::read_text_file(file), file.string());
+  return parse_record(util::read_text_file(file), file.string());
 }
 
 std::vector<ValidationRecord> read_records(const fs::path& root) {
@@ -325,7 +325,7 @@ std::vector<ValidationRecord> read_records(const fs::path& root) {
       if (entry.is_regular_file() && entry.path().extension() == ".toml") files.push_back(entry.path());
   std::sort(files.begin(), files.end());
   std::vector<ValidationRecord> out;
-  for (const auto& f : files) out.push_back(parse_record(cases::read_text_file(f), f.string()));
+  for (const auto& f : files) out.push_back(parse_record(util::read_text_file(f), f.string()));
   return out;
 }
 
@@ -337,7 +337,7 @@ void write_imported_comparison(const fs::path& case_dir, const std::vector<Valid
   };
   const ValidationRecord* sph = of("sph");
   const ValidationRecord* vof = of("vof");
-  const auto text = [](std::optional<double> v) { return v ? cases::number_text(*v) : std::string("nan"); };
+  const auto text = [](std::optional<double> v) { return v ? util::number_text(*v) : std::string("nan"); };
   const auto value = [](const ValidationRecord* r, const std::string& q) -> std::optional<double> {
     const RecordMetric* m = r ? r->metric(q) : nullptr;
     return m ? std::optional<double>(m->value) : std::nullopt;
@@ -367,8 +367,8 @@ void write_imported_comparison(const fs::path& case_dir, const std::vector<Valid
             << text(value(sph, "eta_crest_depth")) << "," << text(value(vof, "eta_crest_depth")) << "," << eta->status
             << "\n";
   fs::create_directories(case_dir / "csv");
-  cases::write_file_atomically(case_dir / "csv" / "metrics.csv", metrics.str());
-  cases::write_file_atomically(case_dir / "csv" / "eta.csv", eta_csv.str());
+  util::write_file_atomically(case_dir / "csv" / "metrics.csv", metrics.str());
+  util::write_file_atomically(case_dir / "csv" / "eta.csv", eta_csv.str());
 }
 
 }  // namespace hydrojump::compare

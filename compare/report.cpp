@@ -7,7 +7,7 @@
 #include <ostream>
 #include <sstream>
 
-#include "cases/atomic_file.hpp"
+#include "util/atomic_file.hpp"
 #include "compare/json_writer.hpp"
 #include "compare/plots.hpp"
 #include "hydrojump/version.hpp"
@@ -208,7 +208,7 @@ void write_csvs(const CaseComparison& c, const fs::path& dir) {
       s << m->method << "_jump_end_x_m," << num(m->available ? m->metrics.jump_end_x_m : not_a_number) << "\n";
       s << m->method << "_roller_end_x_m," << num(m->available ? m->metrics.roller_end_x_m : not_a_number) << "\n";
     }
-    cases::write_file_atomically(dir / "case.csv", s.str());
+    util::write_file_atomically(dir / "case.csv", s.str());
   }
   std::ostringstream sec, prof, lon;
   sec << "method,section,role,x_m,z_bed_m,n_times,n_wet,surface_mean_m,surface_std_m,surface_from_fraction_mean_m,"
@@ -251,10 +251,10 @@ void write_csvs(const CaseComparison& c, const fs::path& dir) {
           snap << num(f.time_s) << "," << num(f.x0 + ix * f.dx) << "," << num(f.z0 + iz * f.dz) << "," << num(f.u[k], 5)
                << "," << num(f.w[k], 5) << "\n";
         }
-      cases::write_file_atomically(dir / ("snapshot_" + m->method + ".csv"), snap.str());
+      util::write_file_atomically(dir / ("snapshot_" + m->method + ".csv"), snap.str());
     }
   }
-  cases::write_file_atomically(dir / "sections.csv", sec.str());
+  util::write_file_atomically(dir / "sections.csv", sec.str());
   {
     std::ostringstream ts;
     ts << "method,section,time_s,surface_m,depth_m,discharge_m2_s,mean_velocity_m_s,max_velocity_m_s,"
@@ -268,7 +268,7 @@ void write_csvs(const CaseComparison& c, const fs::path& dir) {
              << "," << num(t.depth_m) << "," << num(t.discharge_m2_s) << "," << num(t.mean_velocity_m_s) << ","
              << num(t.max_velocity_m_s) << "," << num(t.specific_energy_m) << "\n";
     }
-    cases::write_file_atomically(dir / "section_timeseries.csv", ts.str());
+    util::write_file_atomically(dir / "section_timeseries.csv", ts.str());
   }
   {
     // The toe criterion on each frame's instantaneous surface ("nan": no toe in that frame), to follow
@@ -281,24 +281,24 @@ void write_csvs(const CaseComparison& c, const fs::path& dir) {
       for (std::size_t k = 0; k < m->stats.times.size(); ++k)
         s << m->method << "," << num(m->stats.times[k]) << "," << num(m->metrics.toe_frames_x_m[k]) << "\n";
     }
-    cases::write_file_atomically(dir / "toe_frames.csv", s.str());
+    util::write_file_atomically(dir / "toe_frames.csv", s.str());
   }
-  cases::write_file_atomically(dir / "profiles.csv", prof.str());
-  cases::write_file_atomically(dir / "longitudinal.csv", lon.str());
+  util::write_file_atomically(dir / "profiles.csv", prof.str());
+  util::write_file_atomically(dir / "longitudinal.csv", lon.str());
   {
     std::ostringstream s;
     s << "quantity,unit,sph,vof,experiment,published_sph,smooth_theory,status\n";
     for (const auto& r : c.metrics)
       s << r.quantity << "," << r.unit << "," << num(r.sph) << "," << num(r.vof) << "," << num(r.experiment) << ","
         << num(r.published_sph) << "," << num(r.smooth_theory) << "," << r.status << "\n";
-    cases::write_file_atomically(dir / "metrics.csv", s.str());
+    util::write_file_atomically(dir / "metrics.csv", s.str());
   }
   {
     std::ostringstream s;
     s << "section,x_m,l2_m_s,l2_over_u1,n_points\n";
     for (const auto& p : c.profiles)
       s << p.section << "," << num(p.x_m) << "," << num(p.l2_m_s) << "," << num(p.l2_over_u1) << "," << p.n_points << "\n";
-    cases::write_file_atomically(dir / "profile_differences.csv", s.str());
+    util::write_file_atomically(dir / "profile_differences.csv", s.str());
   }
   {
     double sph = not_a_number, vof = not_a_number, sph_crest = not_a_number, vof_crest = not_a_number;
@@ -313,7 +313,7 @@ void write_csvs(const CaseComparison& c, const fs::path& dir) {
       << c.case_id << "," << num(c.eta_smooth_theory_percent) << ","
       << num(c.lab.eta_percent.value_or(not_a_number)) << "," << num(c.lab.published_sph_eta_percent.value_or(not_a_number))
       << "," << num(sph) << "," << num(vof) << "," << num(sph_crest) << "," << num(vof_crest) << "," << status << "\n";
-    cases::write_file_atomically(dir / "eta.csv", s.str());
+    util::write_file_atomically(dir / "eta.csv", s.str());
   }
 }
 
@@ -447,7 +447,7 @@ std::string write_report(const CaseComparison& c, const fs::path& out, bool plot
       plot_problem.replace(at, staged.string().size(), final_dir.string());
   }
   if (!plot_problem.empty()) log << "plots: " << plot_problem << std::endl;
-  cases::write_file_atomically(out / "comparison.json", comparison_json(c));
+  util::write_file_atomically(out / "comparison.json", comparison_json(c));
 
   Doc d;
   d.heading(1, "Case " + c.case_id + ": SPH vs VOF vs experiment");
@@ -577,8 +577,8 @@ std::string write_report(const CaseComparison& c, const fs::path& out, bool plot
   if (!c.measured_source.empty()) d.para("Laboratory values: " + c.measured_source);
   if (!c.measured_note.empty()) d.para("Note on the laboratory values: " + c.measured_note);
 
-  cases::write_file_atomically(out / "report.md", d.markdown());
-  cases::write_file_atomically(out / "report.html", d.html("hydrojump comparison, case " + c.case_id));
+  util::write_file_atomically(out / "report.md", d.markdown());
+  util::write_file_atomically(out / "report.html", d.html("hydrojump comparison, case " + c.case_id));
   log << "report: " << (out / "report.md").string() << ", " << (out / "report.html").string() << ", "
       << (out / "comparison.json").string() << std::endl;
   return plot_problem;

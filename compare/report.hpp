@@ -1,4 +1,4 @@
-// Outputs of one case comparison, all written atomically (cases/atomic_file.hpp) into OUT:
+// Outputs of one case comparison, all written atomically (util/atomic_file.hpp) into OUT:
 //   comparison.json            every number of the comparison (NaN/missing as null)
 //   csv/sections.csv           per method and section: time means and standard deviations
 //   csv/section_timeseries.csv per method, section and output time: surface, depth, q, U, u_max, E

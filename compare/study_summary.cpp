@@ -6,7 +6,7 @@
 #include <map>
 #include <sstream>
 
-#include "cases/csv_table.hpp"
+#include "util/csv_table.hpp"
 
 namespace fs = std::filesystem;
 
@@ -16,7 +16,7 @@ namespace {
 
 // Rows of a small CSV as maps column -> text.
 std::vector<std::map<std::string, std::string>> read_csv(const fs::path& file) {
-  const cases::CsvTable table = cases::read_csv_table(file);
+  const util::CsvTable table = util::read_csv_table(file);
   std::vector<std::map<std::string, std::string>> rows;
   for (const auto& cells : table.rows) {
     std::map<std::string, std::string> row;
@@ -28,7 +28,7 @@ std::vector<std::map<std::string, std::string>> read_csv(const fs::path& file) {
 
 double value(const std::map<std::string, std::string>& row, const std::string& key) {
   const auto it = row.find(key);
-  return it == row.end() ? std::nan("") : cases::csv_number(it->second);
+  return it == row.end() ? std::nan("") : util::csv_number(it->second);
 }
 
 std::string fix(double v, int decimals, bool sign = false) {

@@ -6,7 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "cases/atomic_file.hpp"
+#include "util/atomic_file.hpp"
 #include "cases/hydraulics.hpp"
 #include "cases/jump_toe.hpp"
 #include "reference/tailwater_control.hpp"
@@ -941,9 +941,9 @@ VofCase build_vof_case(const cases::Study& study, const cases::Case& c, const st
 void write_vof_files(const VofCase& vof, const std::filesystem::path& dir) {
   std::filesystem::create_directories(dir);
   for (const auto& [path, dict] : vof.files) {
-    cases::write_file_atomically(dir / path, foam::format_file(vof.headers.at(path), dict));
+    util::write_file_atomically(dir / path, foam::format_file(vof.headers.at(path), dict));
   }
-  cases::write_file_atomically(dir / "Allrun", vof.allrun);
+  util::write_file_atomically(dir / "Allrun", vof.allrun);
   std::filesystem::permissions(dir / "Allrun",
                                std::filesystem::perms::owner_exec | std::filesystem::perms::group_exec |
                                    std::filesystem::perms::others_exec,

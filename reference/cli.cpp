@@ -3,9 +3,9 @@
 #include <iostream>
 #include <memory>
 
-#include "cases/atomic_file.hpp"
-#include "cases/cli_checks.hpp"
-#include "cases/fingerprint.hpp"
+#include "util/atomic_file.hpp"
+#include "util/cli_checks.hpp"
+#include "util/fingerprint.hpp"
 #include "cases/spec_reader.hpp"
 #include "reference/case_writer.hpp"
 #include "reference/runner.hpp"
@@ -60,7 +60,7 @@ void register_commands(CLI::App& app) {
   vof->add_option("--end-time", options->end_time_s,
                   "run to this simulated time in s instead of the case's end time (written into "
                   "system/controlDict; with --resume it extends a finished run)")
-      ->check(cases::positive_finite_number());
+      ->check(util::positive_finite_number());
   vof->add_option("--map-from", options->map_from,
                   "start from the latest time of another run of the same case (its vof directory, e.g. a "
                   "settled `quick` run), interpolated onto this mesh by OpenFOAM's mapFields -consistent, "
@@ -68,7 +68,7 @@ void register_commands(CLI::App& app) {
       ->check(CLI::ExistingDirectory);
   vof->add_option("--progress-interval", options->progress_interval_s,
                   "seconds between progress lines when the output is not a terminal (default 30)")
-      ->check(cases::positive_finite_number());
+      ->check(util::positive_finite_number());
   vof->callback([options]() {
     if (options->self_test) {
       const OpenFoamInstallation inst = check_openfoam(false);
@@ -100,7 +100,7 @@ void write_vof_case(const cases::Study& study, const cases::Case& c, const std::
   if (const auto reason = vof_unsupported_reason(c)) {
     // Not an error for `generate`: a study may hold cases only the SPH solver runs.
     std::filesystem::create_directories(dir);
-    cases::write_file_atomically(dir / "README.txt", "No OpenFOAM case was written: " + *reason +
+    util::write_file_atomically(dir / "README.txt", "No OpenFOAM case was written: " + *reason +
                                                          ".\n`hydrojump vof` refuses this directory.\n");
     cases::write_resolved_case(study, c, resolution, dir / "case.toml");
     return;
@@ -109,7 +109,7 @@ void write_vof_case(const cases::Study& study, const cases::Case& c, const std::
   std::filesystem::create_directories(dir);
   write_vof_files(vof, dir);
   cases::write_resolved_case(study, c, resolution, dir / "case.toml");
-  cases::write_file_atomically(dir / generated_case_file_name, cases::read_text_file(dir / "case.toml"));
+  util::write_file_atomically(dir / generated_case_file_name, util::read_text_file(dir / "case.toml"));
 }
 
 }  // namespace hydrojump::reference

@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "cases/time_directories.hpp"
+#include "util/time_directories.hpp"
 
 namespace hydrojump::reference {
 
@@ -39,7 +39,7 @@ std::vector<std::pair<double, double>> read_surface_field_value(const fs::path& 
     }
   };
   const std::string stem = fs::path(file_name).stem().string(), extension = fs::path(file_name).extension().string();
-  for (const auto& [start, dir] : cases::time_directories(function_dir)) {
+  for (const auto& [start, dir] : util::time_directories(function_dir)) {
     const fs::path file = dir / file_name;
     if (!fs::exists(file)) continue;
     while (!rows.empty() && rows.back().first >= start - 1e-12) rows.pop_back();

@@ -26,15 +26,15 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "cases/atomic_file.hpp"
-#include "cases/child_process.hpp"
-#include "cases/directory_lock.hpp"
-#include "cases/fingerprint.hpp"
+#include "util/atomic_file.hpp"
+#include "util/child_process.hpp"
+#include "util/directory_lock.hpp"
+#include "util/fingerprint.hpp"
 #include "cases/geometry.hpp"
 #include "cases/results_case.hpp"
 #include "cases/spec_reader.hpp"
-#include "cases/stop_signals.hpp"
-#include "cases/time_directories.hpp"
+#include "util/stop_signals.hpp"
+#include "util/time_directories.hpp"
 #include "reference/case_writer.hpp"
 #include "reference/discharge_samples.hpp"
 #include "reference/foam_dictionary.hpp"
@@ -87,7 +87,7 @@ class StopRequestGuard {
  private:
   // A progress line written to a pipe whose reader a hangup ended must not kill the runner before it
   // has stopped the solver (the write fails instead).
-  cases::StopSignalHandlers handlers_{reference_runner_request_stop,
+  util::StopSignalHandlers handlers_{reference_runner_request_stop,
                                       {.restart_interrupted_calls = false, .ignore_sigpipe = true}};
 };
 
@@ -113,21 +113,21 @@ std::string tail_file(const fs::path& file, std::size_t n = 20) {
 pid_t spawn(const std::vector<std::string>& argv, const fs::path& cwd, const fs::path& log, bool append,
             std::vector<int> inherited_descriptors = {}) {
   try {
-    cases::ChildCommand command(argv, log);
+    util::ChildCommand command(argv, log);
     command.append_to_log = append;
     command.inherited_descriptors = std::move(inherited_descriptors);
     command.working_directory = cwd;
     command.own_process_group = true;
     command.parent_death_signal = write_and_stop_signal;  // hydrojump killed outright (SIGKILL) stops it too
     command.environment = {"PWD=" + cwd.string()};
-    return cases::start_child(command);
+    return util::start_child(command);
   } catch (const std::exception& e) {
     throw OpenFoamError(e.what());
   }
 }
 
 // The exit status (128 + signal when killed) of a child started by spawn.
-int wait_for(pid_t pid) { return cases::wait_child(pid).status(); }
+int wait_for(pid_t pid) { return util::wait_child(pid).status(); }
 
 std::string command_text(const std::vector<std::string>& argv) {
   std::string s;
@@ -141,11 +141,11 @@ enum class AfterStopRequest { skip, run };
 
 // Waits for a child started by spawn; a stop request made since `requests_before` stops it instead
 // (nothing is returned then).
-std::optional<cases::ChildExit> wait_unless_stop_requested(pid_t pid, std::sig_atomic_t requests_before) {
+std::optional<util::ChildExit> wait_unless_stop_requested(pid_t pid, std::sig_atomic_t requests_before) {
   for (;;) {
-    if (auto ended = cases::poll_child(pid)) return ended;
+    if (auto ended = util::poll_child(pid)) return ended;
     if (stop_requests != requests_before) {
-      cases::stop_child(pid);
+      util::stop_child(pid);
       return std::nullopt;
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
@@ -165,7 +165,7 @@ class StepStopped : public OpenFoamError {
 struct StepPlace {
   const fs::path& dir;
   std::ostream& out;
-  const cases::DirectoryLock& lock;
+  const util::DirectoryLock& lock;
 };
 
 // Runs one utility to completion; a non-zero exit stops the run with the tail of its log. A stop
@@ -268,7 +268,7 @@ void write_self_test_case(const fs::path& dir, double shear_m) {
   const double L = 0.1, t = 0.01;
   auto write = [&](const std::string& path, const std::string& cls, const Dictionary& d) {
     const auto slash = path.find('/');
-    cases::write_file_atomically(dir / path, foam::format_file({cls, path.substr(0, slash), path.substr(slash + 1)}, d));
+    util::write_file_atomically(dir / path, foam::format_file({cls, path.substr(0, slash), path.substr(slash + 1)}, d));
   };
   Dictionary bm;
   std::vector<foam::Value> v;
@@ -454,7 +454,7 @@ EndTimeEntry parse_end_time_entry(std::string text, const fs::path& file) {
 
 EndTimeEntry read_end_time_entry(const fs::path& dir) {
   const fs::path file = dir / "system/controlDict";
-  return parse_end_time_entry(cases::read_text_file(file), file);
+  return parse_end_time_entry(util::read_text_file(file), file);
 }
 
 // A controlDict value as written by the runner: 12 significant digits.
@@ -472,7 +472,7 @@ std::string with_end_time(const EndTimeEntry& e, double end_time_s) {
 
 // Rewrites that entry's value in the case's controlDict, atomically.
 void set_control_dict_end_time(const fs::path& dir, double end_time_s) {
-  cases::write_file_atomically(dir / "system/controlDict", with_end_time(read_end_time_entry(dir), end_time_s));
+  util::write_file_atomically(dir / "system/controlDict", with_end_time(read_end_time_entry(dir), end_time_s));
 }
 
 }  // namespace
@@ -518,7 +518,7 @@ OpenFoamInstallation check_openfoam(bool need_mpi) {
                                    "interFoam", "decomposePar", "reconstructPar", "foamDictionary"};
   if (need_mpi) apps.push_back("mpirun");
   for (const std::string& app : apps) {
-    if (!cases::find_on_path(app)) {
+    if (!util::find_on_path(app)) {
       throw OpenFoamError("OpenFOAM not found: `" + app + "` is not on PATH. Install the Debian packages " +
                           (app == "mpirun" ? std::string("`openmpi-bin`") : std::string("`openfoam`")) +
                           " (or add OpenFOAM's bin directory to PATH).");
@@ -537,7 +537,7 @@ OpenFoamInstallation check_openfoam(bool need_mpi) {
     fs::remove(log, ec);
     throw;
   }
-  const std::string text = cases::read_text_file(log);
+  const std::string text = util::read_text_file(log);
   std::error_code ec;
   fs::remove(log, ec);
   if (rc != 0) {
@@ -579,7 +579,7 @@ MapSource check_map_source(const fs::path& source_in, const fs::path& target, co
                         (source_study.cases.empty() ? std::string() : source_study.cases.front().id) +
                         "\", not \"" + case_id + "\" (the state of another case is not an initial state for this one)");
   }
-  auto times = cases::time_directories(source, 0.0);
+  auto times = util::time_directories(source, 0.0);
   while (!times.empty() && !time_directory_complete(times.back().path)) times.pop_back();
   if (times.empty()) {
     const bool decomposed = latest_time(source / "processor0").has_value();
@@ -636,8 +636,8 @@ void map_initial_state(const StepPlace& place, const MapSource& source) {
   out << "Initial state from " << source.dir.string() << " at t = " << source.time_name << " s\n";
   // Mapping across resolutions is the purpose; across other settings (a longer basin, a taller air
   // layer) it is allowed, but said, so that a wrong source is not taken silently.
-  const auto differences = settings_beyond_resolution(cases::read_text_file(source.dir / "case.toml"),
-                                                      cases::read_text_file(dir / "case.toml"));
+  const auto differences = settings_beyond_resolution(util::read_text_file(source.dir / "case.toml"),
+                                                      util::read_text_file(dir / "case.toml"));
   if (!differences.empty()) {
     out << "  note: the source's settings differ from this case's beyond the resolution ("
         << differences.size() << " line(s); cells outside the source's domain keep setFields' initial state):\n";
@@ -693,7 +693,7 @@ bool counts_simulated_time(const std::string& write_control) {
 
 // The controlDict's output interval when its writeControl counts simulated time, else nothing.
 std::optional<double> output_grid_interval(const fs::path& dir) {
-  const std::string text = cases::read_text_file(dir / "system/controlDict");
+  const std::string text = util::read_text_file(dir / "system/controlDict");
   const auto control = top_level_entry(text, "writeControl");
   const auto interval_text = top_level_entry(text, "writeInterval");
   if (!control || !interval_text) return std::nullopt;
@@ -789,10 +789,10 @@ class ControlDictOverride {
  public:
   ControlDictOverride(const fs::path& dir, const SolverLeg& leg) : dir_(dir), leg_(leg) {
     const fs::path file = dir / "system/controlDict";
-    const std::string original = cases::read_text_file(file);
-    cases::write_file_atomically(dir / control_dict_original, original);
+    const std::string original = util::read_text_file(file);
+    util::write_file_atomically(dir / control_dict_original, original);
     leg_text_ = leg_control_dict(original, file, leg);
-    cases::write_file_atomically(file, leg_text_);
+    util::write_file_atomically(file, leg_text_);
   }
   ~ControlDictOverride() {
     try {
@@ -808,16 +808,16 @@ class ControlDictOverride {
   void restore(std::ostream* out) {
     if (restored_) return;
     const fs::path file = dir_ / "system/controlDict", saved = dir_ / control_dict_original;
-    const std::string current = cases::read_text_file(file);
-    const auto back = control_dict_after_leg(cases::read_text_file(saved), leg_text_, current, file, leg_);
+    const std::string current = util::read_text_file(file);
+    const auto back = control_dict_after_leg(util::read_text_file(saved), leg_text_, current, file, leg_);
     if (!back) {
-      cases::write_file_atomically(dir_ / "system/controlDict.edited-during-leg", current);
+      util::write_file_atomically(dir_ / "system/controlDict.edited-during-leg", current);
       fs::rename(saved, file);
       if (out != nullptr)
         *out << "  system/controlDict was edited during a leg that wrote at its own interval: the case's is put "
                 "back and the edited one kept as system/controlDict.edited-during-leg (apply the edit again)\n";
     } else if (current != leg_text_) {
-      cases::write_file_atomically(file, *back);
+      util::write_file_atomically(file, *back);
       fs::remove(saved);
       if (out != nullptr) *out << "  system/controlDict was edited during the leg: the edit is kept, with the case's endTime\n";
     } else {
@@ -882,7 +882,7 @@ struct SolverRun {
   bool parallel;
   const RunOptions& options;
   double run_end_s;                  // the end time of the whole run (progress and ETA)
-  const cases::DirectoryLock& lock;  // the case directory's, which the solver holds while it runs
+  const util::DirectoryLock& lock;  // the case directory's, which the solver holds while it runs
 };
 
 // Runs the solver from `start` (nothing: t = 0) until `end_time_s`, showing progress, and returns the
@@ -912,7 +912,7 @@ double run_solver(const SolverRun& run, std::optional<double> start, double end_
                         dir.string() + " --resume" + (run.parallel ? " --np " + std::to_string(run.options.np) : std::string()) +
                         "`)");
   struct NoteCleared {
-    const cases::DirectoryLock& lock;
+    const util::DirectoryLock& lock;
     ~NoteCleared() { lock.set_note(""); }
   } note_cleared{run.lock};
   SolverLog log(DivergenceLimits{c.vof.max_courant, 25.0, 1e-9});
@@ -920,7 +920,7 @@ double run_solver(const SolverRun& run, std::optional<double> start, double end_
   const double t_begin = start.value_or(0.0);
   const auto solver_begin = std::chrono::steady_clock::now();
   auto last_report = solver_begin;
-  std::optional<cases::ChildExit> ended;  // how interFoam ended; nullopt while it runs
+  std::optional<util::ChildExit> ended;  // how interFoam ended; nullopt while it runs
   auto read_new = [&]() {
     std::ifstream in(log_file, std::ios::binary);
     if (!in) return;
@@ -966,7 +966,7 @@ double run_solver(const SolverRun& run, std::optional<double> start, double end_
   std::chrono::steady_clock::time_point stop_time;
   while (!ended) {
     std::this_thread::sleep_for(std::chrono::milliseconds(500));
-    ended = cases::poll_child(pid);
+    ended = util::poll_child(pid);
     if (stop_requests > 0 && !ended && !stop_sent) {
       ::kill(pid, write_and_stop_signal);  // first: the message may go to a pipe a hangup has closed
       out << (interactive ? "\n" : "") << "Stop requested: interFoam writes the current time and stops...\n"
@@ -976,11 +976,11 @@ double run_solver(const SolverRun& run, std::optional<double> start, double end_
     }
     if (stop_sent && !ended &&
         std::chrono::duration<double>(std::chrono::steady_clock::now() - stop_time).count() > 120.0) {
-      ended = cases::stop_child(pid);
+      ended = util::stop_child(pid);
     }
     read_new();
     if (log.failed() && !ended) {
-      ended = cases::stop_child(pid);
+      ended = util::stop_child(pid);
       read_new();
     }
     const auto now = std::chrono::steady_clock::now();
@@ -1036,7 +1036,7 @@ std::optional<std::string> openfoam_path_problem(const fs::path& dir) {
 }
 
 std::optional<double> latest_time(const fs::path& case_dir) {
-  const auto times = cases::time_directories(case_dir, 0.0);
+  const auto times = util::time_directories(case_dir, 0.0);
   if (times.empty()) return std::nullopt;
   return times.back().time_s;
 }
@@ -1098,7 +1098,7 @@ void tailwater_control_after_leg(const fs::path& dir, const TailwaterControlLaw&
   int samples = 0;
   const fs::path surfaces = dir / "postProcessing" / free_surface_function;
   std::vector<double> x, z;
-  for (const auto& [t, time_dir] : cases::time_directories(surfaces)) {
+  for (const auto& [t, time_dir] : util::time_directories(surfaces)) {
     if (t <= previous_step_s + tol || t > leg_end_s + tol) continue;
     // Before a resume, a stop wrote its time off the output grid (4.41491 s): an uninterrupted run has
     // no sample there, so the step does not count it either.
@@ -1137,11 +1137,11 @@ void tailwater_control_after_leg(const fs::path& dir, const TailwaterControlLaw&
   std::vector<fs::path> u_files;
   if (parallel) {
     for (const fs::path& rank : processor_directories(dir)) {
-      const auto times = cases::time_directories(rank, 0.0);
+      const auto times = util::time_directories(rank, 0.0);
       if (!times.empty()) u_files.push_back(times.back().path / "U");
     }
   } else {
-    const auto times = cases::time_directories(dir, 0.0);
+    const auto times = util::time_directories(dir, 0.0);
     if (!times.empty()) u_files.push_back(times.back().path / "U");
   }
   if (u_files.empty()) throw OpenFoamError("tailwater control: no time directory in " + dir.string());
@@ -1174,7 +1174,7 @@ void tailwater_control_after_leg(const fs::path& dir, const TailwaterControlLaw&
 // sentence for the error message (empty when there was nothing to reconstruct).
 std::string reconstruct_written_times(const StepPlace& place, int np) {
   const fs::path& dir = place.dir;
-  auto times = cases::time_directories(dir / "processor0", 0.0);
+  auto times = util::time_directories(dir / "processor0", 0.0);
   while (!times.empty() && !time_directory_complete(times.back().path)) times.pop_back();
   const auto reconstructed = latest_time(dir);
   if (times.empty() || (reconstructed && *reconstructed >= times.back().time_s - 1e-12)) return "";
@@ -1202,10 +1202,10 @@ void run_vof_case_steps(const fs::path& dir, const RunOptions& options, std::ost
                         " is missing (write it with `hydrojump generate SPEC --out DIR`)");
   }
   // One process per case directory (a second one stops here, naming the first).
-  const cases::DirectoryLock lock(dir, "hydrojump vof");
+  const util::DirectoryLock lock(dir, "hydrojump vof");
   // What a run killed outright left half-written (its complete files are all in place).
-  cases::remove_orphaned_temporaries(dir);
-  cases::remove_orphaned_temporaries(dir / "system");
+  util::remove_orphaned_temporaries(dir);
+  util::remove_orphaned_temporaries(dir / "system");
   const StepPlace place{dir, out, lock};
   // Ctrl-C, SIGTERM or a hangup from here on stop the run at its next safe point.
   const StopRequestGuard stop_guard;
@@ -1230,7 +1230,7 @@ void run_vof_case_steps(const fs::path& dir, const RunOptions& options, std::ost
   // against its record below.)
   const bool starts_afresh = !latest_time(dir) && !latest_time(dir / "processor0");
   if (const fs::path generated = dir / generated_case_file_name; starts_afresh && fs::exists(generated)) {
-    const auto d = cases::first_setting_difference(cases::read_text_file(generated), cases::read_text_file(spec_file));
+    const auto d = cases::first_setting_difference(util::read_text_file(generated), util::read_text_file(spec_file));
     if (d.any()) {
       throw OpenFoamError(spec_file.string() + " was edited after `hydrojump generate` wrote the OpenFOAM dictionaries "
                           "from it: it has '" + d.b + "' where they were written with '" + d.a +
@@ -1310,7 +1310,7 @@ void run_vof_case_steps(const fs::path& dir, const RunOptions& options, std::ost
     const std::vector<fs::path> ranks = continue_decomposed ? processor_directories(dir) : std::vector<fs::path>{dir};
     std::map<double, std::string> times;
     for (const fs::path& rank : ranks)
-      for (const auto& [t, path] : cases::time_directories(rank, 0.0)) times.emplace(t, path.filename().string());
+      for (const auto& [t, path] : util::time_directories(rank, 0.0)) times.emplace(t, path.filename().string());
     const auto complete_everywhere = [&ranks](const std::string& name) {
       for (const fs::path& rank : ranks) {
         if (!time_directory_complete(rank / name)) return false;
@@ -1334,13 +1334,13 @@ void run_vof_case_steps(const fs::path& dir, const RunOptions& options, std::ost
     std::error_code ec;
     for (fs::directory_iterator fo(dir / "postProcessing", ec), end; !ec && fo != end; fo.increment(ec)) {
       if (!fo->is_directory(ec)) continue;
-      for (const auto& [t, path] : cases::time_directories(fo->path(), start.value_or(0.0) + 1e-12))
+      for (const auto& [t, path] : util::time_directories(fo->path(), start.value_or(0.0) + 1e-12))
         move_aside(path, "abandoned", "the abandoned samples");
     }
     if (continue_decomposed) {
       // reconstructPar -newTimes skips a time already at the top level, so a reconstruction killed
       // while writing would stay half-written there: move it aside to be reconstructed again.
-      auto reconstructed = cases::time_directories(dir, 0.0);
+      auto reconstructed = util::time_directories(dir, 0.0);
       while (!reconstructed.empty() && !time_directory_complete(reconstructed.back().path)) {
         out << "  reconstructed time directory " << reconstructed.back().path.filename().string()
             << " is incomplete: moved to " << move_incomplete_aside(reconstructed.back().path)
@@ -1391,7 +1391,7 @@ void run_vof_case_steps(const fs::path& dir, const RunOptions& options, std::ost
     out << "Checking the mesh\n";
     run_step(place, {"checkMesh"}, "log.checkMesh");
     {
-      const std::string text = cases::read_text_file(dir / "log.checkMesh");
+      const std::string text = util::read_text_file(dir / "log.checkMesh");
       if (text.find("Mesh OK.") == std::string::npos) {
         std::string report;
         std::istringstream lines(text);
@@ -1422,14 +1422,14 @@ void run_vof_case_steps(const fs::path& dir, const RunOptions& options, std::ost
   if (parallel) {
     const bool decomposed_current = start && continue_decomposed && existing_ranks == options.np;
     if (!decomposed_current) {
-      cases::write_file_atomically(
+      util::write_file_atomically(
           dir / "system/decomposeParDict",
           foam::format_file({"dictionary", "system", "decomposeParDict"}, decompose_par_dict(options.np)));
       std::vector<std::string> argv = {"decomposePar", "-force"};
       if (start) argv.push_back("-latestTime");
       // Until it has finished, processor*/ are not a decomposition to resume from.
       if (stop_requests > 0) throw StepStopped("interrupted: stopped on request before decomposePar.");
-      cases::write_file_atomically(dir / decomposing_marker, "decomposePar started by hydrojump vof\n");
+      util::write_file_atomically(dir / decomposing_marker, "decomposePar started by hydrojump vof\n");
       run_step(place, argv, "log.decomposePar");
       fs::remove(dir / decomposing_marker);
     }

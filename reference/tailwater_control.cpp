@@ -13,12 +13,12 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "cases/atomic_file.hpp"
-#include "cases/csv_table.hpp"
+#include "util/atomic_file.hpp"
+#include "util/csv_table.hpp"
 #include "cases/hydraulics.hpp"
 #include "cases/jump_toe.hpp"
 #include "reference/foam_dictionary.hpp"
-#include "cases/fingerprint.hpp"
+#include "util/fingerprint.hpp"
 
 namespace hydrojump::reference {
 
@@ -177,7 +177,7 @@ UmeanEntry find_umean(const std::string& text, const fs::path& file) {
 namespace {
 std::string read_field_file(const fs::path& u_file) {
   if (!fs::is_regular_file(u_file)) throw std::runtime_error(u_file.string() + ": no such field file");
-  return cases::read_text_file(u_file);
+  return util::read_text_file(u_file);
 }
 }  // namespace
 
@@ -185,7 +185,7 @@ double read_outlet_mean_velocity(const fs::path& u_file) {
   const std::string text = read_field_file(u_file);
   const UmeanEntry e = find_umean(text, u_file);
   const std::string value = text.substr(e.value_begin, e.value_end - e.value_begin);
-  const double v = cases::csv_number(value);
+  const double v = util::csv_number(value);
   if (!std::isfinite(v)) throw std::runtime_error(u_file.string() + ": the outlet's Umean \"" + value + "\" is not a number");
   return v;
 }
@@ -194,12 +194,12 @@ void write_outlet_mean_velocity(const fs::path& u_file, double umean_m_s) {
   if (!std::isfinite(umean_m_s)) throw std::invalid_argument("outlet Umean must be finite");
   std::string text = read_field_file(u_file);
   const UmeanEntry e = find_umean(text, u_file);
-  if (!std::isfinite(cases::csv_number(text.substr(e.value_begin, e.value_end - e.value_begin)))) {
+  if (!std::isfinite(util::csv_number(text.substr(e.value_begin, e.value_end - e.value_begin)))) {
     throw std::runtime_error(u_file.string() + ": the outlet's Umean \"" +
                              text.substr(e.value_begin, e.value_end - e.value_begin) + "\" is not a number");
   }
   text.replace(e.value_begin, e.value_end - e.value_begin, foam::format_number(umean_m_s));
-  cases::write_file_atomically(u_file, text);
+  util::write_file_atomically(u_file, text);
 }
 
 namespace {
@@ -210,7 +210,7 @@ std::vector<TailwaterControlStep> read_tailwater_control_log(const fs::path& cas
   std::vector<TailwaterControlStep> steps;
   const fs::path file = case_dir / tailwater_control_log;
   if (!fs::exists(file)) return steps;
-  const cases::CsvTable table = cases::read_csv_table(file);
+  const util::CsvTable table = util::read_csv_table(file);
   const auto col = [&](const char* name) {
     const auto c = table.column(name);
     if (!c) throw std::runtime_error(file.string() + ": no column \"" + name + "\" (expected " + log_header + ")");
@@ -230,13 +230,13 @@ std::vector<TailwaterControlStep> read_tailwater_control_log(const fs::path& cas
     if (row.size() != table.header.size())
       throw damaged(std::to_string(row.size()) + " columns where the header has " + std::to_string(table.header.size()));
     TailwaterControlStep s;
-    s.time_s = cases::csv_number(row[t]);
-    s.toe_x_m = cases::csv_number(row[x]);
-    const double outputs = cases::csv_number(row[n]);
+    s.time_s = util::csv_number(row[t]);
+    s.toe_x_m = util::csv_number(row[x]);
+    const double outputs = util::csv_number(row[n]);
     s.toe_outputs = std::isfinite(outputs) && outputs >= 0.0 && outputs < 1e9 ? static_cast<int>(outputs) : 0;
-    s.water_volume_m2 = cases::csv_number(row[v]);
-    s.volume_target_m2 = cases::csv_number(row[vt]);
-    s.outlet_mean_velocity_m_s = cases::csv_number(row[u]);
+    s.water_volume_m2 = util::csv_number(row[v]);
+    s.volume_target_m2 = util::csv_number(row[vt]);
+    s.outlet_mean_velocity_m_s = util::csv_number(row[u]);
     if (!std::isfinite(s.time_s) || !std::isfinite(s.water_volume_m2) || !std::isfinite(s.volume_target_m2) ||
         !std::isfinite(s.outlet_mean_velocity_m_s) || !std::isfinite(outputs))
       throw damaged("a row with a value that is not a finite number");
@@ -258,7 +258,7 @@ std::string log_row(const TailwaterControlStep& step) {
 void write_log(const fs::path& case_dir, const std::vector<TailwaterControlStep>& rows) {
   std::string text = std::string(log_header) + "\n";
   for (const TailwaterControlStep& r : rows) text += log_row(r);
-  cases::write_file_atomically(case_dir / tailwater_control_log, text);
+  util::write_file_atomically(case_dir / tailwater_control_log, text);
 }
 }  // namespace
 

@@ -29,4 +29,4 @@ done
 [ "$has_resolution" -eq 1 ] || filtered+=(--resolution quick)
 [ "$has_out" -eq 1 ] || filtered+=(--out study)
 export OMP_WAIT_POLICY="${OMP_WAIT_POLICY:-passive}"
-exec "$build_dir/compare/hydrojump" study "$spec" "${filtered[@]}"
+exec "$build_dir/hydrojump" study "$spec" "${filtered[@]}"

@@ -3,7 +3,7 @@
 # HYDROJUMP_SANITIZE) into ./build-sanitize and runs them; the first error a sanitizer finds stops its
 # test with a stack trace, and the script exits non-zero.
 #
-# Which tests: the unit tests of cases/, sph/ and compare/ and the study runner's (test_cases, sph_tests,
+# Which tests: the unit tests of util/, cases/, sph/ and compare/ and the study runner's (test_util, test_cases, sph_tests,
 # compare_tests, test_study), without the [slow] ones. The tests that run the whole program or OpenFOAM
 # (compare_integration_tests, reference_*) run in the plain build only: under the sanitizers their
 # solver runs take several times longer, and OpenFOAM's own processes are not instrumented.
@@ -18,7 +18,7 @@
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build_dir="${SANITIZE_BUILD_DIR:-$here/build-sanitize}"
-targets=(test_cases sph_tests compare_tests test_study)
+targets=(test_util test_cases sph_tests compare_tests test_study)
 exclude="slow"
 if [ "${1:-}" = "--short" ]; then
   exclude="slow|long"

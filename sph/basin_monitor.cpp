@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "cases/csv_table.hpp"
+#include "util/csv_table.hpp"
 #include "cases/hydraulics.hpp"
 #include "cases/jump_toe.hpp"
 #include "cases/output_times.hpp"
@@ -252,7 +252,7 @@ void BasinMonitor::restore(const std::vector<std::string>& csv_rows) {
   samples_.clear();
   for (const auto& row : csv_rows) {
     std::vector<double> v;
-    for (const auto& cell : cases::split_csv_line(row)) v.push_back(cases::csv_number(cell));  // "nan" -> NaN
+    for (const auto& cell : util::split_csv_line(row)) v.push_back(util::csv_number(cell));  // "nan" -> NaN
     const std::size_t n_sec = setup_.sections.size();
     if (v.size() != 8 + 3 * n_sec) throw std::runtime_error("basin monitor: a checkpoint row does not match the case");
     BasinSample s;

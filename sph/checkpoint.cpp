@@ -12,8 +12,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "cases/atomic_file.hpp"
-#include "cases/fingerprint.hpp"
+#include "util/atomic_file.hpp"
+#include "util/fingerprint.hpp"
 
 namespace hydrojump::sph {
 
@@ -112,8 +112,8 @@ void write_checkpoint(const Checkpoint& c, const std::filesystem::path& file) {
     out.write(kMagic, sizeof kMagic);  // trailer: a complete payload ends with the magic again
   }
   std::string bytes = std::move(out).str();
-  bytes += cases::fingerprint(bytes);
-  cases::write_file_atomically(file, bytes);
+  bytes += util::fingerprint(bytes);
+  util::write_file_atomically(file, bytes);
 }
 
 namespace {
@@ -173,7 +173,7 @@ Checkpoint read_checkpoint(const std::filesystem::path& file) {
   if (bytes.size() < 2 * sizeof kMagic + kChecksumBytes || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0)
     throw std::runtime_error("'" + file.string() + "' is not a hydrojump SPH checkpoint");
   const std::string_view payload(bytes.data(), bytes.size() - kChecksumBytes);
-  if (cases::fingerprint(payload) != std::string_view(bytes).substr(payload.size()))
+  if (util::fingerprint(payload) != std::string_view(bytes).substr(payload.size()))
     throw std::runtime_error("checkpoint '" + file.string() + "' is truncated or corrupt (its checksum does not match "
                              "its contents: it was changed or damaged after it was written); start the run again "
                              "with --restart");

@@ -1,11 +1,11 @@
 #include "sph/cli.hpp"
 
-#include "cases/atomic_file.hpp"
-#include "cases/cli_checks.hpp"
-#include "cases/directory_lock.hpp"
-#include "cases/fingerprint.hpp"
+#include "util/atomic_file.hpp"
+#include "util/cli_checks.hpp"
+#include "util/directory_lock.hpp"
+#include "util/fingerprint.hpp"
 #include "cases/results_case.hpp"
-#include "cases/stop_signals.hpp"
+#include "util/stop_signals.hpp"
 #include "hydrojump/version.hpp"
 
 #include <atomic>
@@ -46,7 +46,7 @@ std::string run_fingerprint(const std::string& case_text) {
     kept += line;
     kept += '\n';
   }
-  return cases::fingerprint(kept + "\ncode " + solver_fingerprint);
+  return util::fingerprint(kept + "\ncode " + solver_fingerprint);
 }
 
 namespace {
@@ -77,9 +77,9 @@ int run_sph_directory(const SphOptions& opt) {
                              "`hydrojump sph` runs the SPH directory beside it, " + (named.parent_path() / "sph").string());
   }
   // One process per run directory (a second one stops here, naming the first).
-  const cases::DirectoryLock lock(dir, "hydrojump sph");
+  const util::DirectoryLock lock(dir, "hydrojump sph");
   // What a run killed outright left half-written (its complete files are all in place).
-  cases::remove_orphaned_temporaries(dir);
+  util::remove_orphaned_temporaries(dir);
   if (opt.threads > 0) omp_set_num_threads(opt.threads);
   const cases::Study study = cases::load_study(case_file);
   if (study.cases.size() != 1)
@@ -112,7 +112,7 @@ int run_sph_directory(const SphOptions& opt) {
   ro.output_interval_s = c.run.output_interval_s;
   ro.checkpoint_interval_wall_s = c.sph.checkpoint_interval_wall_s;
   // The resolved case and the program version: a checkpoint only resumes the run it was written for.
-  ro.fingerprint = run_fingerprint(cases::read_text_file(case_file));
+  ro.fingerprint = run_fingerprint(util::read_text_file(case_file));
   for (const auto& section : geometry.sections) ro.gauges.push_back({section.name, section.x_m});
   if (ro.gauges.empty()) ro.gauges.push_back({"centre", 0.5 * (geometry.x_min_m + geometry.x_max_m)});
   ro.bed_elevation = [bed = geometry.bed](double x) { return bed.elevation(x); };
@@ -216,12 +216,12 @@ int run_sph_directory(const SphOptions& opt) {
     // goes to a pipe would otherwise fail that write (EINTR) and leave std::cerr in a failed state,
     // silencing the messages that follow ("checkpoint written"). SIGPIPE is ignored, so that a reader
     // of the progress that goes away (a closed `| tee`) cannot kill the run before its checkpoint.
-    const cases::StopSignalHandlers handlers(request_stop, {.restart_interrupted_calls = true, .ignore_sigpipe = true});
+    const util::StopSignalHandlers handlers(request_stop, {.restart_interrupted_calls = true, .ignore_sigpipe = true});
     status = run_case(*solver, ro, checkpoint);
   }
   if (status == RunStatus::interrupted) {
     const int sig = g_stop_signal.load();
-    std::cerr << "hydrojump sph: stopped by " << cases::stop_signal_name(sig) << " at t = " << solver->time()
+    std::cerr << "hydrojump sph: stopped by " << util::stop_signal_name(sig) << " at t = " << solver->time()
               << " s; checkpoint written to " << ck.string() << " (continue with --resume)\n";
     return 128 + sig;
   }
@@ -249,7 +249,7 @@ void register_commands(CLI::App& app) {
   sph->add_option("--threads", opt->threads, "OpenMP threads (default: OMP_NUM_THREADS or all cores)")
       ->check(CLI::Range(1, 1024));
   sph->add_option("--end-time", opt->end_time, "stop at this simulated time in s instead of the case's end_time_s")
-      ->check(cases::positive_finite_number());
+      ->check(util::positive_finite_number());
   sph->add_flag("--quiet", opt->quiet, "no progress line");
   sph->callback([opt]() {
     if (opt->resume && opt->restart) throw CLI::ValidationError("--resume and --restart", "choose one of them");
@@ -270,7 +270,7 @@ void register_commands(CLI::App& app) {
   bench->add_option("--steps", bench_opt->max_steps, "stop after N steps (a quick figure)")->check(CLI::Range(std::int64_t{1}, std::int64_t{1000000000}));
   bench->add_option("--threads", bench_opt->threads, "OpenMP threads")->check(CLI::Range(1, 1024));
   bench->add_option("--end-time", bench_opt->end_time_s, "physical time to simulate in s (default 0.3)")
-      ->check(cases::positive_finite_number());
+      ->check(util::positive_finite_number());
   bench->add_option("--dx", bench_opt->particle_spacing_m, "particle spacing in m (default 0.01)")
       ->check(CLI::Range(0.002, 0.1));
   bench->add_option("--model", bench_opt->model, "\"dualsphysics\" (default: DualSPHysics-comparable settings) or \"jump\"")

@@ -8,7 +8,7 @@
 #include <ostream>
 #include <sstream>
 
-#include "cases/atomic_file.hpp"
+#include "util/atomic_file.hpp"
 #include "sph/kernel.hpp"
 #include "sph/particle_health.hpp"
 #include "sph/vtk_output.hpp"
@@ -125,7 +125,7 @@ class RunState {
 
   // run_log.csv, gauges.csv and (stilling basins) basin.csv and summary.json from the rows so far.
   void write_tables() const {
-    cases::write_file_atomically(
+    util::write_file_atomically(
         o_.dir / "run_log.csv",
         join("t_s,step,dt_s,fluid_mass_kg_per_m,kinetic_energy_J_per_m,potential_energy_J_per_m,max_density_variation,"
              "fluid_particles,inflow_mass_kg_per_m,outflow_mass_kg_per_m",
@@ -134,10 +134,10 @@ class RunState {
     for (const auto& gauge : o_.gauges)
       header += ",surface_z_" + gauge.name + "_m,u_" + gauge.name + "_m_s,w_" + gauge.name + "_m_s";
     if (o_.record_front) header += ",front_x_m";
-    cases::write_file_atomically(o_.dir / "gauges.csv", join(header, gauge_rows_));
+    util::write_file_atomically(o_.dir / "gauges.csv", join(header, gauge_rows_));
     if (basin_) {
-      cases::write_file_atomically(o_.dir / "basin.csv", basin_->csv());
-      cases::write_file_atomically(o_.dir / "summary.json", basin_->summary_json());
+      util::write_file_atomically(o_.dir / "basin.csv", basin_->csv());
+      util::write_file_atomically(o_.dir / "summary.json", basin_->summary_json());
     }
   }
 
@@ -367,7 +367,7 @@ RunStatus run_case(Solver& solver, const RunOptions& o, const std::optional<Chec
         Solver copy = solver;
         copy.update_pressure();
         write_particles_vtp(copy.particles(), o.dir / "failure_state.vtp");
-        cases::write_file_atomically(o.dir / "failure.txt", message + "\n");
+        util::write_file_atomically(o.dir / "failure.txt", message + "\n");
       } catch (const std::exception&) {
         // The diagnosis itself is what matters.
       }

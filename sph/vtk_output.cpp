@@ -16,7 +16,7 @@
 #include <vtkXMLPolyDataReader.h>
 #include <vtkXMLPolyDataWriter.h>
 
-#include "cases/atomic_file.hpp"
+#include "util/atomic_file.hpp"
 
 namespace hydrojump::sph {
 
@@ -57,7 +57,7 @@ void write_particles_vtp(const ParticleSet& ps, const std::filesystem::path& fil
   poly->GetPointData()->AddArray(pressure);
   poly->GetPointData()->AddArray(type);
   poly->GetPointData()->AddArray(id);
-  cases::write_via_temporary(file, [&](const std::filesystem::path& tmp) {
+  util::write_via_temporary(file, [&](const std::filesystem::path& tmp) {
     vtkNew<vtkXMLPolyDataWriter> writer;
     writer->SetFileName(tmp.string().c_str());
     writer->SetInputData(poly);
@@ -119,7 +119,7 @@ void ParticleSeries::write_pvd() const {
   for (const auto& [t, file] : entries_)
     s << "    <DataSet timestep=\"" << t << "\" group=\"\" part=\"0\" file=\"" << file << "\"/>\n";
   s << "  </Collection>\n</VTKFile>\n";
-  cases::write_file_atomically(pvd_path(), s.str());
+  util::write_file_atomically(pvd_path(), s.str());
 }
 
 }  // namespace hydrojump::sph

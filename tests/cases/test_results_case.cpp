@@ -4,12 +4,13 @@
 
 #include <fstream>
 
-#include "cases/fingerprint.hpp"
+#include "util/fingerprint.hpp"
 #include "cases/results_case.hpp"
 #include "tests/temp_dir.hpp"
 
 namespace fs = std::filesystem;
 using namespace hydrojump::cases;
+namespace util = hydrojump::util;
 
 namespace {
 
@@ -94,7 +95,7 @@ TEST_CASE("results_case: results are refused under a case.toml other than the on
   CHECK_NOTHROW(require_results_of(sph, dir / "other.toml"));
   // A run starts: its case is recorded; then the case.toml beside it is edited by hand.
   record_results_case(sph);
-  CHECK(read_text_file(sph / results_case_file_name) == resolved_case);
+  CHECK(util::read_text_file(sph / results_case_file_name) == resolved_case);
   write(sph / "summary.json", "{}\n");
   CHECK_NOTHROW(require_results_of(sph, sph / "case.toml"));
   std::string edited = resolved_case;

@@ -8,14 +8,15 @@
 #include <regex>
 #include <string>
 
-#include "cases/atomic_file.hpp"
-#include "cases/fingerprint.hpp"
+#include "util/atomic_file.hpp"
+#include "util/fingerprint.hpp"
 #include "cases/geometry.hpp"
 #include "cases/results_case.hpp"
 #include "cases/spec_reader.hpp"
 #include "tests/temp_dir.hpp"
 
 using namespace hydrojump::cases;
+namespace util = hydrojump::util;
 
 namespace {
 
@@ -148,12 +149,12 @@ TEST_CASE("A missing study file, a directory in its place and a directory as the
   REQUIRE(::mkfifo((tmp.path() / "pipe.toml").c_str(), 0600) == 0);
   CHECK_THROWS_WITH(load_study(tmp.path() / "pipe.toml"), Catch::Contains("pipe.toml: is not a regular file"));
 
-  std::string dam = read_text_file(source_dir + "/cases/dam_break.toml");
+  std::string dam = util::read_text_file(source_dir + "/cases/dam_break.toml");
   const auto at = dam.find("front_file = \"");
   REQUIRE(at != std::string::npos);
   const auto end = dam.find('\n', at);
   dam = dam.substr(0, at) + "front_file = \"front\"" + dam.substr(end);
-  write_file_atomically(tmp.path() / "dam.toml", dam);
+  util::write_file_atomically(tmp.path() / "dam.toml", dam);
   fs::create_directories(tmp.path() / "front");
   CHECK_THROWS_WITH(load_study(tmp.path() / "dam.toml"),
                     Catch::Contains("front_file") && Catch::Contains("is a directory, not a CSV file"));
@@ -161,7 +162,7 @@ TEST_CASE("A missing study file, a directory in its place and a directory as the
   CHECK_THROWS_WITH(load_study(tmp.path() / "dam.toml"), Catch::Contains("front_file") && Catch::Contains("no such file"));
   // Not a table of the front: another file, too few rows, a damaged row, time going back, a device.
   const auto refused_front = [&](const std::string& text, const std::string& reason) {
-    write_file_atomically(tmp.path() / "front", text);
+    util::write_file_atomically(tmp.path() / "front", text);
     CHECK_THROWS_WITH(load_study(tmp.path() / "dam.toml"), Catch::Contains("front_file") && Catch::Contains(reason));
   };
   refused_front("root:x:0:0:root:/root:/bin/bash\n", "has no header line with the columns t_s and x_front_over_L");
@@ -169,7 +170,7 @@ TEST_CASE("A missing study file, a directory in its place and a directory as the
   refused_front("# comment\nt_s,x_front_over_L\n0,1\n", "holds 1 row(s) of the front; at least 2 are needed");
   refused_front("t_s,x_front_over_L\n0,1\n0.1,abc\n", "line 3 is not a row of 2 cells with numbers");
   refused_front("t_s,x_front_over_L\n0.2,1\n0.1,1.5\n", "line 3: t_s does not increase");
-  write_file_atomically(tmp.path() / "front", "# the front\nt_s,x_front_over_L\n0,1\n0.1,1.2\n");
+  util::write_file_atomically(tmp.path() / "front", "# the front\nt_s,x_front_over_L\n0,1\n0.1,1.2\n");
   CHECK_NOTHROW(load_study(tmp.path() / "dam.toml"));
   fs::remove(tmp.path() / "front");
   fs::create_symlink("/dev/zero", tmp.path() / "front");
@@ -185,18 +186,18 @@ TEST_CASE("A resolved dam-break case carries its measured front and can be moved
   fs::create_directories(first);
   write_resolved_case(dam, dam.cases[0], "quick", first / "case.toml");
   // The case file names its copy relatively, not the spec's data file by an absolute path.
-  const std::string text = read_text_file(first / "case.toml");
+  const std::string text = util::read_text_file(first / "case.toml");
   CHECK(text.find("front_file = \"measured_front.csv\"") != std::string::npos);
   CHECK(text.find(dam.cases[0].dam_break()->measured_front_file.string()) == std::string::npos);
   fs::rename(first, moved);
   const Study reloaded = load_study(moved / "case.toml");
   const fs::path copy = reloaded.cases[0].dam_break()->measured_front_file;
   CHECK(fs::equivalent(copy, moved / "measured_front.csv"));
-  CHECK(read_text_file(copy) == read_text_file(dam.cases[0].dam_break()->measured_front_file));
+  CHECK(util::read_text_file(copy) == util::read_text_file(dam.cases[0].dam_break()->measured_front_file));
   // Written again into its own directory (as `sph` does), the copy stays as it is.
   write_resolved_case(reloaded, reloaded.cases[0], "quick", moved / "case.toml");
-  CHECK(read_text_file(copy) == read_text_file(dam.cases[0].dam_break()->measured_front_file));
-  CHECK(setting_lines(read_text_file(moved / "case.toml")) == setting_lines(text));
+  CHECK(util::read_text_file(copy) == util::read_text_file(dam.cases[0].dam_break()->measured_front_file));
+  CHECK(setting_lines(util::read_text_file(moved / "case.toml")) == setting_lines(text));
 }
 
 TEST_CASE("Unknown keys are rejected with file, line and key", "[cases][spec][reject]") {

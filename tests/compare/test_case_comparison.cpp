@@ -12,8 +12,8 @@
 
 #include <sys/wait.h>
 
-#include "cases/csv_table.hpp"
-#include "cases/fingerprint.hpp"
+#include "util/csv_table.hpp"
+#include "util/fingerprint.hpp"
 #include "cases/geometry.hpp"
 #include "cases/hydraulics.hpp"
 #include "cases/spec_reader.hpp"
@@ -205,7 +205,7 @@ TEST_CASE("compare_case_directory on a synthetic jump gives both methods with me
   {
     // One row per frame in the window, in time order per method, each frame's toe where the mean surface's is
     // (the synthetic jump stands still).
-    const cases::CsvTable toes = cases::read_csv_table(fx.run() / "csv" / "toe_frames.csv");
+    const util::CsvTable toes = util::read_csv_table(fx.run() / "csv" / "toe_frames.csv");
     REQUIRE(toes.header == std::vector<std::string>{"method", "time_s", "toe_x_m"});
     REQUIRE(toes.rows.size() == 5u);
     const std::vector<std::string> methods{"sph", "sph", "sph", "vof", "vof"};
@@ -214,14 +214,14 @@ TEST_CASE("compare_case_directory on a synthetic jump gives both methods with me
       INFO("row " << k);
       REQUIRE(toes.rows[k].size() == 3u);
       CHECK(toes.rows[k][0] == methods[k]);
-      CHECK(cases::csv_number(toes.rows[k][1]) == Approx(times[k]).margin(1e-9));
-      CHECK(cases::csv_number(toes.rows[k][2]) == Approx(c.sph.metrics.toe_x_m).margin(0.01));
+      CHECK(util::csv_number(toes.rows[k][1]) == Approx(times[k]).margin(1e-9));
+      CHECK(util::csv_number(toes.rows[k][2]) == Approx(c.sph.metrics.toe_x_m).margin(0.01));
     }
   }
   {
     // The stations' means are over their wet frames: how many there were stands beside each mean (every
     // station on the synthetic jump is wet in every frame).
-    const cases::CsvTable lon = cases::read_csv_table(fx.run() / "csv" / "longitudinal.csv");
+    const util::CsvTable lon = util::read_csv_table(fx.run() / "csv" / "longitudinal.csv");
     REQUIRE(lon.header.size() >= 2u);
     CHECK(lon.header[lon.header.size() - 2] == "n_times");
     CHECK(lon.header.back() == "n_wet");
@@ -229,8 +229,8 @@ TEST_CASE("compare_case_directory on a synthetic jump gives both methods with me
     for (const auto& r : lon.rows) {
       REQUIRE(r.size() == lon.header.size());
       const double frames = r[0] == "sph" ? 3.0 : 2.0;
-      CHECK(cases::csv_number(r[r.size() - 2]) == frames);
-      CHECK(cases::csv_number(r.back()) == frames);
+      CHECK(util::csv_number(r[r.size() - 2]) == frames);
+      CHECK(util::csv_number(r.back()) == frames);
     }
   }
   std::ifstream md(fx.run() / "report.md");
@@ -308,14 +308,14 @@ TEST_CASE("A plot script that fails is named with its log, and one bad table cos
   CHECK(fs::exists(plot_log));
   CHECK(fs::exists(fx.run() / "comparison.json"));
   CHECK(fs::exists(fx.run() / "csv" / "eta.csv"));
-  CHECK_THAT(cases::read_text_file(fx.run() / "report.md"), Catch::Contains("Figures unavailable: ") &&
+  CHECK_THAT(util::read_text_file(fx.run() / "report.md"), Catch::Contains("Figures unavailable: ") &&
                                                                Catch::Contains("(log: " + plot_log + ")"));
 
   // The real script on those tables with one column renamed: every other figure, exit status 1, and a
   // last line naming the figure, the file and the column.
   REQUIRE(std::system("/usr/bin/python3 -c 'import matplotlib' > /dev/null 2>&1") == 0);
   const fs::path csv = fx.run() / "csv";
-  std::string lon = cases::read_text_file(csv / "longitudinal.csv");
+  std::string lon = util::read_text_file(csv / "longitudinal.csv");
   lon.replace(lon.find("surface_std_m"), 13, "surface_sd_mm");
   std::ofstream(csv / "longitudinal.csv") << lon;
   const fs::path figs = fx.tmp.path() / "figs";
@@ -323,7 +323,7 @@ TEST_CASE("A plot script that fails is named with its log, and one bad table cos
   const std::string cmd = "/usr/bin/python3 -s '" + script + "' '" + csv.string() + "' '" + figs.string() + "' > '" +
                           (fx.tmp.path() / "plot.out").string() + "' 2>&1";
   const int status = std::system(cmd.c_str());
-  const std::string out = cases::read_text_file(fx.tmp.path() / "plot.out");
+  const std::string out = util::read_text_file(fx.tmp.path() / "plot.out");
   INFO(out);
   CHECK(WIFEXITED(status));
   CHECK(WEXITSTATUS(status) == 1);
@@ -395,7 +395,7 @@ TEST_CASE("An SPH series given with --sph-pvd is checked against the case when a
   // The same series in another directory, made (its case.toml says) with another particle spacing.
   const fs::path other = fx.tmp.path() / "other";
   fs::copy(fx.run() / "sph", other, fs::copy_options::recursive);
-  std::string text = cases::read_text_file(other / "case.toml");
+  std::string text = util::read_text_file(other / "case.toml");
   const std::string key = "particle_spacing_m = ";
   REQUIRE(text.find(key) != std::string::npos);
   text.replace(text.find(key), key.size(), key + "0.02 # ");
@@ -475,7 +475,7 @@ TEST_CASE("A new comparison replaces the previous one's tables and figures inste
   CHECK(fs::exists(out / "csv" / "eta.csv"));
   CHECK_FALSE(fs::exists(out / "csv" / "snapshot_vof.csv"));
   CHECK_FALSE(fs::exists(out / "figures" / "surface.png"));
-  CHECK(cases::read_text_file(out / "report.md").find("surface.png") == std::string::npos);
+  CHECK(util::read_text_file(out / "report.md").find("surface.png") == std::string::npos);
   CHECK_FALSE(fs::exists(out / ".csv.new"));
   CHECK_FALSE(fs::exists(out / ".csv.old"));
   CHECK_FALSE(fs::exists(out / ".figures.old"));

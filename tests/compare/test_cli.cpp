@@ -21,8 +21,8 @@
 
 #include <signal.h>
 
-#include "cases/child_process.hpp"
-#include "cases/directory_lock.hpp"
+#include "util/child_process.hpp"
+#include "util/directory_lock.hpp"
 #include "reference/runner.hpp"
 #include "sph/checkpoint.hpp"
 #include "tests/temp_dir.hpp"
@@ -35,13 +35,13 @@ namespace {
 pid_t start(const std::vector<std::string>& args, const fs::path& log) {
   std::vector<std::string> argv = {HYDROJUMP_EXECUTABLE};
   argv.insert(argv.end(), args.begin(), args.end());
-  hydrojump::cases::ChildCommand command(argv, log);
+  hydrojump::util::ChildCommand command(argv, log);
   command.append_to_log = false;
-  return hydrojump::cases::start_child(command);
+  return hydrojump::util::start_child(command);
 }
 
 int wait_exit_status(pid_t pid) {
-  const hydrojump::cases::ChildExit e = hydrojump::cases::wait_child(pid);
+  const hydrojump::util::ChildExit e = hydrojump::util::wait_child(pid);
   REQUIRE(e.exited);  // it exits by itself after the signal, not killed by it
   return e.exit_code;
 }
@@ -81,12 +81,12 @@ struct KillLeftovers {
   ~KillLeftovers() {
     if (!reaped) {
       ::kill(process, SIGKILL);
-      hydrojump::cases::wait_child(process);
+      hydrojump::util::wait_child(process);
     }
     try {
-      const hydrojump::cases::DirectoryLock lock(dir, "the test");
+      const hydrojump::util::DirectoryLock lock(dir, "the test");
     } catch (const std::exception&) {  // held (or unreadable): its holder runs on
-      const std::string holder = read_text(dir / hydrojump::cases::DirectoryLock::file_name);
+      const std::string holder = read_text(dir / hydrojump::util::DirectoryLock::file_name);
       const auto at = holder.find(holder_label);
       if (at != std::string::npos) ::kill(static_cast<pid_t>(std::atol(holder.c_str() + at + holder_label.size())), SIGKILL);
     }
@@ -119,7 +119,7 @@ TEST_CASE("hydrojump sph stops on SIGTERM, SIGINT and SIGHUP with a checkpoint, 
   // Resumed, then SIGINT (Ctrl-C): 128 + 2, a later checkpoint.
   pid = start({"sph", run.string(), "--resume", "--quiet", "--threads", "1"}, tmp.path() / "run2.log");
   wait_for_rows(run / "run_log.csv", first.log_rows.size() + 2);
-  // A second process on the same directory stops at once, naming the running one (cases/directory_lock.hpp).
+  // A second process on the same directory stops at once, naming the running one (util/directory_lock.hpp).
   CHECK(wait_exit_status(start({"sph", run.string(), "--resume", "--quiet"}, tmp.path() / "second.log")) != 0);
   CHECK_THAT(read_text(tmp.path() / "second.log"),
              Catch::Contains("is in use by another process (hydrojump sph, pid " + std::to_string(pid) + ")"));
@@ -172,7 +172,7 @@ TEST_CASE("hydrojump study killed by SIGKILL: its running SPH stage stops with a
   KillLeftovers leftovers{study, run, "hydrojump sph, pid "};
   wait_for_rows(run / "run_log.csv", 2);
   REQUIRE(::kill(study, SIGKILL) == 0);
-  const hydrojump::cases::ChildExit killed = hydrojump::cases::wait_child(study);
+  const hydrojump::util::ChildExit killed = hydrojump::util::wait_child(study);
   leftovers.reaped = true;
   CHECK(killed.signal == SIGKILL);
 
@@ -186,9 +186,9 @@ TEST_CASE("hydrojump study killed by SIGKILL: its running SPH stage stops with a
     stopped = read_text(stage_log).find("checkpoint written") != std::string::npos;
     if (stopped) {
       try {
-        const hydrojump::cases::DirectoryLock lock(run, "the test");
+        const hydrojump::util::DirectoryLock lock(run, "the test");
         unlocked = true;
-      } catch (const hydrojump::cases::DirectoryBusy&) {
+      } catch (const hydrojump::util::DirectoryBusy&) {
       }
     }
     if (!(stopped && unlocked)) std::this_thread::sleep_for(std::chrono::milliseconds(50));
@@ -220,7 +220,7 @@ TEST_CASE("hydrojump vof killed by SIGKILL: interFoam writes the current time an
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   REQUIRE(::kill(vof, SIGKILL) == 0);
-  CHECK(hydrojump::cases::wait_child(vof).signal == SIGKILL);
+  CHECK(hydrojump::util::wait_child(vof).signal == SIGKILL);
   leftovers.reaped = true;
 
   // The solver (now nobody's child) writes and ends within a minute, and the lock is free again.
@@ -228,9 +228,9 @@ TEST_CASE("hydrojump vof killed by SIGKILL: interFoam writes the current time an
   bool unlocked = false;
   while (!unlocked && std::chrono::steady_clock::now() < deadline) {
     try {
-      const hydrojump::cases::DirectoryLock lock(dir, "the test");
+      const hydrojump::util::DirectoryLock lock(dir, "the test");
       unlocked = true;
-    } catch (const hydrojump::cases::DirectoryBusy&) {
+    } catch (const hydrojump::util::DirectoryBusy&) {
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
     }
   }
@@ -339,10 +339,10 @@ TEST_CASE("hydrojump check stopped by SIGTERM or SIGHUP leaves no scratch direct
   for (const int sig : {SIGTERM, SIGHUP}) {
     const fs::path scratch_parent = tmp.path() / ("tmp" + std::to_string(sig));
     fs::create_directories(scratch_parent);
-    hydrojump::cases::ChildCommand command({HYDROJUMP_EXECUTABLE, "check", std::string(HYDROJUMP_SOURCE_DIR) + "/cases/ead2002.toml"},
+    hydrojump::util::ChildCommand command({HYDROJUMP_EXECUTABLE, "check", std::string(HYDROJUMP_SOURCE_DIR) + "/cases/ead2002.toml"},
                                            tmp.path() / "check.log");
     command.environment = {"TMPDIR=" + scratch_parent.string()};
-    const pid_t pid = hydrojump::cases::start_child(command);
+    const pid_t pid = hydrojump::util::start_child(command);
     // Stopped once its scratch directory exists (within 60 s).
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
     bool made = false;
@@ -352,7 +352,7 @@ TEST_CASE("hydrojump check stopped by SIGTERM or SIGHUP leaves no scratch direct
     }
     REQUIRE(made);
     REQUIRE(::kill(pid, sig) == 0);
-    const hydrojump::cases::ChildExit e = hydrojump::cases::wait_child(pid);
+    const hydrojump::util::ChildExit e = hydrojump::util::wait_child(pid);
     INFO("signal " << sig << ": " << e.describe() << "\n" << read_text(tmp.path() / "check.log"));
     CHECK(e.status() != 0);
     CHECK(fs::directory_iterator(scratch_parent) == fs::directory_iterator());  // nothing left
@@ -360,20 +360,20 @@ TEST_CASE("hydrojump check stopped by SIGTERM or SIGHUP leaves no scratch direct
   // Under nohup (SIGHUP ignored) a hangup is no stop request: the check finishes.
   const fs::path scratch_parent = tmp.path() / "tmp_nohup";
   fs::create_directories(scratch_parent);
-  hydrojump::cases::ChildCommand command({HYDROJUMP_EXECUTABLE, "check", std::string(HYDROJUMP_SOURCE_DIR) + "/cases/ead2002.toml"},
+  hydrojump::util::ChildCommand command({HYDROJUMP_EXECUTABLE, "check", std::string(HYDROJUMP_SOURCE_DIR) + "/cases/ead2002.toml"},
                                          tmp.path() / "nohup.log");
   command.environment = {"TMPDIR=" + scratch_parent.string()};
   struct sigaction ignore {}, previous {};
   ignore.sa_handler = SIG_IGN;
   sigemptyset(&ignore.sa_mask);
   ::sigaction(SIGHUP, &ignore, &previous);
-  const pid_t pid = hydrojump::cases::start_child(command);  // inherits SIGHUP ignored, as under nohup
+  const pid_t pid = hydrojump::util::start_child(command);  // inherits SIGHUP ignored, as under nohup
   ::sigaction(SIGHUP, &previous, nullptr);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
   while (fs::directory_iterator(scratch_parent) == fs::directory_iterator() && std::chrono::steady_clock::now() < deadline)
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   REQUIRE(::kill(pid, SIGHUP) == 0);
-  const hydrojump::cases::ChildExit e = hydrojump::cases::wait_child(pid);
+  const hydrojump::util::ChildExit e = hydrojump::util::wait_child(pid);
   INFO(read_text(tmp.path() / "nohup.log"));
   CHECK(e.status() == 0);
   CHECK_THAT(read_text(tmp.path() / "nohup.log"), Catch::Contains("every case generates at every resolution"));

@@ -21,7 +21,7 @@
 
 #include <signal.h>
 
-#include "cases/child_process.hpp"
+#include "util/child_process.hpp"
 #include "sph/checkpoint.hpp"
 #include "tests/temp_dir.hpp"
 
@@ -34,9 +34,9 @@ constexpr const char* end_time = "0.15";
 pid_t start(const std::vector<std::string>& args, const fs::path& log) {
   std::vector<std::string> argv = {HYDROJUMP_EXECUTABLE};
   argv.insert(argv.end(), args.begin(), args.end());
-  hydrojump::cases::ChildCommand command(argv, log);
+  hydrojump::util::ChildCommand command(argv, log);
   command.append_to_log = true;
-  return hydrojump::cases::start_child(command);
+  return hydrojump::util::start_child(command);
 }
 
 std::string read_bytes(const fs::path& file) {
@@ -56,7 +56,7 @@ std::vector<std::pair<std::string, std::string>> outputs_of(const fs::path& dir)
   return files;
 }
 
-// Whether a temporary file of a checkpoint being written (cases/atomic_file.hpp) is there now.
+// Whether a temporary file of a checkpoint being written (util/atomic_file.hpp) is there now.
 bool checkpoint_being_written(const fs::path& dir) {
   for (const auto& e : fs::directory_iterator(dir))
     if (e.path().filename().string().rfind(".checkpoint.bin.tmp.", 0) == 0) return true;
@@ -68,7 +68,7 @@ fs::path generated_run(const fs::path& top) {
   const std::string spec = std::string(HYDROJUMP_SOURCE_DIR) + "/cases/dam_break.toml";
   fs::create_directories(top);
   const pid_t g = start({"generate", spec, "--out", top.string(), "--resolution", "quick"}, top / "generate.log");
-  REQUIRE(hydrojump::cases::wait_child(g).exit_code == 0);
+  REQUIRE(hydrojump::util::wait_child(g).exit_code == 0);
   const fs::path dir = top / "dam_break" / "sph";
   std::string text = read_bytes(dir / "case.toml");
   const std::string key = "checkpoint_interval_wall_s = 300.0";
@@ -89,7 +89,7 @@ TEST_CASE("hydrojump sph killed at random moments and resumed each time ends as 
 
   const pid_t r = start({"sph", reference.string(), "--quiet", "--threads", "1", "--end-time", end_time},
                         tmp.path() / "reference.log");
-  REQUIRE(hydrojump::cases::wait_child(r).exit_code == 0);
+  REQUIRE(hydrojump::util::wait_child(r).exit_code == 0);
 
   const char* fixed_seed = std::getenv("HYDROJUMP_KILL_SEED");
   const unsigned seed = fixed_seed ? static_cast<unsigned>(std::strtoul(fixed_seed, nullptr, 10)) : std::random_device{}();
@@ -112,7 +112,7 @@ TEST_CASE("hydrojump sph killed at random moments and resumed each time ends as 
       std::this_thread::sleep_for(std::chrono::microseconds(during_write ? 200 : 2000));
     }
     ::kill(pid, SIGKILL);
-    const hydrojump::cases::ChildExit e = hydrojump::cases::wait_child(pid);
+    const hydrojump::util::ChildExit e = hydrojump::util::wait_child(pid);
     if (e.exited) {  // it ended (the end reached, or an error) before the kill
       REQUIRE(e.exit_code == 0);
       ++finished_early;
@@ -129,7 +129,7 @@ TEST_CASE("hydrojump sph killed at random moments and resumed each time ends as 
   // The rest of the run, resumed once more to its end.
   const pid_t last = start({"sph", killed.string(), "--resume", "--quiet", "--threads", "1", "--end-time", end_time},
                            tmp.path() / "killed.log");
-  REQUIRE(hydrojump::cases::wait_child(last).exit_code == 0);
+  REQUIRE(hydrojump::util::wait_child(last).exit_code == 0);
 
   const auto expected = outputs_of(reference);
   const auto got = outputs_of(killed);

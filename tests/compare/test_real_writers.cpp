@@ -13,7 +13,7 @@
 
 #include "cases/spec_reader.hpp"
 #include "compare/case_comparison.hpp"
-#include "compare/generate.hpp"
+#include "app/generate.hpp"
 #include "../sph/basin_fixture.hpp"
 #include "sph/basin_monitor.hpp"
 #include "tests/temp_dir.hpp"
@@ -31,7 +31,7 @@ TEST_CASE("The initial states written by the SPH generator and the OpenFOAM writ
   const cases::Case* c = study.find_case("A");
   REQUIRE(c != nullptr);
   std::ostringstream log;
-  generate_cases(study, {c}, "quick", tmp.path(), log);
+  app::generate_cases(study, {c}, "quick", tmp.path(), log);
   const fs::path run = tmp.path() / "A";
   REQUIRE(fs::exists(run / "sph" / "initial_particles.vtp"));
 

@@ -10,7 +10,7 @@
 #include <fstream>
 #include <string>
 
-#include "cases/fingerprint.hpp"
+#include "util/fingerprint.hpp"
 #include "cases/spec_reader.hpp"
 #include "compare/record.hpp"
 #include "compare/validation_doc.hpp"
@@ -164,9 +164,9 @@ TEST_CASE("A compared case directory gives one record per finished method with t
   // The imported comparison: the study report's tables from the records.
   const fs::path imported = tmp.path() / "imported";
   write_imported_comparison(imported, {sample_record("sph", 0.11), sample_record("vof", 0.12)});
-  const std::string metrics = hydrojump::cases::read_text_file(imported / "csv" / "metrics.csv");
+  const std::string metrics = hydrojump::util::read_text_file(imported / "csv" / "metrics.csv");
   CHECK_THAT(metrics, Catch::Contains("sequent_depth,m,0.11,0.12,0.104,nan,0.1317813053,predicted"));
-  CHECK_THAT(hydrojump::cases::read_text_file(imported / "csv" / "eta.csv"),
+  CHECK_THAT(hydrojump::util::read_text_file(imported / "csv" / "eta.csv"),
              Catch::Contains("A,39.2188,48.43,47.08,45.448,45.448,nan,nan"));
 }
 

@@ -19,7 +19,7 @@
 
 #include "cases/spec_reader.hpp"
 #include "compare/case_comparison.hpp"
-#include "compare/generate.hpp"
+#include "app/generate.hpp"
 #include "reference/runner.hpp"
 #include "tests/temp_dir.hpp"
 
@@ -35,7 +35,7 @@ compare::CaseComparison run_vof_quick(const std::string& spec_file, const std::s
                                       double t0 = 0.0, double t1 = 0.0) {
   const cases::Study study = cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/cases/" + spec_file);
   std::ostringstream log;
-  compare::generate_cases(study, compare::select_cases(study, {id}), "quick", dir, log);
+  app::generate_cases(study, app::select_cases(study, {id}), "quick", dir, log);
   reference::RunOptions run;
   run.progress_interval_s = 120.0;
   reference::run_vof_case(dir / id / "vof", run, log);

@@ -1,6 +1,6 @@
-// The CSV table reader (cases/csv_table.hpp) on arbitrary bytes: a table, never an error; every cell
+// The CSV table reader (util/csv_table.hpp) on arbitrary bytes: a table, never an error; every cell
 // reads as a number or NaN.
-#include "cases/csv_table.hpp"
+#include "util/csv_table.hpp"
 #include "tests/fuzz/fuzz_input.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -11,8 +11,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "cases/child_process.hpp"
-#include "cases/fingerprint.hpp"
+#include "util/child_process.hpp"
+#include "util/fingerprint.hpp"
 #include "cases/geometry.hpp"
 #include "cases/spec_reader.hpp"
 #include "reference/case_writer.hpp"
@@ -475,8 +475,8 @@ TEST_CASE("a case.toml edited after generate is refused before a new run, naming
   const hydrojump::testing::TempDir tmp("reference-edited");
   const fs::path dir = tmp.path() / "case";
   reference::write_vof_case(study, study.cases.front(), "quick", dir);
-  const std::string written = cases::read_text_file(dir / "case.toml");
-  CHECK(cases::read_text_file(dir / reference::generated_case_file_name) == written);
+  const std::string written = util::read_text_file(dir / "case.toml");
+  CHECK(util::read_text_file(dir / reference::generated_case_file_name) == written);
   // The inflow velocity changed by hand: setFieldsDict and the inlet still carry the old one.
   std::string edited = written;
   const std::string key = "velocity_m_s = 2";
@@ -527,11 +527,11 @@ TEST_CASE("the generated Allrun refuses a bad -np, earlier results and a tailgat
   const auto allrun = [&](const fs::path& dir, const std::vector<std::string>& args, const std::string& name) {
     std::vector<std::string> argv = {"sh", (dir / "Allrun").string()};
     argv.insert(argv.end(), args.begin(), args.end());
-    cases::ChildCommand command(argv, tmp.path() / (name + ".out"));
+    util::ChildCommand command(argv, tmp.path() / (name + ".out"));
     // No program at all may be reached (OpenFOAM's are in /usr/bin): every refusal is the shell's own.
     command.environment = {"PATH=/nonexistent"};
-    const cases::ChildExit e = cases::run_child(command);
-    return std::make_pair(e.status(), cases::read_text_file(tmp.path() / (name + ".out")));
+    const util::ChildExit e = util::run_child(command);
+    return std::make_pair(e.status(), util::read_text_file(tmp.path() / (name + ".out")));
   };
   const cases::Study study = parse(basin_spec());
   const fs::path dir = tmp.path() / "plain";

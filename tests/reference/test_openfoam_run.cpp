@@ -19,7 +19,7 @@
 
 #include <unistd.h>
 
-#include "cases/fingerprint.hpp"
+#include "util/fingerprint.hpp"
 #include "cases/spec_reader.hpp"
 #include "reference/case_writer.hpp"
 #include "reference/cli.hpp"
@@ -82,7 +82,7 @@ std::vector<double> internal_field(const fs::path& gz_file) {
   const fs::path plain = tmp.path() / "field";
   const std::string command = "gzip -dc '" + gz_file.string() + "' > '" + plain.string() + "'";
   REQUIRE(std::system(command.c_str()) == 0);
-  const std::string text = cases::read_text_file(plain);
+  const std::string text = util::read_text_file(plain);
   const auto begin = text.find("internalField");
   const auto end = text.find("boundaryField", begin);
   REQUIRE(begin != std::string::npos);
@@ -109,7 +109,7 @@ class InterruptWhen {
       : thread_([file = std::move(file), text = std::move(text), this]() {
           const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
           while (!cancelled_ && std::chrono::steady_clock::now() < deadline) {
-            if (fs::exists(file) && cases::read_text_file(file).find(text) != std::string::npos) {
+            if (fs::exists(file) && util::read_text_file(file).find(text) != std::string::npos) {
               sent_ = true;
               ::kill(::getpid(), SIGINT);
               return;
@@ -131,7 +131,7 @@ class InterruptWhen {
 };
 
 long checkmesh_cells(const fs::path& dir) {
-  const std::string log = cases::read_text_file(dir / "log.checkMesh");
+  const std::string log = util::read_text_file(dir / "log.checkMesh");
   const auto pos = log.find("    cells:");
   if (pos == std::string::npos) return -1;
   return std::stol(log.substr(pos + 10));
@@ -164,7 +164,7 @@ TEST_CASE("a tiny corrugated basin meshes, passes checkMesh, runs and resumes", 
   std::ostringstream out;
   reference::run_vof_case(dir, reference::RunOptions{}, out);
   INFO(out.str());
-  CHECK_THAT(cases::read_text_file(dir / "log.checkMesh"), Catch::Contains("Mesh OK."));
+  CHECK_THAT(util::read_text_file(dir / "log.checkMesh"), Catch::Contains("Mesh OK."));
   CHECK(checkmesh_cells(dir) == vof.mesh.cell_count());
   CHECK(fs::exists(dir / "0.02"));
   CHECK_THAT(out.str(), Catch::Contains("reached t = 0.02"));
@@ -198,8 +198,8 @@ TEST_CASE("a tiny corrugated basin meshes, passes checkMesh, runs and resumes", 
   // The run recorded its case; a case.toml whose settings were edited since would describe other
   // results than the dictionaries the run uses: resuming is refused, naming the line. (A reworded
   // description is not another run.)
-  const std::string case_text = cases::read_text_file(dir / "case.toml");
-  CHECK(cases::read_text_file(dir / "results_case.toml") == case_text);
+  const std::string case_text = util::read_text_file(dir / "case.toml");
+  CHECK(util::read_text_file(dir / "results_case.toml") == case_text);
   {
     std::string edited = case_text;
     const std::string key = "max_courant = ";
@@ -216,7 +216,7 @@ TEST_CASE("a tiny corrugated basin meshes, passes checkMesh, runs and resumes", 
   CHECK_THAT(out2.str(), Catch::Contains("Resuming from t = 0.01"));
   CHECK(fs::exists(dir / "0.02.incomplete"));
   CHECK(fs::file_size(dir / "0.02/alpha.water.gz") > 100);
-  CHECK_THAT(cases::read_text_file(dir / "log.interFoam"), Catch::Contains("resumed by hydrojump"));
+  CHECK_THAT(util::read_text_file(dir / "log.interFoam"), Catch::Contains("resumed by hydrojump"));
 
   // --end-time extends the finished run (system/controlDict's endTime rewritten, the rest kept); an end
   // time not after the latest time directory is refused, and so is one past what a case may run.
@@ -232,7 +232,7 @@ TEST_CASE("a tiny corrugated basin meshes, passes checkMesh, runs and resumes", 
   CHECK_THAT(out3.str(), Catch::Contains("End time 0.03 s (was 0.02 s") && Catch::Contains("to t = 0.03 s") &&
                              Catch::Contains("reached t = 0.03"));
   CHECK(fs::exists(dir / "0.03"));
-  const std::string control = cases::read_text_file(dir / "system/controlDict");
+  const std::string control = util::read_text_file(dir / "system/controlDict");
   CHECK_THAT(control, Catch::Contains("endTime         0.03;") && Catch::Contains("// endTime = run.end_time_s"));
 }
 
@@ -253,7 +253,7 @@ TEST_CASE("a run resumed between two output times first runs to the next one: la
   CHECK(fs::exists(dir / "0.01/alpha.water.gz"));
   REQUIRE(fs::exists(dir / "0.015/alpha.water.gz"));
   CHECK(fs::exists(dir / "postProcessing/sections/0.015/up_alpha.water.xy"));
-  const std::string case_control = cases::read_text_file(dir / "system/controlDict");
+  const std::string case_control = util::read_text_file(dir / "system/controlDict");
 
   // A runner killed during an aligning leg leaves the case's controlDict aside: the next run puts it
   // back before reading it.
@@ -285,7 +285,7 @@ TEST_CASE("a run resumed between two output times first runs to the next one: la
   const std::string end_entry = "endTime         0.015;";
   REQUIRE(expected.find(end_entry) != std::string::npos);
   expected.replace(expected.find(end_entry), end_entry.size(), "endTime         0.035;");
-  CHECK(cases::read_text_file(dir / "system/controlDict") == expected);
+  CHECK(util::read_text_file(dir / "system/controlDict") == expected);
 }
 
 TEST_CASE("a run started from another run's state (--map-from) takes its fields and starts at t = 0",
@@ -314,7 +314,7 @@ TEST_CASE("a run started from another run's state (--map-from) takes its fields 
                             Catch::Contains("mapFields") && Catch::Contains("reached t = 0.01"));
   // The same settings: nothing to say about them.
   CHECK_THAT(run.str(), !Catch::Contains("settings differ"));
-  CHECK_THAT(cases::read_text_file(target / "log.mapFields"), Catch::Contains("Source time: 0.02"));
+  CHECK_THAT(util::read_text_file(target / "log.mapFields"), Catch::Contains("Source time: 0.02"));
   for (const char* field : {"alpha.water.gz", "U.gz", "p_rgh.gz"}) {
     INFO(field);
     const std::vector<double> expected = internal_field(source / "0.02" / field);
@@ -551,7 +551,7 @@ TEST_CASE("a tiny basin runs with the k-epsilon turbulence model", "[reference][
   reference::run_vof_case(dir, reference::RunOptions{}, out);
   INFO(out.str());
   CHECK_THAT(out.str(), Catch::Contains("reached t = 0.02"));
-  CHECK_THAT(cases::read_text_file(dir / "log.interFoam"), Catch::Contains("Selecting RAS turbulence model kEpsilon"));
+  CHECK_THAT(util::read_text_file(dir / "log.interFoam"), Catch::Contains("Selecting RAS turbulence model kEpsilon"));
   CHECK(fs::exists(dir / "0.01/epsilon.gz"));
   const auto inlet = rows_of(dir / "postProcessing/discharge_inlet/0/surfaceFieldValue.dat");
   REQUIRE(!inlet.empty());
@@ -570,7 +570,7 @@ TEST_CASE("a tiny basin runs with the multiphase turbulence stabilization", "[re
   CHECK_THAT(out.str(), Catch::Contains("reached t = 0.02"));
   // interFoam read constant/fvOptions (a wrong file class or unknown type would be a warning or an error)
   // and applied both corrections in every step.
-  const std::string log = cases::read_text_file(dir / "log.interFoam");
+  const std::string log = util::read_text_file(dir / "log.interFoam");
   CHECK_THAT(log, Catch::Contains("Selecting finite volume options type multiphaseStabilizedTurbulence"));
   CHECK_THAT(log, Catch::Contains("applying bouyancy production term to k"));  // (sic: OpenFOAM's spelling)
   CHECK_THAT(log, Catch::Contains("correcting nut"));
@@ -605,7 +605,7 @@ TEST_CASE("an MPI run (--np 2) gives the same result as the serial run", "[refer
   // incomplete on every rank, moved aside beside the earlier one, and reconstructed again at the end.
   const auto cut_short = [](const fs::path& file) {
     REQUIRE(fs::exists(file));
-    const std::string text = cases::read_text_file(file);
+    const std::string text = util::read_text_file(file);
     std::ofstream(file, std::ios::binary | std::ios::trunc) << text.substr(0, text.size() / 2);
   };
   cut_short(parallel / "processor1/0.03" / (fs::exists(parallel / "processor1/0.03/k.gz") ? "k.gz" : "k"));
@@ -663,7 +663,7 @@ TEST_CASE("an MPI run that stops early has the times written so far reconstructe
   const std::string spec = tiny_hold_toe_spec();
   const TempDir tmp("openfoam-mpi-stopped");
   const fs::path dir = generate(spec, tmp.path() / "case");
-  std::string control = cases::read_text_file(dir / "system/controlDict");
+  std::string control = util::read_text_file(dir / "system/controlDict");
   const std::string plain = "writeCompression off;";
   REQUIRE(control.find(plain) != std::string::npos);
   control.replace(control.find(plain), plain.size(), "writeCompression on;");
@@ -681,7 +681,7 @@ TEST_CASE("an MPI run that stops early has the times written so far reconstructe
   CHECK(fs::exists(dir / "processor0/0.01/alpha.water.gz"));
   CHECK(fs::exists(dir / "processor1/0.01/alpha.water.gz"));
   CHECK_FALSE(fs::exists(dir / "0.02"));
-  CHECK_THAT(cases::read_text_file(dir / "log.reconstructPar"), Catch::Contains("Time = 0.01"));
+  CHECK_THAT(util::read_text_file(dir / "log.reconstructPar"), Catch::Contains("Time = 0.01"));
 }
 
 TEST_CASE("Ctrl-C while interFoam runs writes the current time and stops, and --resume goes on from it",
@@ -706,7 +706,7 @@ TEST_CASE("Ctrl-C while interFoam runs writes the current time and stops, and --
   REQUIRE(written.has_value());
   CHECK(*written > 0.01);
   CHECK(*written < 0.25);
-  CHECK_THAT(cases::read_text_file(dir / ".hydrojump.lock"), !Catch::Contains("its solver"));
+  CHECK_THAT(util::read_text_file(dir / ".hydrojump.lock"), !Catch::Contains("its solver"));
   // Resumed (to the first output time, to keep the test short) it goes on from there.
   reference::RunOptions resume;
   resume.resume = true;
@@ -787,7 +787,7 @@ TEST_CASE("body_fitted is refused exactly when the self-test shows the non-ortho
     } catch (const reference::OpenFoamError& e) {
       const std::string message = e.what();
       INFO(message);
-      CHECK_THAT(cases::read_text_file(dir / "log.checkMesh"), Catch::Contains("Mesh OK."));
+      CHECK_THAT(util::read_text_file(dir / "log.checkMesh"), Catch::Contains("Mesh OK."));
       CHECK((message.find("blew up") != std::string::npos || message.find("crashed") != std::string::npos ||
              message.find("not a number") != std::string::npos || message.find("collapsed") != std::string::npos));
       CHECK_THAT(message, Catch::Contains("Last lines of log.interFoam"));
@@ -838,12 +838,12 @@ TEST_CASE("the generated Allrun runs the case by hand as an OpenFOAM user would"
   const fs::path dir = generate(basin_spec("", 0.02, 0.01), tmp.path() / "case");
   const std::string command = "sh '" + (dir / "Allrun").string() + "' > '" + (dir / "allrun.out").string() + "' 2>&1";
   CHECK(std::system(command.c_str()) == 0);
-  INFO(cases::read_text_file(dir / "allrun.out"));
+  INFO(util::read_text_file(dir / "allrun.out"));
   CHECK(fs::exists(dir / "0.02"));
-  CHECK_THAT(cases::read_text_file(dir / "log.checkMesh"), Catch::Contains("Mesh OK."));
+  CHECK_THAT(util::read_text_file(dir / "log.checkMesh"), Catch::Contains("Mesh OK."));
   CHECK(fs::exists(dir / "log.topoSet.2"));  // the section zones, after the cut
   // Run again, it refuses to mesh anew beneath the results it would continue from.
   CHECK(std::system(command.c_str()) != 0);
-  CHECK_THAT(cases::read_text_file(dir / "allrun.out"), Catch::Contains("holds the results of an earlier run"));
+  CHECK_THAT(util::read_text_file(dir / "allrun.out"), Catch::Contains("holds the results of an earlier run"));
   CHECK(fs::exists(dir / "0.02"));
 }

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "cases/spec_reader.hpp"
-#include "cases/time_directories.hpp"
+#include "util/time_directories.hpp"
 #include "reference/cli.hpp"
 #include "reference/line_samples.hpp"
 #include "reference/runner.hpp"
@@ -70,7 +70,7 @@ struct Window {
 
 Window sample_window(const fs::path& dir, double t0, double t1) {
   Window w;
-  for (const auto& [t, path] : cases::time_directories(dir / "postProcessing/sections")) {
+  for (const auto& [t, path] : util::time_directories(dir / "postProcessing/sections")) {
     if (t < t0 - 1e-9 || t > t1 + 1e-9) continue;
     w.toe_depth.push_back(reference::water_depth(reference::read_line_sample(path / "toe_alpha.water.xy")));
     w.x2_depth.push_back(reference::water_depth(reference::read_line_sample(path / "x_2y2_alpha.water.xy")));
@@ -89,7 +89,7 @@ double mean(const std::vector<double>& v) {
 // Mean of the first data column after time over [t0, t1], from every restart directory.
 double mean_discharge(const fs::path& function_dir, double t0, double t1) {
   std::vector<double> values;
-  for (const auto& [start, path] : cases::time_directories(function_dir)) {
+  for (const auto& [start, path] : util::time_directories(function_dir)) {
     std::ifstream in(path / "surfaceFieldValue.dat");
     std::string line;
     while (std::getline(in, line)) {

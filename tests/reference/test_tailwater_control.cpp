@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "cases/atomic_file.hpp"
-#include "cases/fingerprint.hpp"
+#include "util/atomic_file.hpp"
+#include "util/fingerprint.hpp"
 #include "cases/spec_reader.hpp"
 #include "reference/case_writer.hpp"
 #include "reference/foam_dictionary.hpp"
@@ -190,7 +190,7 @@ TEST_CASE("the free surface's points are read from an OpenFOAM .vtp file, and an
   const hydrojump::testing::TempDir tmp("tailwater-vtp");
   const fs::path file = tmp.path() / "alpha_0.5.vtp";
   // What OpenFOAM's surfaces function object writes, in ASCII: two points (x, y = vertical, z = span).
-  cases::write_file_atomically(file,
+  util::write_file_atomically(file,
       "<?xml version='1.0'?>\n<VTKFile type='PolyData' version='0.1' byte_order='LittleEndian'>\n<PolyData>\n"
       "<Piece NumberOfPoints='2' NumberOfPolys='0'>\n<Points>\n"
       "<DataArray type='Float32' Name='Points' NumberOfComponents='3' format='ascii'>\n"
@@ -205,7 +205,7 @@ TEST_CASE("the free surface's points are read from an OpenFOAM .vtp file, and an
   CHECK_THROWS_WITH(reference::read_surface_points(tmp.path() / "missing.vtp", x, z), Catch::Contains("missing.vtp"));
   // A file that is not VTK XML (here a half-written one) is named, not parsed.
   const fs::path broken = tmp.path() / "broken.vtp";
-  cases::write_file_atomically(broken, "<?xml version='1.0'?>\n<VTKF");
+  util::write_file_atomically(broken, "<?xml version='1.0'?>\n<VTKF");
   CHECK_THROWS_WITH(reference::read_surface_points(broken, x, z),
                     Catch::Contains("broken.vtp") && Catch::Contains("not a VTK XML PolyData"));
 }
@@ -222,18 +222,18 @@ TEST_CASE("the outlet's Umean is read and rewritten in a field file, nothing els
       "    outlet\n    {\n        type            outletPhaseMeanVelocity;\n        Umean           0.37434358;\n"
       "        alpha           alpha.water;\n        value           nonuniform List<vector> 2((0.3 0 0) (0.31 0 0));\n    }\n"
       "    atmosphere { type pressureInletOutletVelocity; value uniform (0 0 0); }\n}\n";
-  cases::write_file_atomically(file, before);
+  util::write_file_atomically(file, before);
   CHECK(reference::read_outlet_mean_velocity(file) == 0.37434358);
   reference::write_outlet_mean_velocity(file, 0.4123456789);
   CHECK(reference::read_outlet_mean_velocity(file) == Approx(0.4123456789).epsilon(1e-9));
   std::string expected = before;
   expected.replace(expected.find("0.37434358"), 10, "0.4123456789");
-  CHECK(cases::read_text_file(file) == expected);
+  CHECK(util::read_text_file(file) == expected);
   // A file without the entry: an error naming the file.
-  cases::write_file_atomically(file, "boundaryField\n{\n    inlet { type fixedValue; }\n}\n");
+  util::write_file_atomically(file, "boundaryField\n{\n    inlet { type fixedValue; }\n}\n");
   CHECK_THROWS_WITH(reference::read_outlet_mean_velocity(file),
                     Catch::Contains(file.string()) && Catch::Contains("no outlet entry"));
-  cases::write_file_atomically(file, "boundaryField\n{\n    outlet { type zeroGradient; }\n}\n");
+  util::write_file_atomically(file, "boundaryField\n{\n    outlet { type zeroGradient; }\n}\n");
   CHECK_THROWS_WITH(reference::write_outlet_mean_velocity(file, 0.3), Catch::Contains("the outlet entry has no Umean"));
 }
 
@@ -267,7 +267,7 @@ TEST_CASE("a damaged tailwater control log is named with its line, not read past
   const std::string header = "time_s,toe_x_m,toe_outputs,water_volume_m2,volume_target_m2,outlet_mean_velocity_m_s\n";
   const std::string good = "0.5,0.3,5,0.378,0.3797,0.365\n";
   const auto error_of = [&](const std::string& text) {
-    cases::write_file_atomically(file, text);
+    util::write_file_atomically(file, text);
     try {
       reference::read_tailwater_control_log(tmp.path());
     } catch (const std::exception& e) {

@@ -9,7 +9,7 @@ source_dir="$2"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 repo="$work/repo"
-mkdir -p "$repo"/{cases,sph,reference,compare,cmake}
+mkdir -p "$repo"/{util,cases,sph,reference,compare,app,cmake}
 cd "$repo"
 git init -q
 git config user.email test@example.com
@@ -20,8 +20,10 @@ echo "id = 1" > cases/study.toml
 echo "x,y" > cases/data.csv
 echo "int spec;" > cases/spec.cpp
 echo "int writer;" > reference/w.cpp
-echo "int gen;" > compare/generate.cpp
-echo "int gen_h;" > compare/generate.hpp
+echo "int gen;" > app/generate.cpp
+echo "int gen_h;" > app/generate.hpp
+echo "int study;" > app/study.cpp
+echo "int util;" > util/u.cpp
 echo "int cmp;" > compare/other.cpp
 echo "# build" > cmake/x.cmake
 echo "project(x)" > CMakeLists.txt
@@ -59,8 +61,12 @@ echo "id = 2" > cases/study.toml;      expect "uncommitted *.toml" same same
 echo "1,2" >> cases/data.csv;          git commit -qam data; expect "committed *.toml, *.csv" same same
 echo "int cmp2;" >> compare/other.cpp; expect "uncommitted comparator source" differs same
 git commit -qam cmp;                   expect "committed comparator source" same same
-echo "int gen2;" >> compare/generate.cpp; expect "uncommitted case writer (compare/generate.cpp)" differs differs
+echo "int st2;" >> app/study.cpp;     expect "uncommitted application source" differs same
+git commit -qam app;                   expect "committed application source" same same
+echo "int gen2;" >> app/generate.cpp; expect "uncommitted case writer (app/generate.cpp)" differs differs
 git commit -qam gen;                   expect "committed case writer" same same
+echo "int u2;" >> util/u.cpp;          expect "uncommitted utility source" differs differs
+git commit -qam util;                  expect "committed utility source" same same
 echo "int s2;" >> sph/a.cpp;           expect "uncommitted solver source" differs differs
 git commit -qam sph;                   expect "committed solver source" same same
 echo "int n;" > sph/new.cpp;           expect "untracked solver source" differs differs

@@ -6,11 +6,11 @@ set -euo pipefail
 source_dir="$1"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
-mkdir -p "$work/scripts" "$work/build/compare"
+mkdir -p "$work/scripts" "$work/build"
 cp "$source_dir/scripts/run-study.sh" "$work/scripts/"
 printf '#!/usr/bin/env bash\nexit 0\n' > "$work/scripts/setup.sh"
-printf '#!/usr/bin/env bash\necho "$*"\n' > "$work/build/compare/hydrojump"
-chmod +x "$work/scripts/setup.sh" "$work/build/compare/hydrojump"
+printf '#!/usr/bin/env bash\necho "$*"\n' > "$work/build/hydrojump"
+chmod +x "$work/scripts/setup.sh" "$work/build/hydrojump"
 
 failures=0
 expect() {  # expect "<arguments of run-study.sh>" "<arguments hydrojump must receive>"

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "basin_fixture.hpp"
-#include "cases/csv_table.hpp"
+#include "util/csv_table.hpp"
 #include "sph/basin_monitor.hpp"
 
 using namespace hydrojump;
@@ -197,7 +197,7 @@ TEST_CASE("the water in the basin: all fluid with an inflow buffer, not a piston
     monitor.record(ps, 0.0, 0.0, 0.0);
     const std::string row = monitor.csv_rows().back();
     std::vector<double> v;
-    for (const auto& cell : hydrojump::cases::split_csv_line(row)) v.push_back(hydrojump::cases::csv_number(cell));
+    for (const auto& cell : hydrojump::util::split_csv_line(row)) v.push_back(hydrojump::util::csv_number(cell));
     REQUIRE(v.size() > 6);
     return v[6];  // t, toe, q_in, q_out, mass_in, mass_out, fluid_mass, ...
   };

@@ -22,7 +22,7 @@
 #include <iostream>
 #include <string>
 
-#include "cases/fingerprint.hpp"
+#include "util/fingerprint.hpp"
 #include "cases/spec_reader.hpp"
 #include "sph/cli.hpp"
 
@@ -68,7 +68,7 @@ TEST_CASE("SPH smooth-bed jump A_smooth holds in the basin at Belanger's ratio",
   opt.dir = dir.string();
   opt.quiet = true;
   REQUIRE(sph::run_sph_directory(opt) == 0);
-  const std::string json = cases::read_text_file(dir / "summary.json");
+  const std::string json = util::read_text_file(dir / "summary.json");
   std::cout << json;
   const double q_error = json_number_after(json, "inflow_discharge_relative_error");
   const double mass_error = json_number_after(json, "relative_to_injected");

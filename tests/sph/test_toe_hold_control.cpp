@@ -14,8 +14,8 @@
 #include <limits>
 #include <string>
 
-#include "cases/csv_table.hpp"
-#include "cases/fingerprint.hpp"
+#include "util/csv_table.hpp"
+#include "util/fingerprint.hpp"
 #include "sph/checkpoint.hpp"
 #include "sph/open_boundaries.hpp"
 #include "sph/run.hpp"
@@ -79,16 +79,16 @@ OpenBoundaries open_of(const sph_test::LoadedCase& c) {
 
 // Mean toe over the outputs in [t0, t1] (a missing toe counts as at the outlet).
 double mean_toe(const RunOptions& o, const Solver& solver, double t0, double t1) {
-  const cases::CsvTable table = cases::read_csv_table(o.dir / "basin.csv");
+  const util::CsvTable table = util::read_csv_table(o.dir / "basin.csv");
   const auto t = table.column("t_s"), x = table.column("toe_x_m");
   REQUIRE(t);
   REQUIRE(x);
   double sum = 0.0;
   int n = 0;
   for (const auto& row : table.rows) {
-    const double tv = cases::csv_number(row[*t]);
+    const double tv = util::csv_number(row[*t]);
     if (tv < t0 - 1e-9 || tv > t1 + 1e-9) continue;
-    const double xv = cases::csv_number(row[*x]);
+    const double xv = util::csv_number(row[*x]);
     sum += std::isfinite(xv) ? xv : solver.settings().x_max;
     ++n;
   }
@@ -200,5 +200,5 @@ TEST_CASE("a held run resumed from its checkpoint ends as the uninterrupted one"
   CHECK(pa.z == pb.z);
   CHECK(pa.u == pb.u);
   CHECK(pa.rho == pb.rho);
-  CHECK(cases::read_text_file(tmp_a.path() / "basin.csv") == cases::read_text_file(tmp_b.path() / "basin.csv"));
+  CHECK(util::read_text_file(tmp_a.path() / "basin.csv") == util::read_text_file(tmp_b.path() / "basin.csv"));
 }

@@ -19,17 +19,17 @@
 #include <toml++/toml.h>
 #include <unistd.h>
 
-#include "cases/directory_lock.hpp"
-#include "cases/fingerprint.hpp"
+#include "util/directory_lock.hpp"
+#include "util/fingerprint.hpp"
 #include "cases/spec_reader.hpp"
-#include "compare/generate.hpp"
+#include "app/generate.hpp"
 #include "compare/record.hpp"
-#include "compare/study.hpp"
+#include "app/study.hpp"
 #include "tests/temp_dir.hpp"
 
 namespace fs = std::filesystem;
-using hydrojump::compare::StudyOptions;
-using hydrojump::compare::run_study;
+using hydrojump::app::StudyOptions;
+using hydrojump::app::run_study;
 using hydrojump::testing::TempDir;
 
 namespace {
@@ -173,7 +173,7 @@ TEST_CASE("Study runner: failures are isolated, results cached, changes re-run",
   write(dir / "mini.toml", with_tailwater("0.11"));
   {
     // ... but not while a run started by hand still writes in it: A fails and nothing is moved.
-    const hydrojump::cases::DirectoryLock by_hand(options.out / "A" / "sph", "hydrojump sph (by hand)");
+    const hydrojump::util::DirectoryLock by_hand(options.out / "A" / "sph", "hydrojump sph (by hand)");
     std::ostringstream busy_log;
     CHECK(run_study(options, busy_log) == 2);
     CHECK_THAT(busy_log.str(), Catch::Contains("A: FAILED") &&
@@ -266,15 +266,15 @@ TEST_CASE("Study runner: the report covers cases run earlier into the same direc
 TEST_CASE("Study runner: a case named twice in --cases runs once, an unknown one is refused by name", "[study]") {
   // Two workers on one case would share its directory (`--cases X,X --jobs 2` raced on case.toml).
   const auto study = hydrojump::cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/tests/data/basins.toml");
-  const auto selected = hydrojump::compare::select_cases(study, {"B", "A", "B", "A"});
+  const auto selected = hydrojump::app::select_cases(study, {"B", "A", "B", "A"});
   REQUIRE(selected.size() == 2u);
   CHECK(selected[0]->id == "B");
   CHECK(selected[1]->id == "A");
-  CHECK_THROWS_WITH(hydrojump::compare::select_cases(study, {"A", ""}),
+  CHECK_THROWS_WITH(hydrojump::app::select_cases(study, {"A", ""}),
                     Catch::Contains("case \"\": no such case") && Catch::Contains("A_smooth"));
   // "all" is every case, as the README's `--cases all` says; it is not a case id among others.
-  CHECK(hydrojump::compare::select_cases(study, {"all"}).size() == study.cases.size());
-  CHECK_THROWS_WITH(hydrojump::compare::select_cases(study, {"A", "all"}),
+  CHECK(hydrojump::app::select_cases(study, {"all"}).size() == study.cases.size());
+  CHECK_THROWS_WITH(hydrojump::app::select_cases(study, {"A", "all"}),
                     Catch::Contains("case \"all\" selects every case and cannot be combined with other case ids"));
 }
 
@@ -315,7 +315,7 @@ TEST_CASE("Study runner: a second study on the same output directory stops befor
   const TempDir tmp("study_busy");
   const fs::path& dir = tmp.path();
   const StudyOptions options = mini_study_with_stand_in(dir, "exit 1\n");
-  const hydrojump::cases::DirectoryLock first(options.out, "hydrojump study (the first)");
+  const hydrojump::util::DirectoryLock first(options.out, "hydrojump study (the first)");
   std::ostringstream log;
   CHECK_THROWS_WITH(run_study(options, log), Catch::Contains(options.out.string() + " is in use by another process "
                                                              "(hydrojump study (the first), pid"));
@@ -388,7 +388,7 @@ TEST_CASE("Study runner: --methods runs only the chosen solvers, --force re-runs
 }
 
 TEST_CASE("Study runner: the SPH threads of each job", "[study]") {
-  using hydrojump::compare::sph_threads_per_job;
+  using hydrojump::app::sph_threads_per_job;
   CHECK(sph_threads_per_job(3, 2, 2) == 3);  // asked for
   CHECK(sph_threads_per_job(0, 1, 2) == 0);  // one job: the solver's default
   CHECK(sph_threads_per_job(0, 2, 2) == 1);
@@ -424,7 +424,7 @@ TEST_CASE("Study runner: a reworded description or a relaxed stability limit kee
   CHECK(std::count_if(second.begin(), second.end(), [](const std::string& l) { return l.rfind("compare", 0) == 0; }) == 2);
   CHECK_FALSE(fs::exists(options.out / "A.previous"));
   CHECK_FALSE(fs::exists(options.out / "B.previous"));
-  CHECK_THAT(hydrojump::cases::read_text_file(options.out / "B" / "sph" / "case.toml"), Catch::Contains("description = \"reworded\""));
+  CHECK_THAT(hydrojump::util::read_text_file(options.out / "B" / "sph" / "case.toml"), Catch::Contains("description = \"reworded\""));
   CHECK_THAT(log.str(), Catch::Contains("inputs rewritten, results kept"));
 
   // A setting that changes the run still starts the case afresh (previous results kept aside).
@@ -444,7 +444,7 @@ TEST_CASE("Study runner: a reworded description or a relaxed stability limit kee
   options.out = by_hand;
   options.cases = {"A"};
   CHECK(run_study(options, log) == 0);
-  CHECK(hydrojump::cases::read_text_file(by_hand / "A.previous" / "sph" / "summary.json") == "{\"hours\": 3}\n");
+  CHECK(hydrojump::util::read_text_file(by_hand / "A.previous" / "sph" / "summary.json") == "{\"hours\": 3}\n");
 }
 
 TEST_CASE("Study runner: a stop request stops the running stage with its state written and starts no other",
@@ -470,7 +470,7 @@ TEST_CASE("Study runner: a stop request stops the running stage with its state w
   const auto called = lines_of(calls);
   REQUIRE(called.size() == 1);
   CHECK(called.front().rfind("sph ", 0) == 0);
-  const std::string report = hydrojump::cases::read_text_file(options.out / "study_report.md");
+  const std::string report = hydrojump::util::read_text_file(options.out / "study_report.md");
   CHECK_THAT(report, Catch::Contains("| A | sph | stopped |") &&
                          Catch::Contains("| A | vof | skipped (the study was stopped) |") &&
                          Catch::Contains("| B | setup | skipped (the study was stopped) |"));
@@ -478,7 +478,7 @@ TEST_CASE("Study runner: a stop request stops the running stage with its state w
   // The next study resumes the run (a stand-in that finishes after 0.3 s): its stage's wall time counts
   // both legs.
   const double first_leg = [&] {
-    std::istringstream in(hydrojump::cases::read_text_file(options.out / "A" / "sph.legs"));
+    std::istringstream in(hydrojump::util::read_text_file(options.out / "A" / "sph.legs"));
     double seconds = -1.0;
     int legs = 0;
     in >> seconds >> legs;
@@ -570,9 +570,9 @@ TEST_CASE("Study runner: a case whose records match is imported instead of run a
   CHECK(run_study(options, imported) == 0);
   CHECK_FALSE(fs::exists(calls));
   CHECK_THAT(imported.str(), Catch::Contains("A: imported from") && Catch::Contains("(not run)"));
-  CHECK_THAT(hydrojump::cases::read_text_file(options.out / "A" / "csv" / "metrics.csv"),
+  CHECK_THAT(hydrojump::util::read_text_file(options.out / "A" / "csv" / "metrics.csv"),
              Catch::Contains("sequent_depth,m,0.11,0.12,0.104"));
-  CHECK_THAT(hydrojump::cases::read_text_file(options.out / "study_report.md"),
+  CHECK_THAT(hydrojump::util::read_text_file(options.out / "study_report.md"),
              Catch::Contains("| A | sph | imported (record of 2026-11-29) |"));
 
   // A changed case: its records are stale (another run key), it runs; B is still imported.
@@ -588,7 +588,7 @@ TEST_CASE("Study runner: a case whose records match is imported instead of run a
 
 namespace {
 
-// Every file under `top` whose name marks a temporary of an atomic write (cases/atomic_file.hpp).
+// Every file under `top` whose name marks a temporary of an atomic write (util/atomic_file.hpp).
 std::vector<std::string> temporaries_under(const fs::path& top) {
   std::vector<std::string> found;
   for (const auto& e : fs::recursive_directory_iterator(top))
@@ -648,9 +648,9 @@ TEST_CASE("Study runner: killed at random moments and started again each time it
   REQUIRE(run_study(options, log) == 0);
   INFO(log.str());
   for (const char* id : {"A", "B"}) {
-    CHECK(hydrojump::cases::read_text_file(options.out / id / "sph" / "result.txt") == "sph done\n");
-    CHECK(hydrojump::cases::read_text_file(options.out / id / "vof" / "result.txt") == "vof done\n");
-    CHECK(hydrojump::cases::read_text_file(options.out / id / "compared.txt") == "compared\n");
+    CHECK(hydrojump::util::read_text_file(options.out / id / "sph" / "result.txt") == "sph done\n");
+    CHECK(hydrojump::util::read_text_file(options.out / id / "vof" / "result.txt") == "vof done\n");
+    CHECK(hydrojump::util::read_text_file(options.out / id / "compared.txt") == "compared\n");
   }
   const auto called = lines_of(calls);
   // Each solver stage finished, and was not run again once the study had recorded it: at most once more

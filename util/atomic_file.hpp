@@ -7,7 +7,7 @@
 #include <iosfwd>
 #include <string_view>
 
-namespace hydrojump::cases {
+namespace hydrojump::util {
 
 // Writes `content` to `target` atomically (temporary file in the same directory, then rename).
 // Creates missing parent directories. Throws std::runtime_error naming the file on failure.
@@ -27,4 +27,4 @@ void write_via_temporary(const std::filesystem::path& target,
 // the directory's lock, so that no live writer's file can match. Returns how many were removed.
 int remove_orphaned_temporaries(const std::filesystem::path& dir);
 
-}  // namespace hydrojump::cases
+}  // namespace hydrojump::util

@@ -7,7 +7,7 @@
 #include <string>
 #include <string_view>
 
-namespace hydrojump::cases {
+namespace hydrojump::util {
 
 // The whole content of `file`, or "" if it cannot be read.
 std::string read_text_file(const std::filesystem::path& file);
@@ -15,4 +15,4 @@ std::string read_text_file(const std::filesystem::path& file);
 // FNV-1a over the bytes of `text`, as 16 lower-case hex digits.
 std::string fingerprint(std::string_view text);
 
-}  // namespace hydrojump::cases
+}  // namespace hydrojump::util

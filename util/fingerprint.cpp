@@ -1,11 +1,11 @@
-#include "cases/fingerprint.hpp"
+#include "util/fingerprint.hpp"
 
 #include <cstdint>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
 
-namespace hydrojump::cases {
+namespace hydrojump::util {
 
 std::string read_text_file(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
@@ -26,4 +26,4 @@ std::string fingerprint(std::string_view text) {
   return o.str();
 }
 
-}  // namespace hydrojump::cases
+}  // namespace hydrojump::util

@@ -37,7 +37,7 @@
 
 #include <sys/types.h>
 
-namespace hydrojump::cases {
+namespace hydrojump::util {
 
 struct ChildCommand {
   ChildCommand(std::vector<std::string> argv_, std::filesystem::path log_file_ = "/dev/null")
@@ -91,4 +91,4 @@ ChildExit stop_child(pid_t pid, std::chrono::milliseconds grace = std::chrono::s
 // start_child + wait_child.
 ChildExit run_child(const ChildCommand& command);
 
-}  // namespace hydrojump::cases
+}  // namespace hydrojump::util

@@ -7,13 +7,14 @@
 #include <string>
 #include <vector>
 
-#include "cases/atomic_file.hpp"
+#include "util/atomic_file.hpp"
 
 #include <unistd.h>
-#include "cases/fingerprint.hpp"
+#include "util/fingerprint.hpp"
 #include "tests/temp_dir.hpp"
 
-using namespace hydrojump::cases;
+using namespace hydrojump::util;
+namespace util = hydrojump::util;
 
 namespace {
 std::string read(const std::filesystem::path& p) {
@@ -28,16 +29,16 @@ TEST_CASE("Atomic writes replace whole files and leave no temporaries", "[cases]
   const hydrojump::testing::TempDir tmp("atomic");
   const auto dir = tmp.path() / "sub";  // not there yet: the write creates it
   const auto file = dir / "out.txt";
-  write_file_atomically(file, "first");
+  util::write_file_atomically(file, "first");
   CHECK(read(file) == "first");
   // A producer that fails leaves the old content in place.
-  CHECK_THROWS_AS(write_file_atomically(file, [](std::ostream& out) {
+  CHECK_THROWS_AS(util::write_file_atomically(file, [](std::ostream& out) {
                     out << "half";
                     throw std::runtime_error("interrupted");
                   }),
                   std::runtime_error);
   CHECK(read(file) == "first");
-  write_file_atomically(file, "second");
+  util::write_file_atomically(file, "second");
   CHECK(read(file) == "second");
   int entries = 0;
   for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++entries;
@@ -58,7 +59,7 @@ TEST_CASE("Temporaries of writers that no longer run are removed and a live writ
     std::ofstream(dir / name) << "x";
   std::filesystem::create_directories(dir / "sub");
   std::ofstream(dir / "sub" / (".deep.tmp." + dead + ".0")) << "x";
-  CHECK(remove_orphaned_temporaries(dir) == 2);
+  CHECK(util::remove_orphaned_temporaries(dir) == 2);
   CHECK_FALSE(std::filesystem::exists(dir / (".checkpoint.bin.tmp." + dead + ".0")));
   CHECK_FALSE(std::filesystem::exists(dir / (".run_log.csv.tmp." + dead + ".17")));
   const std::vector<std::string> kept = {".particles.pvd.tmp." + live + ".3", "checkpoint.bin", ".hydrojump.lock",
@@ -66,12 +67,12 @@ TEST_CASE("Temporaries of writers that no longer run are removed and a live writ
                                         "sub/.deep.tmp." + dead + ".0"};
   for (const auto& name : kept)
     CHECK(std::filesystem::exists(dir / name));
-  CHECK(remove_orphaned_temporaries(dir / "missing") == 0);
+  CHECK(util::remove_orphaned_temporaries(dir / "missing") == 0);
 }
 
 TEST_CASE("fingerprint is FNV-1a 64 (published test vectors)", "[cases][fingerprint]") {
   // Fowler/Noll/Vo reference vectors for FNV-1a, 64 bit.
-  CHECK(hydrojump::cases::fingerprint("") == "cbf29ce484222325");
-  CHECK(hydrojump::cases::fingerprint("a") == "af63dc4c8601ec8c");
-  CHECK(hydrojump::cases::fingerprint("foobar") == "85944171f73967e8");
+  CHECK(hydrojump::util::fingerprint("") == "cbf29ce484222325");
+  CHECK(hydrojump::util::fingerprint("a") == "af63dc4c8601ec8c");
+  CHECK(hydrojump::util::fingerprint("foobar") == "85944171f73967e8");
 }

@@ -1,4 +1,4 @@
-#include "compare/record_cli.hpp"
+#include "app/record_cli.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -7,9 +7,9 @@
 #include <memory>
 #include <optional>
 
-#include "cases/atomic_file.hpp"
-#include "cases/cli_checks.hpp"
-#include "cases/fingerprint.hpp"
+#include "util/atomic_file.hpp"
+#include "util/cli_checks.hpp"
+#include "util/fingerprint.hpp"
 #include "cases/spec_reader.hpp"
 #include "compare/record.hpp"
 #include "compare/validation_doc.hpp"
@@ -18,7 +18,7 @@
 
 namespace fs = std::filesystem;
 
-namespace hydrojump::compare {
+namespace hydrojump::app {
 
 namespace {
 
@@ -34,7 +34,7 @@ std::string today() {
 // The study file a resolved case came from, as `hydrojump study` takes it: "default" for the embedded
 // study. The resolved case's first line reads "# Resolved by hydrojump from FILE: case ...".
 std::string study_argument(const fs::path& resolved_case) {
-  const std::string text = cases::read_text_file(resolved_case);
+  const std::string text = util::read_text_file(resolved_case);
   const std::string lead = "# Resolved by hydrojump from ";
   if (text.rfind(lead, 0) != 0) return "SPEC";
   const auto end = text.find(": case \"", lead.size());
@@ -61,14 +61,14 @@ void record_command(const RecordOptions& o) {
   }
   for (const auto& dir : dirs) {
     const fs::path resolved = fs::exists(dir / "sph" / "case.toml") ? dir / "sph" / "case.toml" : dir / "vof" / "case.toml";
-    RecordProvenance provenance{today(), ""};
-    std::vector<ValidationRecord> records = records_from_case_dir(dir, provenance);
+    compare::RecordProvenance provenance{today(), ""};
+    std::vector<compare::ValidationRecord> records = compare::records_from_case_dir(dir, provenance);
     for (auto& r : records) {
       r.hydrojump_version = version_string;
       r.command = "hydrojump study " + study_argument(resolved) + " --cases " + r.case_id + " --resolution " +
                   r.resolution + " --methods " + r.method;
-      write_record(o.records, r);
-      std::cout << "recorded " << record_file(o.records, r.study, r.case_id, r.method, r.resolution).string() << "\n";
+      compare::write_record(o.records, r);
+      std::cout << "recorded " << compare::record_file(o.records, r.study, r.case_id, r.method, r.resolution).string() << "\n";
     }
   }
 }
@@ -83,7 +83,7 @@ struct DocOptions {
 
 // Marks the records of `study` whose run key is not the one its case has now (other settings or other
 // solver code) as stale.
-void mark_stale(std::vector<ValidationRecord>& records, const cases::Study& study) {
+void mark_stale(std::vector<compare::ValidationRecord>& records, const cases::Study& study) {
   for (auto& r : records) {
     if (r.study != study.name) continue;
     for (const auto& c : study.cases)
@@ -93,23 +93,23 @@ void mark_stale(std::vector<ValidationRecord>& records, const cases::Study& stud
 }
 
 void validation_doc_command(const DocOptions& o) {
-  auto records = read_records(o.records);
+  auto records = compare::read_records(o.records);
   std::optional<cases::Study> study;
   if (o.not_run.size() == 2) {
     study = o.not_run[0] == "default" ? cases::load_embedded_default_study() : cases::load_study(o.not_run[0]);
     mark_stale(records, *study);
   }
-  std::string text = validation_markdown(records, o.records.generic_string());
-  if (study) text += not_run_markdown(*study, records, o.not_run[1]);
+  std::string text = compare::validation_markdown(records, o.records.generic_string());
+  if (study) text += compare::not_run_markdown(*study, records, o.not_run[1]);
   std::string readme_text;
-  if (!o.readme.empty()) readme_text = with_headline(cases::read_text_file(o.readme), headline_markdown(records), o.readme.string());
+  if (!o.readme.empty()) readme_text = compare::with_headline(util::read_text_file(o.readme), compare::headline_markdown(records), o.readme.string());
   if (o.check) {
-    if (!o.readme.empty() && cases::read_text_file(o.readme) != readme_text) {
+    if (!o.readme.empty() && util::read_text_file(o.readme) != readme_text) {
       std::cerr << "hydrojump validation-doc: the headline table of " << o.readme.string() << " is not what the records in "
                 << o.records.string() << " give: run validation-doc with --readme " << o.readme.string() << "\n";
       throw CLI::RuntimeError(1);
     }
-    if (cases::read_text_file(o.out) != text) {
+    if (util::read_text_file(o.out) != text) {
       std::cerr << "hydrojump validation-doc: " << o.out.string() << " is not what the records in " << o.records.string()
                 << " give: run `hydrojump validation-doc --records " << o.records.string() << " --out "
                 << o.out.string() << "`\n";
@@ -119,10 +119,10 @@ void validation_doc_command(const DocOptions& o) {
     return;
   }
   if (o.out.has_parent_path()) fs::create_directories(o.out.parent_path());
-  cases::write_file_atomically(o.out, text);
+  util::write_file_atomically(o.out, text);
   std::cout << "wrote " << o.out.string() << "\n";
   if (!o.readme.empty()) {
-    cases::write_file_atomically(o.readme, readme_text);
+    util::write_file_atomically(o.readme, readme_text);
     std::cout << "updated the headline table of " << o.readme.string() << "\n";
   }
 }
@@ -143,11 +143,11 @@ void register_record_commands(CLI::App& app) {
       ->required()
       ->check(CLI::ExistingDirectory);
   record->add_option("--cases", r->cases, "case ids, comma-separated (default: every compared case)")->delimiter(',');
-  record->add_option("--records", r->records, "records folder")->capture_default_str()->check(cases::non_empty_path());
+  record->add_option("--records", r->records, "records folder")->capture_default_str()->check(util::non_empty_path());
   record->callback([r] {
     try {
       record_command(*r);
-    } catch (const RecordError& e) {
+    } catch (const compare::RecordError& e) {
       std::cerr << "hydrojump record: " << e.what() << "\n";
       throw CLI::RuntimeError(1);
     }
@@ -160,8 +160,8 @@ void register_record_commands(CLI::App& app) {
       "sequent depth, energy dissipation, jump and roller length and toe against the laboratory and the "
       "inputs-only values, SPH against VOF, and the record and command behind each row. --check compares "
       "instead of writing (exit 1 when the file is out of date).");
-  doc->add_option("--records", d->records, "records folder")->capture_default_str()->check(cases::non_empty_path());
-  doc->add_option("--out,-o", d->out, "the document")->capture_default_str()->check(cases::non_empty_path());
+  doc->add_option("--records", d->records, "records folder")->capture_default_str()->check(util::non_empty_path());
+  doc->add_option("--out,-o", d->out, "the document")->capture_default_str()->check(util::non_empty_path());
   doc->add_option("--not-run", d->not_run,
                   "SPEC RESOLUTION: also list the stilling basins of SPEC (a file, or \"default\") with no record of a "
                   "method at RESOLUTION, with the size of each missing run")
@@ -174,11 +174,11 @@ void register_record_commands(CLI::App& app) {
   doc->callback([d] {
     try {
       validation_doc_command(*d);
-    } catch (const RecordError& e) {
+    } catch (const compare::RecordError& e) {
       std::cerr << "hydrojump validation-doc: " << e.what() << "\n";
       throw CLI::RuntimeError(1);
     }
   });
 }
 
-}  // namespace hydrojump::compare
+}  // namespace hydrojump::app

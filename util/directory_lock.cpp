@@ -1,4 +1,4 @@
-#include "cases/directory_lock.hpp"
+#include "util/directory_lock.hpp"
 
 #include <cerrno>
 #include <algorithm>
@@ -15,7 +15,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-namespace hydrojump::cases {
+namespace hydrojump::util {
 
 namespace {
 
@@ -126,4 +126,4 @@ DirectoryLock::~DirectoryLock() {
   if (fd_ >= 0) ::close(fd_);  // closing the file releases the lock
 }
 
-}  // namespace hydrojump::cases
+}  // namespace hydrojump::util

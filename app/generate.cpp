@@ -1,4 +1,4 @@
-#include "compare/generate.hpp"
+#include "app/generate.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -18,14 +18,14 @@
 
 #include "cases/geometry.hpp"
 #include "cases/hydraulics.hpp"
-#include "cases/cli_checks.hpp"
-#include "cases/fingerprint.hpp"
+#include "util/cli_checks.hpp"
+#include "util/fingerprint.hpp"
 #include "cases/results_case.hpp"
 #include "cases/spec_reader.hpp"
 #include "reference/cli.hpp"
 #include "sph/cli.hpp"
 
-namespace hydrojump::compare {
+namespace hydrojump::app {
 namespace {
 
 std::string fixed(double v, int digits) {
@@ -278,7 +278,7 @@ void generate_cases(const cases::Study& study, const std::vector<const cases::Ca
       const auto wanted = scratch.path() / c->id / method / "case.toml";
       if (!std::filesystem::exists(recorded))
         throw std::runtime_error((dir / method).string() + " holds the results of a run but no case.toml: move it away or choose another --out");
-      const auto d = cases::first_setting_difference(cases::read_text_file(recorded), cases::read_text_file(wanted));
+      const auto d = cases::first_setting_difference(util::read_text_file(recorded), util::read_text_file(wanted));
       if (d.any())
         throw std::runtime_error((dir / method).string() + " holds the results of a run of case \"" + c->id +
                                  "\" with other settings (its " + recorded.filename().string() + " has '" + d.a +
@@ -338,7 +338,7 @@ void register_case_commands(CLI::App& app) {
       "written if one fails.");
   generate->add_option("SPEC", options->spec, "study file (TOML), or \"default\" for the embedded one")
       ->required();
-  generate->add_option("--out,-o", options->out, "output directory")->required()->check(cases::non_empty_path());
+  generate->add_option("--out,-o", options->out, "output directory")->required()->check(util::non_empty_path());
   generate->add_option("--case,-c", options->cases,
                        "case ids to generate, comma-separated or repeated (default or \"all\": every case)")
       ->delimiter(',');
@@ -352,4 +352,4 @@ void register_case_commands(CLI::App& app) {
   });
 }
 
-}  // namespace hydrojump::compare
+}  // namespace hydrojump::app

@@ -21,7 +21,7 @@
 
 #include <CLI/CLI.hpp>
 
-namespace hydrojump::compare {
+namespace hydrojump::app {
 
 struct StudyOptions {
   std::string spec = "default";              // file, or "default" for the embedded study
@@ -52,4 +52,4 @@ int run_study(const StudyOptions& options, std::ostream& log);
 // Adds `study` to `app`.
 void register_study_command(CLI::App& app);
 
-}  // namespace hydrojump::compare
+}  // namespace hydrojump::app

@@ -10,9 +10,9 @@
 //   | read_csv_table    | header and non-empty rows of a file; empty header if unreadable      |
 //   | CsvTable::column  | a header name's index, or nullopt                                    |
 // Example:
-//   const cases::CsvTable table = cases::read_csv_table(run / "basin.csv");
+//   const util::CsvTable table = util::read_csv_table(run / "basin.csv");
 //   if (const auto t = table.column("t_s"))
-//     for (const auto& row : table.rows) if (row.size() == table.header.size()) use(cases::csv_number(row[*t]));
+//     for (const auto& row : table.rows) if (row.size() == table.header.size()) use(util::csv_number(row[*t]));
 #pragma once
 
 #include <cstddef>
@@ -22,7 +22,7 @@
 #include <string_view>
 #include <vector>
 
-namespace hydrojump::cases {
+namespace hydrojump::util {
 
 std::vector<std::string> split_csv_line(std::string_view line);
 
@@ -39,4 +39,4 @@ struct CsvTable {
 
 CsvTable read_csv_table(const std::filesystem::path& file);
 
-}  // namespace hydrojump::cases
+}  // namespace hydrojump::util

@@ -23,7 +23,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace hydrojump::cases {
+namespace hydrojump::util {
 
 // Thrown when another process holds the directory's lock.
 class DirectoryBusy : public std::runtime_error {
@@ -59,4 +59,4 @@ class DirectoryLock {
   std::string holder_text_;  // "<holder>, pid <pid>"
 };
 
-}  // namespace hydrojump::cases
+}  // namespace hydrojump::util

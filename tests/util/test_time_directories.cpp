@@ -4,12 +4,12 @@
 #include <filesystem>
 #include <fstream>
 
-#include "cases/time_directories.hpp"
+#include "util/time_directories.hpp"
 #include "tests/temp_dir.hpp"
 
 namespace fs = std::filesystem;
-using hydrojump::cases::parse_time_name;
-using hydrojump::cases::time_directories;
+using hydrojump::util::parse_time_name;
+using hydrojump::util::time_directories;
 
 TEST_CASE("time names are OpenFOAM's decimal times and nothing else", "[cases][time_directories]") {
   CHECK(parse_time_name("0") == 0.0);

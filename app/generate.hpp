@@ -11,7 +11,7 @@
 
 #include "cases/spec.hpp"
 
-namespace hydrojump::compare {
+namespace hydrojump::app {
 
 // The study named on a command line: a file, or "default" / "embedded" for the built-in study.
 cases::Study load_spec_argument(const std::string& spec);
@@ -39,4 +39,4 @@ void generate_cases(const cases::Study& study, const std::vector<const cases::Ca
 // Adds `check` and `generate` to `app`.
 void register_case_commands(CLI::App& app);
 
-}  // namespace hydrojump::compare
+}  // namespace hydrojump::app

@@ -1,4 +1,4 @@
-#include "cases/child_process.hpp"
+#include "util/child_process.hpp"
 
 #include <cerrno>
 #include <cstdlib>
@@ -16,7 +16,7 @@
 
 extern char** environ;
 
-namespace hydrojump::cases {
+namespace hydrojump::util {
 
 namespace fs = std::filesystem;
 
@@ -261,4 +261,4 @@ ChildExit stop_child(pid_t pid, std::chrono::milliseconds grace) {
 
 ChildExit run_child(const ChildCommand& command) { return wait_child(start_child(command)); }
 
-}  // namespace hydrojump::cases
+}  // namespace hydrojump::util

@@ -17,7 +17,7 @@
 #include <string_view>
 #include <vector>
 
-namespace hydrojump::cases {
+namespace hydrojump::util {
 
 struct TimeDirectory {
   double time_s;
@@ -34,4 +34,4 @@ std::optional<double> parse_time_name(std::string_view name);
 std::vector<TimeDirectory> time_directories(const std::filesystem::path& dir,
                                             double after_s = -std::numeric_limits<double>::infinity());
 
-}  // namespace hydrojump::cases
+}  // namespace hydrojump::util

@@ -1,4 +1,4 @@
-#include "cases/atomic_file.hpp"
+#include "util/atomic_file.hpp"
 
 #include <atomic>
 #include <fstream>
@@ -12,7 +12,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
-namespace hydrojump::cases {
+namespace hydrojump::util {
 namespace {
 
 // A temporary path beside `target`, unique within this process and across processes.
@@ -118,4 +118,4 @@ void write_via_temporary(const std::filesystem::path& target,
   rename_over(tmp, target);
 }
 
-}  // namespace hydrojump::cases
+}  // namespace hydrojump::util

@@ -1,11 +1,11 @@
-#include "cases/csv_table.hpp"
+#include "util/csv_table.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
 
-namespace hydrojump::cases {
+namespace hydrojump::util {
 
 std::vector<std::string> split_csv_line(std::string_view line) {
   if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
@@ -50,4 +50,4 @@ CsvTable read_csv_table(const std::filesystem::path& file) {
   return table;
 }
 
-}  // namespace hydrojump::cases
+}  // namespace hydrojump::util

@@ -2,14 +2,14 @@
 // 6 to 17 significant digits) that reads back to the same double, so a range or a value quoted in an
 // error is exactly the one checked ("0.1", not "0.10000000000000001"; "1e-06"; "nan", "inf").
 // Example:
-//   throw std::runtime_error("--station-spacing " + cases::number_text(ds) + " m is coarser than y1");
+//   throw std::runtime_error("--station-spacing " + util::number_text(ds) + " m is coarser than y1");
 #pragma once
 
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 
-namespace hydrojump::cases {
+namespace hydrojump::util {
 
 inline std::string number_text(double v) {
   char buffer[64];
@@ -20,4 +20,4 @@ inline std::string number_text(double v) {
   return buffer;
 }
 
-}  // namespace hydrojump::cases
+}  // namespace hydrojump::util

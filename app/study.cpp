@@ -1,4 +1,4 @@
-#include "compare/study.hpp"
+#include "app/study.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -16,24 +16,24 @@
 #include <sstream>
 #include <thread>
 
-#include "cases/atomic_file.hpp"
-#include "cases/child_process.hpp"
-#include "cases/cli_checks.hpp"
-#include "cases/directory_lock.hpp"
-#include "cases/fingerprint.hpp"
-#include "cases/number_text.hpp"
+#include "util/atomic_file.hpp"
+#include "util/child_process.hpp"
+#include "util/cli_checks.hpp"
+#include "util/directory_lock.hpp"
+#include "util/fingerprint.hpp"
+#include "util/number_text.hpp"
 #include "compare/record.hpp"
 #include "cases/results_case.hpp"
 #include "cases/spec_reader.hpp"
-#include "cases/stop_signals.hpp"
-#include "compare/generate.hpp"
+#include "util/stop_signals.hpp"
+#include "app/generate.hpp"
 #include "compare/plots.hpp"
 #include "compare/study_summary.hpp"
 #include "reference/runner.hpp"
 #include "sph/cli.hpp"
 #include "hydrojump/version.hpp"
 
-namespace hydrojump::compare {
+namespace hydrojump::app {
 namespace {
 
 // Stop requests to the study (Ctrl-C, SIGTERM, a hangup): the first one's signal number (0 while none
@@ -60,7 +60,7 @@ class StudyStopSignals {
   }
 
  private:
-  cases::StopSignalHandlers handlers_{request_study_stop, {.restart_interrupted_calls = true, .ignore_sigpipe = false}};
+  util::StopSignalHandlers handlers_{request_study_stop, {.restart_interrupted_calls = true, .ignore_sigpipe = false}};
 };
 
 bool study_stopping() { return study_stop_signal != 0; }
@@ -91,7 +91,7 @@ std::string case_fingerprint(const cases::Study& study, const cases::Case& c, co
                              const char* code) {
   std::string text = cases::resolved_case_text(study, c, resolution);
   text = text.substr(text.find('\n') + 1);  // the first line names the source file: not part of the case
-  return cases::fingerprint(text + "\ncode " + code);
+  return util::fingerprint(text + "\ncode " + code);
 }
 
 // The fingerprint of the run that case `c` at `resolution` makes: the one its SPH checkpoint carries
@@ -104,13 +104,13 @@ std::string run_fingerprint_of(const cases::Study& study, const cases::Case& c, 
 
 // Locks the sph and vof directories under each of `tops` that exist, so that no run started by hand
 // writes in them while the study rewrites or moves them (a run holding one makes this throw).
-std::vector<std::unique_ptr<cases::DirectoryLock>> lock_solver_directories(
+std::vector<std::unique_ptr<util::DirectoryLock>> lock_solver_directories(
     std::initializer_list<std::filesystem::path> tops, const std::string& holder) {
-  std::vector<std::unique_ptr<cases::DirectoryLock>> locks;
+  std::vector<std::unique_ptr<util::DirectoryLock>> locks;
   for (const auto& top : tops)
     for (const char* method : {"sph", "vof"})
       if (std::filesystem::is_directory(top / method))
-        locks.push_back(std::make_unique<cases::DirectoryLock>(top / method, holder));
+        locks.push_back(std::make_unique<util::DirectoryLock>(top / method, holder));
   return locks;
 }
 
@@ -161,13 +161,13 @@ class StudyRunner {
 
     // Records of this case and code (--records) stand in for a run, unless this directory's own
     // comparison is current.
-    if (cases::read_text_file(dir / "compare.stamp") != compare_fingerprint)
+    if (util::read_text_file(dir / "compare.stamp") != compare_fingerprint)
       if (auto imported = import_records(c, dir, run_fingerprint)) return *imported;
     // Regenerate the case directories only when the case changed (keeps finished results).
     const auto generated_stamp = dir / "generate.stamp";
     const auto run_stamp = dir / "settings.stamp";
-    if (!options_.force && cases::read_text_file(generated_stamp) != fingerprint &&
-        cases::read_text_file(run_stamp) == run_fingerprint) {
+    if (!options_.force && util::read_text_file(generated_stamp) != fingerprint &&
+        util::read_text_file(run_stamp) == run_fingerprint) {
       // Only descriptive texts or run-control settings changed: the results still belong to the case.
       // Rewrite its inputs in place (generate keeps results whose setting lines agree); the solver
       // stamps stay valid, and the comparison runs again with the new texts.
@@ -176,10 +176,10 @@ class StudyRunner {
       generate_cases(study_, {&c}, options_.resolution, options_.out, generated);
       runs_idle.clear();
       say(c.id + ": only descriptive texts or run-control settings changed: inputs rewritten, results kept");
-      cases::write_file_atomically(generated_stamp, fingerprint);
+      util::write_file_atomically(generated_stamp, fingerprint);
       std::filesystem::remove(dir / "compare.stamp");
     }
-    if (options_.force || cases::read_text_file(generated_stamp) != fingerprint) {
+    if (options_.force || util::read_text_file(generated_stamp) != fingerprint) {
       // The results of a changed case are stale: start its directory afresh, keeping the previous
       // results (hours of runs) as <case>.previous (replacing an older one) instead of deleting them.
       // Not while a run started by hand is still writing in it (that run keeps its directory).
@@ -199,8 +199,8 @@ class StudyRunner {
       std::ostringstream generated;
       generate_cases(study_, {&c}, options_.resolution, options_.out, generated);
       say(c.id + ": " + generated.str().substr(0, generated.str().find_last_not_of('\n') + 1));
-      cases::write_file_atomically(generated_stamp, fingerprint);
-      cases::write_file_atomically(run_stamp, run_fingerprint);
+      util::write_file_atomically(generated_stamp, fingerprint);
+      util::write_file_atomically(run_stamp, run_fingerprint);
     }
     bool any_solver_ok = false, any_solver_ran = false;
     for (const auto& method : options_.methods) {
@@ -251,10 +251,10 @@ class StudyRunner {
   std::optional<CaseResult> import_records(const cases::Case& c, const std::filesystem::path& dir,
                                            const std::string& run_fingerprint) {
     if (options_.records.empty() || options_.force) return std::nullopt;
-    std::vector<ValidationRecord> found;
+    std::vector<compare::ValidationRecord> found;
     for (const auto& method : options_.methods) {
-      const auto file = record_file(options_.records, study_.name, c.id, method, options_.resolution);
-      const auto record = read_record_if_present(file);
+      const auto file = compare::record_file(options_.records, study_.name, c.id, method, options_.resolution);
+      const auto record = compare::read_record_if_present(file);
       if (!record) return std::nullopt;
       if (record->run_key != run_fingerprint) {
         say(c.id + ": record " + file.string() + " is stale (made with run key " + record->run_key +
@@ -273,11 +273,11 @@ class StudyRunner {
       say(c.id + ": its earlier results are kept in " + previous.string());
     }
     std::filesystem::remove_all(dir);
-    write_imported_comparison(dir, found);
+    compare::write_imported_comparison(dir, found);
     CaseResult result{c.id, {}};
     std::string files;
     for (const auto& r : found) {
-      const auto file = record_file(options_.records, r.study, r.case_id, r.method, r.resolution);
+      const auto file = compare::record_file(options_.records, r.study, r.case_id, r.method, r.resolution);
       files += (files.empty() ? "" : ", ") + file.string();
       result.stages.push_back({r.method, "imported", 0.0, 0, "record of " + r.recorded_on});
     }
@@ -306,7 +306,7 @@ class StudyRunner {
   // (stopped or failed) and will be resumed, "seconds legs" (a leg of a study killed outright is not
   // counted). Gone once the stage finishes or starts over.
   static std::pair<double, int> earlier_legs(const std::filesystem::path& dir, const std::string& stage) {
-    std::istringstream in(cases::read_text_file(dir / (stage + ".legs")));
+    std::istringstream in(util::read_text_file(dir / (stage + ".legs")));
     double seconds = 0.0;
     int legs = 0;
     if (!(in >> seconds >> legs) || !(seconds >= 0.0) || legs < 0) return {0.0, 0};
@@ -315,7 +315,7 @@ class StudyRunner {
 
   static void add_leg(const std::filesystem::path& dir, const std::string& stage, double seconds) {
     const auto [before, legs] = earlier_legs(dir, stage);
-    cases::write_file_atomically(dir / (stage + ".legs"), cases::number_text(before + seconds) + " " + std::to_string(legs + 1) + "\n");
+    util::write_file_atomically(dir / (stage + ".legs"), util::number_text(before + seconds) + " " + std::to_string(legs + 1) + "\n");
   }
 
   // OUT/<case>/<stage>.stage.toml beside a finished solver stage: its wall time over all its legs (a run
@@ -332,7 +332,7 @@ class StudyRunner {
     text << "# all legs of this stage (a run stopped and resumed counts each leg)\nwall_time_s = " << std::fixed
          << std::setprecision(3) << total << "\nlegs = " << legs + 1 << "\nthreads = " << threads << "\nmachine = \""
          << machine_text() << "\"\n";
-    cases::write_file_atomically(dir / (stage + ".stage.toml"), text.str());
+    util::write_file_atomically(dir / (stage + ".stage.toml"), text.str());
     std::filesystem::remove(dir / (stage + ".legs"));
   }
 
@@ -340,7 +340,7 @@ class StudyRunner {
                         const std::filesystem::path& dir, const std::string& fingerprint,
                         const std::filesystem::path& started_marker) {
     const auto stamp = dir / (stage + ".stamp");
-    if (!options_.force && cases::read_text_file(stamp) == fingerprint) {
+    if (!options_.force && util::read_text_file(stamp) == fingerprint) {
       say(id + ": " + stage + " up to date (cached)");
       return {stage, "cached", 0.0, 0, {}};
     }
@@ -348,25 +348,25 @@ class StudyRunner {
     // A request that came since the caller looked: nothing starts (a child stopped before its own
     // handlers are set would die without writing its state).
     if (study_stopping()) return {stage, "skipped", 0.0, 0, "the study was stopped"};
-    if (!started_marker.empty()) cases::write_file_atomically(started_marker, fingerprint);
+    if (!started_marker.empty()) util::write_file_atomically(started_marker, fingerprint);
     say(id + ": " + stage + " started (log: " + log_file.string() + ")");
     const auto t0 = std::chrono::steady_clock::now();
     int status = 127;
     std::string start_error;
     bool stopped = false;
     try {
-      cases::ChildCommand command(args, log_file);
+      util::ChildCommand command(args, log_file);
       command.own_process_group = true;  // a stop request reaches it from the study, once
       command.parent_death_signal = SIGTERM;  // and a study killed outright (SIGKILL) stops it too
-      const pid_t pid = cases::start_child(command);
-      std::optional<cases::ChildExit> ended;
-      while (!(ended = cases::poll_child(pid))) {
+      const pid_t pid = util::start_child(command);
+      std::optional<util::ChildExit> ended;
+      while (!(ended = util::poll_child(pid))) {
         if (study_stopping() && !stopped) {
           ::kill(-pid, SIGTERM);  // its process group: it stops with its state written
           stopped = true;
         }
         if (study_stop_requests.load() >= 2) {
-          ended = cases::stop_child(pid, std::chrono::seconds(2));  // asked again: at once
+          ended = util::stop_child(pid, std::chrono::seconds(2));  // asked again: at once
           break;
         }
         std::this_thread::sleep_for(std::chrono::milliseconds(100));
@@ -391,14 +391,14 @@ class StudyRunner {
       return {stage, "failed", seconds, status, {}};
     }
     write_stage_info(dir, stage, seconds);
-    cases::write_file_atomically(stamp, fingerprint);
+    util::write_file_atomically(stamp, fingerprint);
     if (!started_marker.empty()) std::filesystem::remove(started_marker);
     say(id + ": " + stage + " finished in " + duration_text(seconds));
     return {stage, "done", seconds, 0, {}};
   }
 
   static std::string tail(const std::filesystem::path& file, int lines) {
-    const std::string text = cases::read_text_file(file);
+    const std::string text = util::read_text_file(file);
     std::size_t at = text.size();
     for (int n = 0; n <= lines && at > 0; ++n) {
       const auto p = text.rfind('\n', at - 1);
@@ -446,7 +446,7 @@ std::vector<CaseResult> with_earlier_runs(const StudyOptions& options, const cas
     } catch (const std::exception&) {
       continue;  // not valid at this resolution: it cannot have run
     }
-    if (cases::read_text_file(options.out / c->id / "compare.stamp") == fingerprint)
+    if (util::read_text_file(options.out / c->id / "compare.stamp") == fingerprint)
       out.push_back(CaseResult{c->id, {{"compare", "earlier run", 0.0, 0, {}}}});
   }
   return out;
@@ -466,11 +466,11 @@ void write_study_report(const StudyOptions& options, const cases::Study& study,
     compared.emplace_back(r.id, options.out / r.id);
     case_dirs.push_back(options.out / r.id);
   }
-  const StudySummary summary = summarize_study(compared);
+  const compare::StudySummary summary = compare::summarize_study(compared);
   md << "## Results\n\n" << summary.markdown << "\n";
-  cases::write_file_atomically(options.out / "eta_summary.csv", summary.eta_csv);
+  util::write_file_atomically(options.out / "eta_summary.csv", summary.eta_csv);
   const auto bars = options.out / "eta_bars.png";
-  const std::string plot_problem = plot_study_eta_bars(case_dirs, bars);
+  const std::string plot_problem = compare::plot_study_eta_bars(case_dirs, bars);
   if (plot_problem.empty()) {
     md << "![Energy dissipation rate across runs](eta_bars.png)\n\n";
   } else {
@@ -504,7 +504,7 @@ void write_study_report(const StudyOptions& options, const cases::Study& study,
     md << "\n## References\n\n";
     for (const auto& c : study.citations) md << "- " << c << "\n";
   }
-  cases::write_file_atomically(options.out / "study_report.md", md.str());
+  util::write_file_atomically(options.out / "study_report.md", md.str());
 }
 
 }  // namespace
@@ -540,13 +540,13 @@ int run_study(const StudyOptions& given, std::ostream& log) {
                                ")");
   }
   // One study per output directory (its case runs lock their own directories too).
-  const cases::DirectoryLock lock(options.out, "hydrojump study " + options.spec);
+  const util::DirectoryLock lock(options.out, "hydrojump study " + options.spec);
   // What a study or comparison killed outright left half-written in the study's own directories (the
   // solvers clean theirs, under their own locks).
-  cases::remove_orphaned_temporaries(options.out);
+  util::remove_orphaned_temporaries(options.out);
   for (const cases::Case* c : selected)
     for (const auto& sub : {options.out / c->id, options.out / c->id / "csv", options.out / c->id / "figures"})
-      if (std::filesystem::is_directory(sub)) cases::remove_orphaned_temporaries(sub);
+      if (std::filesystem::is_directory(sub)) util::remove_orphaned_temporaries(sub);
   log << "study \"" << study.name << "\": " << selected.size() << " case(s) at resolution \""
       << options.resolution << "\" into " << options.out.string() << " (" << options.jobs << " at a time"
       << (options.sph_threads > 0 ? ", " + std::to_string(options.sph_threads) + " SPH thread(s) each" : std::string())
@@ -573,7 +573,7 @@ int run_study(const StudyOptions& given, std::ostream& log) {
       << results.size() << " case(s) had a failed stage" << std::endl;
   if (study_stopping()) {
     const int signal = study_stop_signal.load();
-    log << "study stopped by " << cases::stop_signal_name(signal)
+    log << "study stopped by " << util::stop_signal_name(signal)
         << ": the stages that were running stopped with their state written, no other stage started; run the "
            "same command again to go on from there"
         << std::endl;
@@ -596,7 +596,7 @@ void register_study_command(CLI::App& app) {
   cmd->add_option("--resolution,-r", options->resolution, "resolution level (quick, default, fine)")
       ->capture_default_str();
   cmd->add_option("--cases", options->cases, "case ids, comma-separated or repeated, or \"all\" (the default: every case)")->delimiter(',');
-  cmd->add_option("--out,-o", options->out, "study directory")->capture_default_str()->check(cases::non_empty_path());
+  cmd->add_option("--out,-o", options->out, "study directory")->capture_default_str()->check(util::non_empty_path());
   cmd->add_option("--jobs,-j", options->jobs, "cases run at the same time")->check(CLI::Range(1, 64))
       ->capture_default_str();
   cmd->add_option("--np", options->mpi_ranks, "MPI ranks for each OpenFOAM run")->check(CLI::Range(1, 256))
@@ -621,4 +621,4 @@ void register_study_command(CLI::App& app) {
   });
 }
 
-}  // namespace hydrojump::compare
+}  // namespace hydrojump::app

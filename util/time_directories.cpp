@@ -1,11 +1,11 @@
-#include "cases/time_directories.hpp"
+#include "util/time_directories.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <string>
 
-namespace hydrojump::cases {
+namespace hydrojump::util {
 
 std::optional<double> parse_time_name(std::string_view name) {
   // strtod alone would also take a sign, leading blanks, hexadecimal, "nan" and "inf".
@@ -35,4 +35,4 @@ std::vector<TimeDirectory> time_directories(const std::filesystem::path& dir, do
   return out;
 }
 
-}  // namespace hydrojump::cases
+}  // namespace hydrojump::util

@@ -13,7 +13,7 @@
 
 #include <csignal>
 
-namespace hydrojump::cases {
+namespace hydrojump::util {
 
 // The name of a stop request's signal, for messages ("stopped by SIGTERM").
 inline const char* stop_signal_name(int signal) {
@@ -65,4 +65,4 @@ class StopSignalHandlers {
   struct sigaction old_pipe_ {};
 };
 
-}  // namespace hydrojump::cases
+}  // namespace hydrojump::util

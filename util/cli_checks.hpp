@@ -8,7 +8,7 @@
 #include <cstdlib>
 #include <string>
 
-namespace hydrojump::cases {
+namespace hydrojump::util {
 
 // A finite number > 0 ("0.5", "1e-3"); anything else is refused with the value it got.
 inline CLI::Validator positive_finite_number() {
@@ -28,4 +28,4 @@ inline CLI::Validator non_empty_path() {
   return CLI::Validator([](std::string& text) -> std::string { return text.empty() ? "must not be empty" : ""; }, "PATH");
 }
 
-}  // namespace hydrojump::cases
+}  // namespace hydrojump::util

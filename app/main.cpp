@@ -5,12 +5,12 @@
 
 #include <CLI/CLI.hpp>
 
-#include "cases/child_process.hpp"
+#include "util/child_process.hpp"
 #include "cases/spec_reader.hpp"
 #include "compare/cli.hpp"
-#include "compare/generate.hpp"
-#include "compare/record_cli.hpp"
-#include "compare/study.hpp"
+#include "app/generate.hpp"
+#include "app/record_cli.hpp"
+#include "app/study.hpp"
 #include "hydrojump/version.hpp"
 #include "reference/cli.hpp"
 #include "sph/cli.hpp"
@@ -31,12 +31,12 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("hydrojump ") + hydrojump::version_string);
   app.require_subcommand(1);
 
-  hydrojump::compare::register_case_commands(app);
+  hydrojump::app::register_case_commands(app);
   hydrojump::sph::register_commands(app);
   hydrojump::reference::register_commands(app);
   hydrojump::compare::register_commands(app);
-  hydrojump::compare::register_study_command(app);
-  hydrojump::compare::register_record_commands(app);
+  hydrojump::app::register_study_command(app);
+  hydrojump::app::register_record_commands(app);
 
   // A mistyped command is named as such (CLI11 itself says only "A subcommand is required").
   if (argc > 1 && argv[1][0] != '-') {

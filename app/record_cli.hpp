@@ -4,8 +4,8 @@
 
 #include <CLI/CLI.hpp>
 
-namespace hydrojump::compare {
+namespace hydrojump::app {
 
 void register_record_commands(CLI::App& app);
 
-}  // namespace hydrojump::compare
+}  // namespace hydrojump::app
