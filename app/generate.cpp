@@ -36,12 +36,12 @@ std::string fixed(double v, int digits) {
 
 // The SPH viscosity model in a few words: "artificial alpha 0.1", "SPS l 0.0132 m free_slip".
 std::string sph_model_text(const cases::SphSettings& s) {
-  if (s.viscosity == "artificial")
+  if (s.viscosity == cases::Viscosity::artificial)
     return s.artificial_viscosity_nu_m2_s > 0.0 ? "artificial nu " + fixed(s.artificial_viscosity_nu_m2_s * 1e3, 3) + "e-3"
                                                 : "artificial alpha " + fixed(s.artificial_viscosity_alpha, 3);
   const std::string length = s.sps_mixing_length_m > 0.0 ? "l " + fixed(s.sps_mixing_length_m, 4) + " m"
                                                          : "Cs " + fixed(s.sps_smagorinsky_constant, 2);
-  return "SPS " + length + " " + s.viscous_wall_condition;
+  return "SPS " + length + " " + std::string(cases::option_name(s.viscous_wall_condition));
 }
 
 // Each basin's models and run after the rules (cases/case_rules.hpp): one line per case, so that a study
@@ -56,8 +56,10 @@ void print_models_and_runs(const cases::Study& study, int id_width, std::ostream
           << std::setw(28) << "VOF turbulence" << "averaging window, s\n";
       header = true;
     }
-    const std::string vof = c.vof.turbulence_model +
-                            (c.vof.turbulence_stabilization == "none" ? "" : " + " + c.vof.turbulence_stabilization);
+    const std::string vof = std::string(cases::option_name(c.vof.turbulence_model)) +
+                            (c.vof.turbulence_stabilization == cases::TurbulenceStabilization::none
+                                 ? ""
+                                 : " + " + std::string(cases::option_name(c.vof.turbulence_stabilization)));
     out << "  " << std::left << std::setw(id_width) << c.id << std::setw(34) << sph_model_text(c.sph) << std::setw(28)
         << vof << fixed(c.run.average_start_s, 1) << " - " << fixed(c.run.average_end_s, 1) << " (run "
         << fixed(c.run.end_time_s, 1) << ")\n";

@@ -14,6 +14,8 @@
 #include <variant>
 #include <vector>
 
+#include "cases/options.hpp"
+
 namespace hydrojump::cases {
 
 // [fluid]
@@ -24,10 +26,10 @@ struct FluidProperties {
 };
 
 // [sph] — method settings of the SPH solver (defaults as in DualSPHysics where it has one).
-// Option values are strings, never integers.
+// Options are enums parsed from their names by one table each (cases/options.hpp), never integers.
 struct SphSettings {
-  std::string kernel = "wendland_c2";              // "wendland_c2" | "cubic_spline"
-  std::string viscosity = "artificial";            // "artificial" | "laminar_sps"
+  KernelType kernel = KernelType::wendland_c2;              // "wendland_c2" | "cubic_spline"
+  Viscosity viscosity = Viscosity::artificial;            // "artificial" | "laminar_sps"
   double artificial_viscosity_alpha = 0.01;        // Monaghan alpha
   double artificial_viscosity_nu_m2_s = 0.0;       // > 0: alpha = 8 nu / (h c0) instead, the same viscosity
                                                    // at every resolution (2D: nu = alpha h c0 / 8)
@@ -37,52 +39,52 @@ struct SphSettings {
   double sps_mixing_length_m = 0.0;               // > 0: nu_t = l^2 |S| with this l instead of (Cs dx)
   double sps_mixing_length_per_sequent_depth = 0.0; // > 0 (stilling basins): l = this * y2*, resolved per
                                                     // case into sps_mixing_length_m (cases/case_rules.hpp)
-  std::string sps_wall_distance = "kernel_support"; // with a mixing length: "kernel_support" | "whole_domain"
+  SpsWallDistance sps_wall_distance = SpsWallDistance::kernel_support; // with a mixing length: "kernel_support" | "whole_domain"
                                                     // (where d in l = min(l_m, kappa d) is measured; sph/wall_distance.hpp)
-  std::string viscous_wall_condition = "no_slip";  // laminar_sps with mdbc: "no_slip" | "free_slip" | "wall_function"
-  std::string boundary = "dbc";                    // "dbc" | "mdbc"
-  std::string density_diffusion = "fourtakas";     // "none" | "molteni" | "fourtakas"
+  ViscousWallCondition viscous_wall_condition = ViscousWallCondition::no_slip;  // laminar_sps with mdbc: "no_slip" | "free_slip" | "wall_function"
+  BoundaryMethod boundary = BoundaryMethod::dbc;                    // "dbc" | "mdbc"
+  DensityDiffusion density_diffusion = DensityDiffusion::fourtakas;     // "none" | "molteni" | "fourtakas"
   double density_diffusion_coefficient = 0.1;      // delta
   double sound_speed_coefficient = 10.0;           // c0 = coef * sqrt(g * H_max) ...
   double sound_speed_m_s = 0.0;                    // ... unless > 0: then c0 is given directly
   double sound_speed_min_flow_ratio = 10.0;        // and c0 >= ratio * expected max flow speed (Mach <= 0.1)
   double cfl_number = 0.2;
   double coef_h = 1.0;                             // h = coef_h * sqrt(2) * dx
-  std::string time_integrator = "symplectic";      // "symplectic" | "verlet"
+  TimeIntegrator time_integrator = TimeIntegrator::symplectic;      // "symplectic" | "verlet"
   int verlet_euler_interval = 40;                  // Verlet: an Euler step every N steps
   int boundary_layers = 0;                         // 0: enough layers for the kernel support
   int open_boundary_layers = 0;                    // inflow/outflow buffer columns; 0: ceil(2h/dx) + 1
-  std::string inflow_condition = "buffer";         // "buffer" (open_boundaries.hpp) | "piston" (a reservoir
+  InflowCondition inflow_condition = InflowCondition::buffer;         // "buffer" (open_boundaries.hpp) | "piston" (a reservoir
                                                    // pushed by a piston behind a sluice gate, geometry.hpp)
   double sluice_opening_m = 0.0;                   // "piston": gate opening; 0: y1 / 0.611
   double reservoir_length_m = 0.0;                 // "piston": 0: piston travel over the run + 2 H_r
   double piston_level_gain_per_s = 10.0;           // "piston": K of u_p = q/H_r + K (H_r - H); 0: fixed speed
-  std::string outflow_condition = "hydrostatic_level";  // "hydrostatic_level" | "absorbing" (open_boundaries.hpp)
+  OutflowCondition outflow_condition = OutflowCondition::hydrostatic_level;  // "hydrostatic_level" | "absorbing" (open_boundaries.hpp)
                                                    // | "tailgate" (sph/tailgate.hpp)
   double tailgate_height_m = 0.0;                  // "tailgate": crest above the local bed; 0: from the
                                                    // tailwater depth by Rehbock's weir formula
-  std::string outflow_level_reference = "outlet";  // where the outflow buffer holds the tailwater depth:
+  OutflowLevelReference outflow_level_reference = OutflowLevelReference::outlet;  // where the outflow buffer holds the tailwater depth:
                                                    // "outlet" | "downstream_section" (sph/outflow_level_control.hpp)
   double outflow_level_time_s = 2.0;               // "downstream_section": integral time T_c of the control
-  std::string particle_shifting = "none";          // "none" | "fickian" (sph/particle_shifting.hpp)
+  ParticleShifting particle_shifting = ParticleShifting::none;          // "none" | "fickian" (sph/particle_shifting.hpp)
   double particle_shifting_coefficient = 2.0;      // "fickian": A in delta r = -A h |v| dt grad C, (0, 10]
   double particle_shifting_surface_threshold = 1.5; // "fickian": div r below this is the free surface, [0, 1.9]
-  std::string particle_shifting_correction = "none"; // "fickian": "none" | "taylor" | "taylor_volume" (particle_shifting.hpp)
+  ShiftingCorrection particle_shifting_correction = ShiftingCorrection::none; // "fickian": "none" | "taylor" | "taylor_volume" (particle_shifting.hpp)
   double max_density_variation = 0.05;             // |rho/rho0 - 1| above this stops the run
   double checkpoint_interval_wall_s = 300.0;       // wall-clock seconds between checkpoints
 };
 
 // [vof] — method settings of the OpenFOAM interFoam reference.
 struct VofSettings {
-  std::string turbulence_model = "kOmegaSST";      // "laminar" | "kOmegaSST" | "kEpsilon" | "RNGkEpsilon"
+  TurbulenceModel turbulence_model = TurbulenceModel::kOmegaSST; // "laminar" | "kOmegaSST" | "kEpsilon" | "RNGkEpsilon"
   // "none" | "nut_limiter" | "nut_limiter_and_buoyancy": OpenFOAM's multiphaseStabilizedTurbulence
   // fvOption (k-epsilon models only) with the nut limiter of Larsen & Fuhrman (2018) alone, or also with
   // the buoyancy sink of k at the interface of Devolder et al. (2017)
-  std::string turbulence_stabilization = "none";
+  TurbulenceStabilization turbulence_stabilization = TurbulenceStabilization::none;
   double max_courant = 0.8;
   double max_alpha_courant = 0.8;
   double max_time_step_s = 1.0e-3;
-  std::string mesh_strategy = "cartesian_cut";     // "cartesian_cut" | "body_fitted"
+  MeshStrategy mesh_strategy = MeshStrategy::cartesian_cut; // "cartesian_cut" | "body_fitted"
   double surface_refinement_band_m = 0.0;          // 0: derived from y1 and y2 (stilling basins)
   // Stilling basins with [case.tailwater] control = "hold_toe": the runner resets the outlet's Umean
   // between legs of this length (reference/tailwater_control.hpp); a whole number of output intervals.

@@ -65,9 +65,10 @@ static const ColumnStatistics* find_role(const MethodStatistics& m, const std::s
   return nullptr;
 }
 
-JumpMetrics compute_jump_metrics(const MethodStatistics& m, const JumpInputs& in) {
-  JumpMetrics r;
-  // The structure at x_2y2: (z(u_max) - z_bed) / h, and the profile against the wall jet's.
+// The structure at the section "x_2y2": the height of the fastest forward flow over the depth,
+//   jet_height_fraction = (z(u_max) - z_bed) / h,
+// and the RMS deviation of its profile from the plane wall jet's (jump_structure.hpp).
+static void wall_jet_structure(const MethodStatistics& m, JumpMetrics& r) {
   for (const auto& s : m.sections) {
     if (s.spec.name != "x_2y2" || s.n_wet == 0) continue;
     const WallJetFit fit = fit_wall_jet(s);
@@ -75,10 +76,15 @@ JumpMetrics compute_jump_metrics(const MethodStatistics& m, const JumpInputs& in
     r.wall_jet_deviation = fit.deviation;
     break;
   }
+}
+
+// The depths and energies of the "upstream" and "downstream" sections:
+//   upstream depth = <surface> - z_floor,   E1 = E(upstream)
+//   y2             = <surface> - z_floor,   E2 = E(downstream)   (E: section_energy)
+// with a note for a section that is absent or never wet.
+static void section_values(const ColumnStatistics* up, const ColumnStatistics* down, const JumpInputs& in,
+                           JumpMetrics& r) {
   const double g = in.gravity_m_s2;
-  const double y1 = in.inflow_depth_m;
-  const ColumnStatistics* up = find_role(m, "upstream");
-  const ColumnStatistics* down = find_role(m, "downstream");
   if (up && up->n_wet > 0) {
     r.upstream_depth_m = up->surface.mean - in.floor_z_m;
     r.e1_m = section_energy(*up, g, false);
@@ -92,87 +98,132 @@ JumpMetrics compute_jump_metrics(const MethodStatistics& m, const JumpInputs& in
   } else {
     r.notes.push_back("no wet \"downstream\" section: y2, E2, eta and Lj unavailable");
   }
-  if (std::isfinite(r.e1_m) && std::isfinite(r.e2_m)) {
-    r.eta = dissipation_rate(r.e1_m, r.e2_m);
-    r.eta_alpha1 = dissipation_rate(section_energy(*up, g, true), section_energy(*down, g, true));
-    // E = y + q^2/(2 g y^2) with y above the floor (crest) level
-    auto crest_energy = [&](const ColumnStatistics& c) {
-      const double y = c.surface.mean - in.floor_z_m, q = c.discharge.mean;
-      return y + q * q / (2.0 * g * y * y);
-    };
-    r.eta_crest_depth = dissipation_rate(crest_energy(*up), crest_energy(*down));
-    // (M1 - M2)/M1 with M = h^2/2 + beta q^2/(g h)
-    r.specific_force_upstream_m2 = up->specific_force.mean;
-    r.specific_force_downstream_m2 = down->specific_force.mean;
-    r.bed_force_fraction = (r.specific_force_upstream_m2 - r.specific_force_downstream_m2) / r.specific_force_upstream_m2;
-    // Continuity check: in a steady window both sections carry the inflow's q = y1 U1. A mean q off
-    // by more than 5 % means the basin was still filling or draining (or the section is in spray),
-    // so E2, eta and M2 there are not those of a stationary jump.
-    const double q_in = in.inflow_depth_m * in.inflow_velocity_m_s;
-    for (const ColumnStatistics* c : {up, down}) {
-      const double ratio = c->discharge.mean / q_in - 1.0;
-      if (q_in > 0.0 && std::abs(ratio) > 0.05) {
-        std::ostringstream s;
-        s << "the \"" << c->spec.role << "\" section's mean discharge " << c->discharge.mean << " m^2/s is "
-          << std::fixed << std::setprecision(1) << 100.0 * ratio << " % off the inflow q = " << std::defaultfloat << std::setprecision(4)
-          << q_in << " m^2/s: the averaging window is not steady there (storage still changing), so its "
-          << "energy and force are not those of a stationary jump";
-        r.notes.push_back(s.str());
-      }
-    }
-  }
+}
 
-  // Longitudinal analysis on the stations.
-  const auto& st = m.stations;
-  if (st.size() < 3) {
-    r.notes.push_back("fewer than 3 stations along the channel: toe, Lj and Lr unavailable");
-    return r;
-  }
-  std::vector<double> xs(st.size()), zeta(st.size());
-  for (std::size_t i = 0; i < st.size(); ++i) {
-    xs[i] = st[i].spec.x_m;
-    zeta[i] = st[i].surface.mean - in.floor_z_m;
-  }
-  const double ds = (xs.back() - xs.front()) / static_cast<double>(xs.size() - 1);
-  const int half = std::max(0, static_cast<int>(std::lround(0.5 * in.options.toe_window_y1 * y1 / ds)));
-  const std::vector<double> zm = cases::running_mean(zeta, half);
-  const double x_down = down ? down->spec.x_m : st.back().spec.x_m;
-  const double x_up = up ? up->spec.x_m : st.front().spec.x_m;
-  const std::size_t toe = find_toe(xs, zeta, x_up, in);
-  // The first station the search looks at: a toe there means the surface already stands above the
-  // threshold at the search start, so the jump reaches the upstream section (or lies upstream of it).
-  std::size_t search_start = 0;
-  while (search_start < xs.size() && xs[search_start] < x_up) ++search_start;
-  // The same criterion on each frame's instantaneous surface: how much the toe moves.
-  if (!m.station_surface_series.empty()) {
-    std::vector<double> toes;  // one per frame (NaN without a toe), aligned with m.times
-    for (const auto& frame : m.station_surface_series) {
-      if (frame.size() != xs.size()) {
-        toes.push_back(not_a_number);
-        continue;
-      }
-      std::vector<double> z(frame.size());
-      for (std::size_t i = 0; i < frame.size(); ++i) z[i] = frame[i] - in.floor_z_m;
-      const std::size_t k = find_toe(xs, z, x_up, in);
-      toes.push_back(k < xs.size() ? xs[k] : not_a_number);
-      if (up && k == search_start) ++r.toe_frames_at_search_start;
-    }
-    const ScalarStats ts = stats_of(toes);
-    r.toe_mean_of_frames_x_m = ts.mean;
-    r.toe_std_m = ts.std;
-    r.toe_frames_found = ts.count;
-    if (m.times.size() == toes.size()) r.toe_trend_m_per_s = cases::least_squares_slope(m.times, toes);
-    if (r.toe_frames_at_search_start > 0) {
+// The laboratory's specific energy of a section, y the mean surface above the floor (crest) level and
+// q the section's mean discharge:
+//   E = y + q^2/(2 g y^2)
+static double crest_energy(const ColumnStatistics& c, const JumpInputs& in) {
+  const double g = in.gravity_m_s2;
+  const double y = c.surface.mean - in.floor_z_m, q = c.discharge.mean;
+  return y + q * q / (2.0 * g * y * y);
+}
+
+// The dissipation rates and the bed force between the two sections (r.e1_m and r.e2_m set):
+//   eta = (E1 - E2)/E1 with alpha (eta), with alpha = 1 (eta_alpha1), with the crest depth (eta_crest_depth)
+//   bed_force_fraction = (M1 - M2)/M1,   M = h^2/2 + beta q^2/(g h)
+static void dissipation_and_bed_force(const ColumnStatistics& up, const ColumnStatistics& down, const JumpInputs& in,
+                                      JumpMetrics& r) {
+  const double g = in.gravity_m_s2;
+  r.eta = dissipation_rate(r.e1_m, r.e2_m);
+  r.eta_alpha1 = dissipation_rate(section_energy(up, g, true), section_energy(down, g, true));
+  r.eta_crest_depth = dissipation_rate(crest_energy(up, in), crest_energy(down, in));
+  r.specific_force_upstream_m2 = up.specific_force.mean;
+  r.specific_force_downstream_m2 = down.specific_force.mean;
+  r.bed_force_fraction = (r.specific_force_upstream_m2 - r.specific_force_downstream_m2) / r.specific_force_upstream_m2;
+}
+
+// Continuity check: in a steady window both sections carry the inflow's q = y1 U1. A mean q off by
+// more than 5 %,
+//   |<q> / (y1 U1) - 1| > 0.05,
+// means the basin was still filling or draining (or the section is in spray), so E2, eta and M2 there
+// are not those of a stationary jump: a note per such section.
+static void continuity_notes(const ColumnStatistics& up, const ColumnStatistics& down, const JumpInputs& in,
+                             JumpMetrics& r) {
+  const double q_in = in.inflow_depth_m * in.inflow_velocity_m_s;
+  for (const ColumnStatistics* c : {&up, &down}) {
+    const double ratio = c->discharge.mean / q_in - 1.0;
+    if (q_in > 0.0 && std::abs(ratio) > 0.05) {
       std::ostringstream s;
-      s << "in " << r.toe_frames_at_search_start << " of " << toes.size() << " frames the toe is at the search start (x = "
-        << xs[std::min(search_start, xs.size() - 1)]
-        << " m, the \"upstream\" section): the roller reaches that section or lies upstream of it, so those frames' toes"
-           " are downstream bounds and the frames' toe mean and standard deviation are biased";
+      s << "the \"" << c->spec.role << "\" section's mean discharge " << c->discharge.mean << " m^2/s is "
+        << std::fixed << std::setprecision(1) << 100.0 * ratio << " % off the inflow q = " << std::defaultfloat << std::setprecision(4)
+        << q_in << " m^2/s: the averaging window is not steady there (storage still changing), so its "
+        << "energy and force are not those of a stationary jump";
       r.notes.push_back(s.str());
     }
-    r.toe_frames_x_m = std::move(toes);
   }
-  if (toe == st.size()) {
+}
+
+// The time-mean surface along the stations and where the jump lies on it.
+struct SurfaceLine {
+  std::vector<double> x;         // the stations' positions
+  std::vector<double> zeta;      // time-mean surface above the floor
+  std::vector<double> smoothed;  // zeta's running mean over toe_window_y1 * y1
+  double x_up = 0.0, x_down = 0.0;   // the "upstream" and "downstream" sections (else the line's ends)
+  bool has_upstream = false, has_downstream = false;
+  std::size_t toe = 0;           // the toe station (x.size(): none)
+  std::size_t search_start = 0;  // the first station the toe search looks at (x >= x_up)
+};
+
+// The surface line of the stations (at least 3): zeta_i = <surface>_i - z_floor, its running mean over
+// half = round(0.5 toe_window_y1 y1 / ds) stations each side, ds = (x_last - x_first)/(n - 1), and the
+// toe by find_toe from the upstream section on.
+static SurfaceLine surface_line(const MethodStatistics& m, const ColumnStatistics* up, const ColumnStatistics* down,
+                                const JumpInputs& in) {
+  const auto& st = m.stations;
+  SurfaceLine l;
+  l.x.resize(st.size());
+  l.zeta.resize(st.size());
+  for (std::size_t i = 0; i < st.size(); ++i) {
+    l.x[i] = st[i].spec.x_m;
+    l.zeta[i] = st[i].surface.mean - in.floor_z_m;
+  }
+  const double ds = (l.x.back() - l.x.front()) / static_cast<double>(l.x.size() - 1);
+  const int half = std::max(0, static_cast<int>(std::lround(0.5 * in.options.toe_window_y1 * in.inflow_depth_m / ds)));
+  l.smoothed = cases::running_mean(l.zeta, half);
+  l.x_down = down ? down->spec.x_m : st.back().spec.x_m;
+  l.x_up = up ? up->spec.x_m : st.front().spec.x_m;
+  l.has_upstream = up != nullptr;
+  l.has_downstream = down != nullptr;
+  l.toe = find_toe(l.x, l.zeta, l.x_up, in);
+  // A toe at the first station the search looks at means the surface already stands above the
+  // threshold at the search start, so the jump reaches the upstream section (or lies upstream of it).
+  while (l.search_start < l.x.size() && l.x[l.search_start] < l.x_up) ++l.search_start;
+  return l;
+}
+
+// The same toe criterion on each frame's instantaneous surface: how much the toe moves. Each frame's
+// toe (NaN without one), their mean, standard deviation and count, the trend
+//   toe_trend = least-squares slope of the frames' toes against time,
+// and a note when frames have their toe at the search start.
+static void frame_toes(const MethodStatistics& m, const SurfaceLine& line, const JumpInputs& in, JumpMetrics& r) {
+  const std::vector<double>& xs = line.x;
+  std::vector<double> toes;  // one per frame (NaN without a toe), aligned with m.times
+  for (const auto& frame : m.station_surface_series) {
+    if (frame.size() != xs.size()) {
+      toes.push_back(not_a_number);
+      continue;
+    }
+    std::vector<double> z(frame.size());
+    for (std::size_t i = 0; i < frame.size(); ++i) z[i] = frame[i] - in.floor_z_m;
+    const std::size_t k = find_toe(xs, z, line.x_up, in);
+    toes.push_back(k < xs.size() ? xs[k] : not_a_number);
+    if (line.has_upstream && k == line.search_start) ++r.toe_frames_at_search_start;
+  }
+  const ScalarStats ts = stats_of(toes);
+  r.toe_mean_of_frames_x_m = ts.mean;
+  r.toe_std_m = ts.std;
+  r.toe_frames_found = ts.count;
+  if (m.times.size() == toes.size()) r.toe_trend_m_per_s = cases::least_squares_slope(m.times, toes);
+  if (r.toe_frames_at_search_start > 0) {
+    std::ostringstream s;
+    s << "in " << r.toe_frames_at_search_start << " of " << toes.size() << " frames the toe is at the search start (x = "
+      << xs[std::min(line.search_start, xs.size() - 1)]
+      << " m, the \"upstream\" section): the roller reaches that section or lies upstream of it, so those frames' toes"
+         " are downstream bounds and the frames' toe mean and standard deviation are biased";
+    r.notes.push_back(s.str());
+  }
+  r.toe_frames_x_m = std::move(toes);
+}
+
+// The toe x_t of the time-mean surface, and whether the jump lies between the sections: false (with a
+// note, and the values the misplaced jump spoils dropped) when there is no toe, when the toe lies at or
+// past the "downstream" section, or when it lies at the search start (the jump reaches the "upstream"
+// section); the lengths are then not measured.
+static bool jump_between_sections(const std::vector<ColumnStatistics>& st, const SurfaceLine& line,
+                                  const JumpInputs& in, JumpMetrics& r) {
+  const double y1 = in.inflow_depth_m;
+  if (line.toe == st.size()) {
     // No jump in the reach (swept out downstream, or never formed): the downstream section samples
     // the incoming stream, not a sequent depth, so its values would be silently wrong.
     std::ostringstream s;
@@ -180,39 +231,51 @@ JumpMetrics compute_jump_metrics(const MethodStatistics& m, const JumpInputs& in
       << in.options.toe_threshold_y1 * y1 << " m above the floor, so y2, E2, eta, the bed force, Lr and Lj are unavailable";
     r.notes.push_back(s.str());
     drop_downstream_values(r);
-    return r;
+    return false;
   }
-  r.toe_x_m = st[toe].spec.x_m;
+  r.toe_x_m = st[line.toe].spec.x_m;
   // A jump swept past the downstream section: that section samples the incoming stream (or the
   // jump itself), not the sequent depth, so y2, E2 and eta would be silently wrong; the roller and
   // the settling lie beyond the sections.
-  if (down && r.toe_x_m >= x_down) {
+  if (line.has_downstream && r.toe_x_m >= line.x_down) {
     std::ostringstream s;
-    s << "the toe (x = " << r.toe_x_m << " m) lies downstream of the \"downstream\" section (x = " << x_down
+    s << "the toe (x = " << r.toe_x_m << " m) lies downstream of the \"downstream\" section (x = " << line.x_down
       << " m): the jump was swept past it, so y2, E2, eta, the bed force, Lr and Lj are unavailable";
     r.notes.push_back(s.str());
     drop_downstream_values(r);
-    return r;
+    return false;
   }
   // A mean toe at the search start: the mean surface already stands above the threshold at the
   // upstream section, so E1 there is sampled in the roller (not the incoming stream) and the true toe
   // lies at or upstream of it; Lr and Lj measured from it would be too short.
-  if (up && toe == search_start) {
+  if (line.has_upstream && line.toe == line.search_start) {
     std::ostringstream s;
     s << "the mean surface already stands above " << in.options.toe_threshold_y1 << " y1 at the \"upstream\" section (x = "
       << r.toe_x_m << " m, where the toe search starts): the jump reaches it, so the toe lies at or upstream of it,"
          " and E1, eta, the bed force, Lr and Lj are unavailable";
     r.notes.push_back(s.str());
     drop_upstream_values(r);
-    return r;
+    return false;
   }
-  std::size_t last = toe;  // last station up to the downstream section
-  while (last + 1 < st.size() && st[last + 1].spec.x_m <= x_down + 1e-12) ++last;
+  return true;
+}
 
-  // Surface peak: a classic roller jump's mean surface rises to about y2 and stays there; a crest well
-  // above y2 between the toe and the downstream section is a standing wave over the jump (the inflow jet
-  // deflected up to the surface, the recirculation below it), whatever the four numbers say.
-  for (std::size_t i = toe; i <= last && i < st.size(); ++i) {
+// The last station from the toe on that lies at or upstream of the downstream section.
+static std::size_t last_station_to_downstream(const std::vector<ColumnStatistics>& st, const SurfaceLine& line) {
+  std::size_t last = line.toe;
+  while (last + 1 < st.size() && st[last + 1].spec.x_m <= line.x_down + 1e-12) ++last;
+  return last;
+}
+
+// Surface peak: the highest smoothed mean surface from the toe to station `last`, and where. A classic
+// roller jump's mean surface rises to about y2 and stays there; a crest well above y2,
+//   peak > (1 + surface_peak_tolerance) y2,
+// is a standing wave over the jump (the inflow jet deflected up to the surface, the recirculation below
+// it), whatever the four numbers say: a note.
+static void surface_peak(const std::vector<ColumnStatistics>& st, const SurfaceLine& line, std::size_t last,
+                         const JumpInputs& in, JumpMetrics& r) {
+  const std::vector<double>& zm = line.smoothed;
+  for (std::size_t i = line.toe; i <= last && i < st.size(); ++i) {
     // !(a <= b) rather than a > b: true for the first finite value while the peak is still NaN.
     if (std::isfinite(zm[i]) && !(zm[i] <= r.surface_peak_m)) {
       r.surface_peak_m = zm[i];
@@ -227,11 +290,17 @@ JumpMetrics compute_jump_metrics(const MethodStatistics& m, const JumpInputs& in
          " of a roller jump";
     r.notes.push_back(s.str());
   }
-  // Roller: last station with reverse near-surface flow (its index: where the jump-end search starts).
-  std::size_t roller_end = toe;
+}
+
+// Roller: the last station in (toe, last] with reverse near-surface flow (u(eta - 0.1 h) < 0),
+//   Lr = x_roller - x_t;
+// returns its index, where the jump-end search starts (the toe without a roller, with a note).
+static std::size_t roller_end(const std::vector<ColumnStatistics>& st, std::size_t toe, std::size_t last,
+                              JumpMetrics& r) {
+  std::size_t end = toe;
   for (std::size_t i = last + 1; i-- > toe + 1;) {
     if (st[i].near_surface_velocity.mean < 0.0) {
-      roller_end = i;
+      end = i;
       r.roller_end_x_m = st[i].spec.x_m;
       r.roller_length_m = r.roller_end_x_m - r.toe_x_m;
       break;
@@ -239,34 +308,74 @@ JumpMetrics compute_jump_metrics(const MethodStatistics& m, const JumpInputs& in
   }
   if (!std::isfinite(r.roller_length_m))
     r.notes.push_back("no reverse near-surface flow downstream of the toe: roller length unavailable");
-  // Jump end (section 3-3). The laboratory sections lie in the order toe (1-1), roller end (2-2),
-  // settled surface (3-3), so the search starts at the roller end: a flat roller whose mean surface
-  // is already inside the band would otherwise end the jump inside its own roller (Lj < Lr).
-  if (std::isfinite(r.sequent_depth_m)) {
-    const double band = in.options.settle_tolerance * std::abs(r.sequent_depth_m - y1);
-    const auto settled = [&](std::size_t i) { return std::isfinite(zm[i]) && std::abs(zm[i] - r.sequent_depth_m) <= band; };
-    const std::size_t end = start_of_settled_tail(roller_end, last, settled);
-    if (end <= last) {
-      r.jump_end_x_m = st[end].spec.x_m;
-      r.jump_length_m = r.jump_end_x_m - r.toe_x_m;
-      if (end == roller_end && roller_end > toe && settled(roller_end - 1)) {
-        std::ostringstream s;
-        s << "the mean surface is within the settling band already inside the roller; the jump ends at the roller end"
-             " (x = " << r.jump_end_x_m << " m)";
-        r.notes.push_back(s.str());
-      }
-    } else {
-      r.notes.push_back("the surface has not settled within the tolerance at the downstream section");
+  return end;
+}
+
+// Jump end (section 3-3): the first station from the roller end on from which the smoothed mean surface
+// stays within the band up to station `last`,
+//   |zeta - y2| <= settle_tolerance |y2 - y1|,   Lj = x_end - x_t.
+// The laboratory sections lie in the order toe (1-1), roller end (2-2), settled surface (3-3), so the
+// search starts at the roller end: a flat roller whose mean surface is already inside the band would
+// otherwise end the jump inside its own roller (Lj < Lr).
+static void jump_end(const std::vector<ColumnStatistics>& st, const SurfaceLine& line, std::size_t roller,
+                     std::size_t last, const JumpInputs& in, JumpMetrics& r) {
+  if (!std::isfinite(r.sequent_depth_m)) return;
+  const std::vector<double>& zm = line.smoothed;
+  const double band = in.options.settle_tolerance * std::abs(r.sequent_depth_m - in.inflow_depth_m);
+  const auto settled = [&](std::size_t i) { return std::isfinite(zm[i]) && std::abs(zm[i] - r.sequent_depth_m) <= band; };
+  const std::size_t end = start_of_settled_tail(roller, last, settled);
+  if (end <= last) {
+    r.jump_end_x_m = st[end].spec.x_m;
+    r.jump_length_m = r.jump_end_x_m - r.toe_x_m;
+    if (end == roller && roller > line.toe && settled(roller - 1)) {
+      std::ostringstream s;
+      s << "the mean surface is within the settling band already inside the roller; the jump ends at the roller end"
+           " (x = " << r.jump_end_x_m << " m)";
+      r.notes.push_back(s.str());
     }
+  } else {
+    r.notes.push_back("the surface has not settled within the tolerance at the downstream section");
   }
-  // Velocity decay.
+}
+
+// Velocity decay: the settling distance, the first x - x_t from which the mean maximum velocity stays
+// within the tolerance of its value at station `last`,
+//   |u_max(x) - u_max(x_last)| <= velocity_settle_tolerance |u_max(x_last)|.
+static void velocity_settling(const std::vector<ColumnStatistics>& st, std::size_t toe, std::size_t last,
+                              const JumpInputs& in, JumpMetrics& r) {
   const double u_ref = st[last].max_velocity.mean;
-  if (std::isfinite(u_ref)) {
-    const double tol = in.options.velocity_settle_tolerance * std::abs(u_ref);
-    const std::size_t k =
-        start_of_settled_tail(toe, last, [&](std::size_t i) { return std::abs(st[i].max_velocity.mean - u_ref) <= tol; });
-    if (k <= last) r.velocity_settling_distance_m = st[k].spec.x_m - r.toe_x_m;
+  if (!std::isfinite(u_ref)) return;
+  const double tol = in.options.velocity_settle_tolerance * std::abs(u_ref);
+  const std::size_t k =
+      start_of_settled_tail(toe, last, [&](std::size_t i) { return std::abs(st[i].max_velocity.mean - u_ref) <= tol; });
+  if (k <= last) r.velocity_settling_distance_m = st[k].spec.x_m - r.toe_x_m;
+}
+
+JumpMetrics compute_jump_metrics(const MethodStatistics& m, const JumpInputs& in) {
+  JumpMetrics r;
+  wall_jet_structure(m, r);
+  const ColumnStatistics* up = find_role(m, "upstream");
+  const ColumnStatistics* down = find_role(m, "downstream");
+  section_values(up, down, in, r);
+  if (std::isfinite(r.e1_m) && std::isfinite(r.e2_m)) {  // both sections wet
+    dissipation_and_bed_force(*up, *down, in, r);
+    continuity_notes(*up, *down, in, r);
   }
+
+  // Longitudinal analysis on the stations.
+  const auto& st = m.stations;
+  if (st.size() < 3) {
+    r.notes.push_back("fewer than 3 stations along the channel: toe, Lj and Lr unavailable");
+    return r;
+  }
+  const SurfaceLine line = surface_line(m, up, down, in);
+  if (!m.station_surface_series.empty()) frame_toes(m, line, in, r);
+  if (!jump_between_sections(st, line, in, r)) return r;
+  const std::size_t last = last_station_to_downstream(st, line);
+  surface_peak(st, line, last, in, r);
+  const std::size_t roller = roller_end(st, line.toe, last, r);
+  jump_end(st, line, roller, last, in, r);
+  velocity_settling(st, line.toe, last, in, r);
   return r;
 }
 

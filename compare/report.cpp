@@ -190,39 +190,40 @@ class Doc {
 
 const MethodOutcome* methods_of(const CaseComparison& c, int i) { return i == 0 ? &c.sph : &c.vof; }
 
-void write_csvs(const CaseComparison& c, const fs::path& dir) {
-  {
-    std::ostringstream s;
-    s << "key,value\n"
-      << "case," << c.case_id << "\nresolution," << c.resolution << "\ninflow_depth_m," << num(c.inflow_depth_m)
-      << "\ninflow_velocity_m_s," << num(c.inflow_velocity_m_s) << "\ntailwater_depth_m," << num(c.tailwater_depth_m)
-      << "\nbelanger_y2_m," << num(c.belanger_y2_m) << "\nfloor_z_m," << num(c.floor_z_m) << "\nbasin_start_m,"
-      << num(c.basin_start_m) << "\nbasin_end_m," << num(c.basin_end_m) << "\nbed_wavelength_m," << num(c.bed_wavelength_m) << "\nwindow_start_s," << num(c.window_start_s)
-      << "\nwindow_end_s," << num(c.window_end_s) << "\nmeasured_y2_m,"
-      << num(c.lab.sequent_depth_m.value_or(not_a_number)) << "\nmeasured_jump_length_m,"
-      << num(c.lab.jump_length_m.value_or(not_a_number)) << "\n";
-    for (int i = 0; i < 2; ++i) {
-      const MethodOutcome* m = methods_of(c, i);
-      s << m->method << "_available," << (m->available ? 1 : 0) << "\n";
-      s << m->method << "_toe_x_m," << num(m->available ? m->metrics.toe_x_m : not_a_number) << "\n";
-      s << m->method << "_jump_end_x_m," << num(m->available ? m->metrics.jump_end_x_m : not_a_number) << "\n";
-      s << m->method << "_roller_end_x_m," << num(m->available ? m->metrics.roller_end_x_m : not_a_number) << "\n";
-    }
-    util::write_file_atomically(dir / "case.csv", s.str());
+// csv/case.csv: the case's inputs, the window, the laboratory y2 and Lj, and per method whether it is
+// available and its toe, jump end and roller end, as key,value rows.
+std::string case_csv(const CaseComparison& c) {
+  std::ostringstream s;
+  s << "key,value\n"
+    << "case," << c.case_id << "\nresolution," << c.resolution << "\ninflow_depth_m," << num(c.inflow_depth_m)
+    << "\ninflow_velocity_m_s," << num(c.inflow_velocity_m_s) << "\ntailwater_depth_m," << num(c.tailwater_depth_m)
+    << "\nbelanger_y2_m," << num(c.belanger_y2_m) << "\nfloor_z_m," << num(c.floor_z_m) << "\nbasin_start_m,"
+    << num(c.basin_start_m) << "\nbasin_end_m," << num(c.basin_end_m) << "\nbed_wavelength_m," << num(c.bed_wavelength_m) << "\nwindow_start_s," << num(c.window_start_s)
+    << "\nwindow_end_s," << num(c.window_end_s) << "\nmeasured_y2_m,"
+    << num(c.lab.sequent_depth_m.value_or(not_a_number)) << "\nmeasured_jump_length_m,"
+    << num(c.lab.jump_length_m.value_or(not_a_number)) << "\n";
+  for (int i = 0; i < 2; ++i) {
+    const MethodOutcome* m = methods_of(c, i);
+    s << m->method << "_available," << (m->available ? 1 : 0) << "\n";
+    s << m->method << "_toe_x_m," << num(m->available ? m->metrics.toe_x_m : not_a_number) << "\n";
+    s << m->method << "_jump_end_x_m," << num(m->available ? m->metrics.jump_end_x_m : not_a_number) << "\n";
+    s << m->method << "_roller_end_x_m," << num(m->available ? m->metrics.roller_end_x_m : not_a_number) << "\n";
   }
-  std::ostringstream sec, prof, lon;
+  return s.str();
+}
+
+// csv/sections.csv: per available method and section, the time means and standard deviations.
+std::string sections_csv(const CaseComparison& c) {
+  std::ostringstream sec;
   sec << "method,section,role,x_m,z_bed_m,n_times,n_wet,surface_mean_m,surface_std_m,surface_from_fraction_mean_m,"
          "depth_mean_m,depth_std_m,discharge_mean_m2_s,discharge_std_m2_s,mean_velocity_mean_m_s,"
          "mean_velocity_std_m_s,max_velocity_mean_m_s,max_velocity_std_m_s,energy_coefficient_mean,"
          "specific_energy_mean_m,specific_energy_std_m,momentum_coefficient_mean,specific_force_mean_m2,"
          "specific_force_std_m2,void_fraction_mean\n";
-  prof << "method,section,x_m,z_m,u_mean_m_s,u_std_m_s,w_mean_m_s,wet_fraction\n";
-  lon << "method,x_m,z_bed_m,surface_mean_m,surface_std_m,near_surface_velocity_mean_m_s,mean_velocity_mean_m_s,"
-         "max_velocity_mean_m_s,discharge_mean_m2_s,void_fraction_mean,n_times,n_wet\n";
   for (int i = 0; i < 2; ++i) {
     const MethodOutcome* m = methods_of(c, i);
     if (!m->available) continue;
-    for (const auto& s : m->stats.sections) {
+    for (const auto& s : m->stats.sections)
       sec << m->method << "," << s.spec.name << "," << s.spec.role << "," << num(s.spec.x_m) << "," << num(s.spec.z_bed_m)
           << "," << s.n_times << "," << s.n_wet << "," << num(s.surface.mean) << "," << num(s.surface.std) << ","
           << num(s.surface_from_fraction.mean) << "," << num(s.depth.mean) << "," << num(s.depth.std) << ","
@@ -231,90 +232,141 @@ void write_csvs(const CaseComparison& c, const fs::path& dir) {
           << num(s.energy_coefficient.mean) << "," << num(s.specific_energy.mean) << "," << num(s.specific_energy.std)
           << "," << num(s.momentum_coefficient.mean) << "," << num(s.specific_force.mean) << ","
           << num(s.specific_force.std) << "," << num(s.void_fraction.mean) << "\n";
+  }
+  return sec.str();
+}
+
+// csv/profiles.csv: per available method and section, the time-mean u(z), its sd, w(z) and the wet fraction.
+std::string profiles_csv(const CaseComparison& c) {
+  std::ostringstream prof;
+  prof << "method,section,x_m,z_m,u_mean_m_s,u_std_m_s,w_mean_m_s,wet_fraction\n";
+  for (int i = 0; i < 2; ++i) {
+    const MethodOutcome* m = methods_of(c, i);
+    if (!m->available) continue;
+    for (const auto& s : m->stats.sections)
       for (std::size_t k = 0; k < s.z.size(); ++k)
         prof << m->method << "," << s.spec.name << "," << num(s.spec.x_m) << "," << num(s.z[k]) << "," << num(s.u_mean[k])
              << "," << num(s.u_std[k]) << "," << num(s.w_mean[k]) << "," << num(s.wet_fraction[k]) << "\n";
-    }
+  }
+  return prof.str();
+}
+
+// csv/longitudinal.csv: per available method and station, the mean surface and velocities.
+std::string longitudinal_csv(const CaseComparison& c) {
+  std::ostringstream lon;
+  lon << "method,x_m,z_bed_m,surface_mean_m,surface_std_m,near_surface_velocity_mean_m_s,mean_velocity_mean_m_s,"
+         "max_velocity_mean_m_s,discharge_mean_m2_s,void_fraction_mean,n_times,n_wet\n";
+  for (int i = 0; i < 2; ++i) {
+    const MethodOutcome* m = methods_of(c, i);
+    if (!m->available) continue;
     for (const auto& s : m->stats.stations)
       lon << m->method << "," << num(s.spec.x_m) << "," << num(s.spec.z_bed_m) << "," << num(s.surface.mean) << ","
           << num(s.surface.std) << "," << num(s.near_surface_velocity.mean) << "," << num(s.mean_velocity.mean) << ","
           << num(s.max_velocity.mean) << "," << num(s.discharge.mean) << "," << num(s.void_fraction.mean) << ","
           << s.n_times << "," << s.n_wet << "\n";
-    const FieldSnapshot& f = m->stats.snapshot;
-    if (!f.empty()) {
-      std::ostringstream snap;
-      snap << "time_s,x_m,z_m,u_m_s,w_m_s\n";
-      for (int iz = 0; iz < f.nz; ++iz)
-        for (int ix = 0; ix < f.nx; ++ix) {
-          const std::size_t k = static_cast<std::size_t>(iz) * static_cast<std::size_t>(f.nx) + static_cast<std::size_t>(ix);
-          if (!std::isfinite(f.u[k])) continue;
-          snap << num(f.time_s) << "," << num(f.x0 + ix * f.dx) << "," << num(f.z0 + iz * f.dz) << "," << num(f.u[k], 5)
-               << "," << num(f.w[k], 5) << "\n";
-        }
-      util::write_file_atomically(dir / ("snapshot_" + m->method + ".csv"), snap.str());
+  }
+  return lon.str();
+}
+
+// csv/snapshot_<method>.csv: the velocity field of the last frame in the window, its wet grid points.
+std::string snapshot_csv(const FieldSnapshot& f) {
+  std::ostringstream snap;
+  snap << "time_s,x_m,z_m,u_m_s,w_m_s\n";
+  for (int iz = 0; iz < f.nz; ++iz)
+    for (int ix = 0; ix < f.nx; ++ix) {
+      const std::size_t k = static_cast<std::size_t>(iz) * static_cast<std::size_t>(f.nx) + static_cast<std::size_t>(ix);
+      if (!std::isfinite(f.u[k])) continue;
+      snap << num(f.time_s) << "," << num(f.x0 + ix * f.dx) << "," << num(f.z0 + iz * f.dz) << "," << num(f.u[k], 5)
+           << "," << num(f.w[k], 5) << "\n";
     }
+  return snap.str();
+}
+
+// csv/section_timeseries.csv: per available method, section and output time, the section's values.
+std::string section_timeseries_csv(const CaseComparison& c) {
+  std::ostringstream ts;
+  ts << "method,section,time_s,surface_m,depth_m,discharge_m2_s,mean_velocity_m_s,max_velocity_m_s,"
+        "specific_energy_m\n";
+  for (int i = 0; i < 2; ++i) {
+    const MethodOutcome* m = methods_of(c, i);
+    if (!m->available) continue;
+    for (std::size_t k = 0; k < m->stats.section_series.size() && k < m->stats.sections.size(); ++k)
+      for (const auto& t : m->stats.section_series[k])
+        ts << m->method << "," << m->stats.sections[k].spec.name << "," << num(t.time_s) << "," << num(t.surface_m)
+           << "," << num(t.depth_m) << "," << num(t.discharge_m2_s) << "," << num(t.mean_velocity_m_s) << ","
+           << num(t.max_velocity_m_s) << "," << num(t.specific_energy_m) << "\n";
   }
-  util::write_file_atomically(dir / "sections.csv", sec.str());
-  {
-    std::ostringstream ts;
-    ts << "method,section,time_s,surface_m,depth_m,discharge_m2_s,mean_velocity_m_s,max_velocity_m_s,"
-          "specific_energy_m\n";
-    for (int i = 0; i < 2; ++i) {
-      const MethodOutcome* m = methods_of(c, i);
-      if (!m->available) continue;
-      for (std::size_t k = 0; k < m->stats.section_series.size() && k < m->stats.sections.size(); ++k)
-        for (const auto& t : m->stats.section_series[k])
-          ts << m->method << "," << m->stats.sections[k].spec.name << "," << num(t.time_s) << "," << num(t.surface_m)
-             << "," << num(t.depth_m) << "," << num(t.discharge_m2_s) << "," << num(t.mean_velocity_m_s) << ","
-             << num(t.max_velocity_m_s) << "," << num(t.specific_energy_m) << "\n";
-    }
-    util::write_file_atomically(dir / "section_timeseries.csv", ts.str());
+  return ts.str();
+}
+
+// csv/toe_frames.csv: the toe criterion on each frame's instantaneous surface ("nan": no toe in that
+// frame), to follow a toe that moves over the window; the frames' mean, sd and trend in metrics.csv
+// summarise it.
+std::string toe_frames_csv(const CaseComparison& c) {
+  std::ostringstream s;
+  s << "method,time_s,toe_x_m\n";
+  for (int i = 0; i < 2; ++i) {
+    const MethodOutcome* m = methods_of(c, i);
+    if (!m->available || m->metrics.toe_frames_x_m.size() != m->stats.times.size()) continue;
+    for (std::size_t k = 0; k < m->stats.times.size(); ++k)
+      s << m->method << "," << num(m->stats.times[k]) << "," << num(m->metrics.toe_frames_x_m[k]) << "\n";
   }
-  {
-    // The toe criterion on each frame's instantaneous surface ("nan": no toe in that frame), to follow
-    // a toe that moves over the window; the frames' mean, sd and trend in metrics.csv summarise it.
-    std::ostringstream s;
-    s << "method,time_s,toe_x_m\n";
-    for (int i = 0; i < 2; ++i) {
-      const MethodOutcome* m = methods_of(c, i);
-      if (!m->available || m->metrics.toe_frames_x_m.size() != m->stats.times.size()) continue;
-      for (std::size_t k = 0; k < m->stats.times.size(); ++k)
-        s << m->method << "," << num(m->stats.times[k]) << "," << num(m->metrics.toe_frames_x_m[k]) << "\n";
-    }
-    util::write_file_atomically(dir / "toe_frames.csv", s.str());
+  return s.str();
+}
+
+// csv/metrics.csv: the metric table, SPH, VOF, experiment, published SPH and theory side by side.
+std::string metrics_csv(const CaseComparison& c) {
+  std::ostringstream s;
+  s << "quantity,unit,sph,vof,experiment,published_sph,smooth_theory,status\n";
+  for (const auto& r : c.metrics)
+    s << r.quantity << "," << r.unit << "," << num(r.sph) << "," << num(r.vof) << "," << num(r.experiment) << ","
+      << num(r.published_sph) << "," << num(r.smooth_theory) << "," << r.status << "\n";
+  return s.str();
+}
+
+// csv/profile_differences.csv: per section, the L2 of the SPH - VOF u(z) difference.
+std::string profile_differences_csv(const CaseComparison& c) {
+  std::ostringstream s;
+  s << "section,x_m,l2_m_s,l2_over_u1,n_points\n";
+  for (const auto& p : c.profiles)
+    s << p.section << "," << num(p.x_m) << "," << num(p.l2_m_s) << "," << num(p.l2_over_u1) << "," << p.n_points << "\n";
+  return s.str();
+}
+
+// csv/eta.csv: one row, this case's eta bars (theory, experiment, published SPH, this SPH and VOF, with
+// and without the crest-depth convention).
+std::string eta_csv(const CaseComparison& c) {
+  double sph = not_a_number, vof = not_a_number, sph_crest = not_a_number, vof_crest = not_a_number;
+  std::string status = "predicted";
+  for (const auto& r : c.metrics) {
+    if (r.quantity == "eta") { sph = r.sph; vof = r.vof; status = r.status; }
+    if (r.quantity == "eta_crest_depth") { sph_crest = r.sph; vof_crest = r.vof; }
   }
-  util::write_file_atomically(dir / "profiles.csv", prof.str());
-  util::write_file_atomically(dir / "longitudinal.csv", lon.str());
-  {
-    std::ostringstream s;
-    s << "quantity,unit,sph,vof,experiment,published_sph,smooth_theory,status\n";
-    for (const auto& r : c.metrics)
-      s << r.quantity << "," << r.unit << "," << num(r.sph) << "," << num(r.vof) << "," << num(r.experiment) << ","
-        << num(r.published_sph) << "," << num(r.smooth_theory) << "," << r.status << "\n";
-    util::write_file_atomically(dir / "metrics.csv", s.str());
+  std::ostringstream s;
+  s << "case,smooth_theory_percent,experiment_percent,published_sph_percent,sph_percent,vof_percent,"
+       "sph_crest_depth_percent,vof_crest_depth_percent,status\n"
+    << c.case_id << "," << num(c.eta_smooth_theory_percent) << ","
+    << num(c.lab.eta_percent.value_or(not_a_number)) << "," << num(c.lab.published_sph_eta_percent.value_or(not_a_number))
+    << "," << num(sph) << "," << num(vof) << "," << num(sph_crest) << "," << num(vof_crest) << "," << status << "\n";
+  return s.str();
+}
+
+// Writes the comparison's tables into `dir` (report.hpp lists them).
+void write_csvs(const CaseComparison& c, const fs::path& dir) {
+  util::write_file_atomically(dir / "case.csv", case_csv(c));
+  for (int i = 0; i < 2; ++i) {
+    const MethodOutcome* m = methods_of(c, i);
+    if (m->available && !m->stats.snapshot.empty())
+      util::write_file_atomically(dir / ("snapshot_" + m->method + ".csv"), snapshot_csv(m->stats.snapshot));
   }
-  {
-    std::ostringstream s;
-    s << "section,x_m,l2_m_s,l2_over_u1,n_points\n";
-    for (const auto& p : c.profiles)
-      s << p.section << "," << num(p.x_m) << "," << num(p.l2_m_s) << "," << num(p.l2_over_u1) << "," << p.n_points << "\n";
-    util::write_file_atomically(dir / "profile_differences.csv", s.str());
-  }
-  {
-    double sph = not_a_number, vof = not_a_number, sph_crest = not_a_number, vof_crest = not_a_number;
-    std::string status = "predicted";
-    for (const auto& r : c.metrics) {
-      if (r.quantity == "eta") { sph = r.sph; vof = r.vof; status = r.status; }
-      if (r.quantity == "eta_crest_depth") { sph_crest = r.sph; vof_crest = r.vof; }
-    }
-    std::ostringstream s;
-    s << "case,smooth_theory_percent,experiment_percent,published_sph_percent,sph_percent,vof_percent,"
-         "sph_crest_depth_percent,vof_crest_depth_percent,status\n"
-      << c.case_id << "," << num(c.eta_smooth_theory_percent) << ","
-      << num(c.lab.eta_percent.value_or(not_a_number)) << "," << num(c.lab.published_sph_eta_percent.value_or(not_a_number))
-      << "," << num(sph) << "," << num(vof) << "," << num(sph_crest) << "," << num(vof_crest) << "," << status << "\n";
-    util::write_file_atomically(dir / "eta.csv", s.str());
-  }
+  util::write_file_atomically(dir / "sections.csv", sections_csv(c));
+  util::write_file_atomically(dir / "section_timeseries.csv", section_timeseries_csv(c));
+  util::write_file_atomically(dir / "toe_frames.csv", toe_frames_csv(c));
+  util::write_file_atomically(dir / "profiles.csv", profiles_csv(c));
+  util::write_file_atomically(dir / "longitudinal.csv", longitudinal_csv(c));
+  util::write_file_atomically(dir / "metrics.csv", metrics_csv(c));
+  util::write_file_atomically(dir / "profile_differences.csv", profile_differences_csv(c));
+  util::write_file_atomically(dir / "eta.csv", eta_csv(c));
 }
 
 std::string pretty_quantity(const std::string& q) {
@@ -424,12 +476,12 @@ void replace_directory(const fs::path& staged, const fs::path& target) {
   fs::remove_all(old);
 }
 
-}  // namespace
-
-std::string write_report(const CaseComparison& c, const fs::path& out, bool plots, std::ostream& log) {
+// Writes csv/ and (when `plots` and a method has results) figures/: this comparison's tables and
+// figures are made beside the previous ones and then take their place. Returns why the figures could
+// not be made (logged too), with the staged directories named by the places they took.
+std::string write_tables_and_figures(const CaseComparison& c, const fs::path& out, bool plots, std::ostream& log) {
   const fs::path csv = out / "csv";
   const fs::path figs = out / "figures";
-  // This comparison's tables and figures are made beside the previous ones and then take their place.
   const fs::path staged_csv = out / ".csv.new", staged_figs = out / ".figures.new";
   fs::remove_all(staged_csv);
   fs::remove_all(staged_figs);
@@ -447,9 +499,12 @@ std::string write_report(const CaseComparison& c, const fs::path& out, bool plot
       plot_problem.replace(at, staged.string().size(), final_dir.string());
   }
   if (!plot_problem.empty()) log << "plots: " << plot_problem << std::endl;
-  util::write_file_atomically(out / "comparison.json", comparison_json(c));
+  return plot_problem;
+}
 
-  Doc d;
+// The report's title, the case's description, its inputs (resolution, window, inflow, tailwater,
+// Bélanger's y2*) and each method's status.
+void report_header(Doc& d, const CaseComparison& c) {
   d.heading(1, "Case " + c.case_id + ": SPH vs VOF vs experiment");
   if (!c.description.empty()) d.para(c.description);
   std::ostringstream info;
@@ -470,7 +525,11 @@ std::string write_report(const CaseComparison& c, const fs::path& out, bool plot
                                    : m->status));
   }
   d.bullets(status);
+}
 
+// "Jump metrics": the protocol (what the tailwater control imposes) and the metric table, each metric
+// beside the experiment and the inputs-only values, with the differences SPH − VOF, SPH − exp., VOF − exp.
+void metric_table_section(Doc& d, const CaseComparison& c) {
   d.heading(2, "Jump metrics");
   std::vector<std::vector<std::string>> rows;
   for (const auto& r : c.metrics) {
@@ -487,19 +546,26 @@ std::string write_report(const CaseComparison& c, const fs::path& out, bool plot
   d.table({"quantity", "predicted / imposed", "this SPH", "this VOF", "experiment", "inputs only (smooth bed: Bélanger, USBR, Hager)",
            "published SPH", "SPH − VOF", "SPH − exp.", "VOF − exp."},
           rows);
-  {
-    double sph = not_a_number, vof = not_a_number;
-    for (const auto& r : c.metrics)
-      if (r.quantity == "eta") { sph = r.sph; vof = r.vof; }
-    const double exp = c.lab.eta_percent.value_or(not_a_number);
-    const double pub = c.lab.published_sph_eta_percent.value_or(not_a_number);
-    d.heading(3, std::string("Energy dissipation rate η (%), ") +
-                     (c.tailwater_control == "hold_toe" ? "predicted" : "imposed with y2"));
-    d.table({"smooth bed (theory)", "experiment", "published SPH", "this SPH", "this VOF", "SPH − exp.", "VOF − exp.",
-             "SPH − published SPH"},
-            {{fix(c.eta_smooth_theory_percent, 2), fix(exp, 2), fix(pub, 2), fix(sph, 2), fix(vof, 2),
-              signed_fix(sph - exp, 2), signed_fix(vof - exp, 2), signed_fix(sph - pub, 2)}});
-  }
+}
+
+// The energy dissipation rate's table, eta = (E1 − E2)/E1 in %: smooth-bed theory, experiment,
+// published SPH, this SPH and VOF, and their differences.
+void eta_table(Doc& d, const CaseComparison& c) {
+  double sph = not_a_number, vof = not_a_number;
+  for (const auto& r : c.metrics)
+    if (r.quantity == "eta") { sph = r.sph; vof = r.vof; }
+  const double exp = c.lab.eta_percent.value_or(not_a_number);
+  const double pub = c.lab.published_sph_eta_percent.value_or(not_a_number);
+  d.heading(3, std::string("Energy dissipation rate η (%), ") +
+                   (c.tailwater_control == "hold_toe" ? "predicted" : "imposed with y2"));
+  d.table({"smooth bed (theory)", "experiment", "published SPH", "this SPH", "this VOF", "SPH − exp.", "VOF − exp.",
+           "SPH − published SPH"},
+          {{fix(c.eta_smooth_theory_percent, 2), fix(exp, 2), fix(pub, 2), fix(sph, 2), fix(vof, 2),
+            signed_fix(sph - exp, 2), signed_fix(vof - exp, 2), signed_fix(sph - pub, 2)}});
+}
+
+// The available methods' notes (why a metric is missing, water balance, steadiness), as bullets.
+void method_notes(Doc& d, const CaseComparison& c) {
   std::vector<std::string> notes;
   for (int i = 0; i < 2; ++i) {
     const MethodOutcome* m = methods_of(c, i);
@@ -507,22 +573,30 @@ std::string write_report(const CaseComparison& c, const fs::path& out, bool plot
       for (const auto& n : m->metrics.notes) notes.push_back(std::string(i == 0 ? "SPH" : "VOF") + ": " + n);
   }
   if (!notes.empty()) d.bullets(notes);
+}
 
+// "SPH vs VOF": the time-mean surfaces' RMS and maximum difference over the basin, and per section the
+// L2 of the u(z) difference, absolute and over U1.
+void sph_vs_vof_section(Doc& d, const CaseComparison& c) {
   d.heading(2, "SPH vs VOF");
-  if (c.sph.available && c.vof.available) {
-    std::ostringstream s;
-    s << "Time-mean free surface over the basin (" << c.basin_start_m << "–" << c.basin_end_m << " m, "
-      << c.surface.n_stations << " stations): RMS difference " << fix(c.surface.rms_m * 1000, 2)
-      << " mm, maximum " << fix(c.surface.max_abs_m * 1000, 2) << " mm at x = " << fix(c.surface.x_of_max_m, 3) << " m.";
-    d.para(s.str());
-    std::vector<std::vector<std::string>> pr;
-    for (const auto& p : c.profiles)
-      pr.push_back({p.section, fix(p.x_m, 3), fix(p.l2_m_s, 4), fix(100 * p.l2_over_u1, 2), std::to_string(p.n_points)});
-    d.table({"section", "x (m)", "L2 of u(z) difference (m/s)", "L2 / U1 (%)", "points"}, pr);
-  } else {
+  if (!(c.sph.available && c.vof.available)) {
     d.para("Not available: it needs both results (see the status above).");
+    return;
   }
+  std::ostringstream s;
+  s << "Time-mean free surface over the basin (" << c.basin_start_m << "–" << c.basin_end_m << " m, "
+    << c.surface.n_stations << " stations): RMS difference " << fix(c.surface.rms_m * 1000, 2)
+    << " mm, maximum " << fix(c.surface.max_abs_m * 1000, 2) << " mm at x = " << fix(c.surface.x_of_max_m, 3) << " m.";
+  d.para(s.str());
+  std::vector<std::vector<std::string>> pr;
+  for (const auto& p : c.profiles)
+    pr.push_back({p.section, fix(p.x_m, 3), fix(p.l2_m_s, 4), fix(100 * p.l2_over_u1, 2), std::to_string(p.n_points)});
+  d.table({"section", "x (m)", "L2 of u(z) difference (m/s)", "L2 / U1 (%)", "points"}, pr);
+}
 
+// "Sections": per available method a table of each section's time means (surface ± sd, U, u_max, q,
+// α, E, β, M), then the discharge check against the inflow q = y1 U1.
+void sections_section(Doc& d, const CaseComparison& c) {
   d.heading(2, "Sections (time means ± standard deviation)");
   for (int i = 0; i < 2; ++i) {
     const MethodOutcome* m = methods_of(c, i);
@@ -544,7 +618,10 @@ std::string write_report(const CaseComparison& c, const fs::path& out, bool plot
   qcheck << "Discharge check: every section's q should equal the inflow q = " << fix(c.inflow_depth_m * c.inflow_velocity_m_s, 4)
          << " m²/s once the jump is steady.";
   d.para(qcheck.str());
+}
 
+// "Figures": the figures in `figs` that exist, with their captions, or why they could not be made.
+void figures_section(Doc& d, const fs::path& figs, const std::string& plot_problem) {
   d.heading(2, "Figures");
   if (!plot_problem.empty()) d.para("Figures unavailable: " + plot_problem);
   const std::vector<std::pair<std::string, std::string>> figures = {
@@ -557,7 +634,11 @@ std::string write_report(const CaseComparison& c, const fs::path& out, bool plot
       {"snapshot_vof.png", "VOF velocity field, last frame of the window"}};
   for (const auto& [file, caption] : figures)
     if (fs::exists(figs / file)) d.figure(figs / file, "figures/" + file, caption);
+}
 
+// "Definitions": how the surface, E and η, the toe, y2 and the lengths are measured, then where the
+// laboratory values come from.
+void definitions_section(Doc& d, const CaseComparison& c) {
   d.heading(2, "Definitions");
   d.bullets({"Free surface: SPH, the 0.5 level of the kernel-interpolated fluid fraction sum_j V_j W; VOF, the "
              "alpha = 0.5 crossing along the cells of the vertical line (the column integral of the fraction is "
@@ -576,6 +657,23 @@ std::string write_report(const CaseComparison& c, const fs::path& out, bool plot
              "the laboratory sections 1–1, 2–2, 3–3 lie in that order)."});
   if (!c.measured_source.empty()) d.para("Laboratory values: " + c.measured_source);
   if (!c.measured_note.empty()) d.para("Note on the laboratory values: " + c.measured_note);
+}
+
+}  // namespace
+
+std::string write_report(const CaseComparison& c, const fs::path& out, bool plots, std::ostream& log) {
+  const std::string plot_problem = write_tables_and_figures(c, out, plots, log);
+  util::write_file_atomically(out / "comparison.json", comparison_json(c));
+
+  Doc d;
+  report_header(d, c);
+  metric_table_section(d, c);
+  eta_table(d, c);
+  method_notes(d, c);
+  sph_vs_vof_section(d, c);
+  sections_section(d, c);
+  figures_section(d, out / "figures", plot_problem);
+  definitions_section(d, c);
 
   util::write_file_atomically(out / "report.md", d.markdown());
   util::write_file_atomically(out / "report.html", d.html("hydrojump comparison, case " + c.case_id));

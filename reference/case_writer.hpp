@@ -124,9 +124,9 @@ foam::Dictionary mules_alpha_solver();
 // The transported turbulence fields of a vof.turbulence_model: none for "laminar", k and omega for
 // "kOmegaSST", k and epsilon for "kEpsilon" and "RNGkEpsilon". Throws std::invalid_argument naming the
 // allowed values for any other name.
-std::vector<std::string> turbulence_fields(const std::string& turbulence_model);
+std::vector<std::string> turbulence_fields(cases::TurbulenceModel turbulence_model);
 
 // system/fvSchemes of the interFoam cases (with the schemes of the model's turbulence fields).
-foam::Dictionary interfoam_fv_schemes(const std::string& turbulence_model);
+foam::Dictionary interfoam_fv_schemes(cases::TurbulenceModel turbulence_model);
 
 }  // namespace hydrojump::reference

@@ -100,7 +100,12 @@ long MeshPlan::removed_cell_count() const {
 
 long MeshPlan::cell_count() const { return background_cells() - removed_cell_count(); }
 
-MeshPlan plan_mesh(const cases::Case& c, const cases::CaseGeometry& g, const cases::Resolution& r) {
+namespace {
+
+// The cell sizes of resolution `r`: positive, the bulk's no finer than the bed's, and at most max_cells
+// cells (memory, and months of run time on a workstation), estimated as the whole domain in cells of the
+// bed size (the grading of the bulk only lowers it).
+void check_cell_sizes(const cases::Case& c, const cases::CaseGeometry& g, const cases::Resolution& r) {
   const double h = r.vof_cell_size_bed_m;
   const double h_bulk = r.vof_cell_size_bulk_m;
   require_positive(h, "resolution." + r.name + ".vof_cell_size_bed_m", c);
@@ -109,8 +114,6 @@ MeshPlan plan_mesh(const cases::Case& c, const cases::CaseGeometry& g, const cas
     throw std::invalid_argument("case \"" + c.id + "\": resolution." + r.name +
                                 ".vof_cell_size_bulk_m must be >= vof_cell_size_bed_m");
   }
-  // At most max_cells cells (memory, and months of run time on a workstation), estimated as the
-  // whole domain in cells of the bed size (the grading of the bulk only lowers it).
   const double domain_area_m2 = (g.x_max_m - g.x_min_m) * (g.z_max_m - g.z_min_m);
   if (domain_area_m2 / (h * h) > max_cells) {
     const double count = std::min(domain_area_m2 / (h * h), 1e18);
@@ -120,93 +123,99 @@ MeshPlan plan_mesh(const cases::Case& c, const cases::CaseGeometry& g, const cas
                                 ", i.e. vof_cell_size_bed_m >= " + foam::format_number(std::sqrt(domain_area_m2 / max_cells)) +
                                 " m");
   }
-  const std::string& strategy = c.vof.mesh_strategy;
-  if (strategy != "cartesian_cut" && strategy != "body_fitted") {
-    throw std::invalid_argument("case \"" + c.id + "\": vof.mesh_strategy = \"" + strategy +
-                                "\" is unknown: allowed \"cartesian_cut\", \"body_fitted\"");
-  }
+}
 
-  MeshPlan plan;
-  plan.strategy = strategy;
-  plan.thickness_m = h;
-
-  if (const auto* basin = c.stilling_basin()) {
-    if (g.inflows.empty() || g.outflows.empty()) {
-      throw std::logic_error("case \"" + c.id + "\": stilling-basin geometry without inflow/outflow");
-    }
-    const cases::InflowBoundary& in = g.inflows.front();
-    const double y1 = in.depth_m;
-    if (y1 < 2.0 * h) {
-      throw std::invalid_argument(
-          "case \"" + c.id + "\": resolution." + r.name + ".vof_cell_size_bed_m = " +
-          foam::format_number(h) + " m leaves fewer than 2 cells across the inflow depth y1 = " +
-          foam::format_number(y1) + " m: must be <= y1/2");
-    }
-    plan.x_bands.push_back(uniform_band(g.x_min_m, g.x_max_m, h, 4));
-    plan.z_floor_m = g.bed.elevation(in.x_m);
-    plan.z_inflow_top_m = plan.z_floor_m + y1;
-    const double z_low = std::min(g.z_min_m, g.bed.lowest_elevation());
-    // Highest expected surface: the initial water surface (y1 ramping to the tailwater) and the
-    // tailwater level at the outlet.
-    double z_surface = plan.z_inflow_top_m;
-    for (double z : g.initial_water.surface_z_m) z_surface = std::max(z_surface, z);
-    for (const auto& out : g.outflows) {
-      z_surface = std::max(z_surface, g.bed.elevation(out.x_m) + out.tailwater_depth_m);
-    }
-    const double band = c.vof.surface_refinement_band_m > 0.0
-                            ? c.vof.surface_refinement_band_m
-                            : std::max(0.25 * basin->tailwater_depth_m, 3.0 * h);
-    plan.z_fine_top_m = std::min(z_surface + band, g.z_max_m);
-    const bool has_troughs = z_low < plan.z_floor_m - 1e-9;
-    GridBand floor_band{z_low, plan.z_floor_m, 0, 1.0};
-    if (has_troughs) floor_band = uniform_band(z_low, plan.z_floor_m, h);
-    const GridBand inflow_band = uniform_band(plan.z_floor_m, plan.z_inflow_top_m, h, 2);
-    if (strategy == "body_fitted") {
-      // The lowest band follows the bed from z_b(x) up to the inflow surface.
-      plan.z_bands.push_back(
-          GridBand{z_low, plan.z_inflow_top_m, floor_band.cells + inflow_band.cells, 1.0});
+// The cartesian cut: in each column the cells whose centres lie below the bed z_b(x), as runs of
+// neighbouring columns that lose the same number of cells.
+void cut_below_bed(MeshPlan& plan, const cases::CaseGeometry& g) {
+  const std::vector<double> x = band_faces(plan.x_bands);
+  const std::vector<double> z = band_faces(plan.z_bands);
+  for (std::size_t i = 0; i + 1 < x.size(); ++i) {
+    const double zb = g.bed.elevation(0.5 * (x[i] + x[i + 1]));
+    int n = 0;
+    while (static_cast<std::size_t>(n) + 1 < z.size() && 0.5 * (z[n] + z[n + 1]) < zb) ++n;
+    if (n == 0) continue;
+    if (!plan.removed.empty() && plan.removed.back().removed_cells == n &&
+        std::abs(plan.removed.back().x_end_m - x[i]) < 1e-12) {
+      plan.removed.back().x_end_m = x[i + 1];
     } else {
-      if (has_troughs) plan.z_bands.push_back(floor_band);
-      plan.z_bands.push_back(inflow_band);
+      plan.removed.push_back(RemovedColumns{x[i], x[i + 1], n, z[n]});
     }
-    if (plan.z_fine_top_m > plan.z_inflow_top_m + 0.5 * h) {
-      plan.z_bands.push_back(uniform_band(plan.z_inflow_top_m, plan.z_fine_top_m, h));
-    } else {
-      plan.z_fine_top_m = plan.z_inflow_top_m;
-    }
-    append_transition_and_bulk(plan.z_bands, plan.z_fine_top_m, g.z_max_m, h, h_bulk);
-
-    if (strategy == "body_fitted") {
-      plan.bed_vertices = g.bed.polyline(g.x_min_m, g.x_max_m, 0.05 * h);
-      plan.x_bands.clear();
-      for (std::size_t i = 0; i + 1 < plan.bed_vertices.size(); ++i) {
-        plan.x_bands.push_back(uniform_band(plan.bed_vertices[i].x(), plan.bed_vertices[i + 1].x(), h));
-      }
-    } else if (has_troughs) {
-      const std::vector<double> x = band_faces(plan.x_bands);
-      const std::vector<double> z = band_faces(plan.z_bands);
-      for (std::size_t i = 0; i + 1 < x.size(); ++i) {
-        const double zb = g.bed.elevation(0.5 * (x[i] + x[i + 1]));
-        int n = 0;
-        while (static_cast<std::size_t>(n) + 1 < z.size() && 0.5 * (z[n] + z[n + 1]) < zb) ++n;
-        if (n == 0) continue;
-        if (!plan.removed.empty() && plan.removed.back().removed_cells == n &&
-            std::abs(plan.removed.back().x_end_m - x[i]) < 1e-12) {
-          plan.removed.back().x_end_m = x[i + 1];
-        } else {
-          plan.removed.push_back(RemovedColumns{x[i], x[i + 1], n, z[n]});
-        }
-      }
-    }
-    return plan;
   }
+}
 
-  // Closed tanks: dam break and still water (floor at z = 0, walls at both ends, open top).
+// A stilling basin: a grid line on the upstream floor and at the inflow surface y1, bed-size cells up
+// to the highest expected surface plus a band, then graded to the bulk size; cut below the bed, or
+// (body_fitted) the lowest row on the bed.
+void plan_basin(MeshPlan& plan, const cases::Case& c, const cases::StillingBasinCase& basin,
+                const cases::CaseGeometry& g, const cases::Resolution& r) {
+  const double h = r.vof_cell_size_bed_m;
+  const double h_bulk = r.vof_cell_size_bulk_m;
+  const cases::MeshStrategy strategy = plan.strategy;
+  if (g.inflows.empty() || g.outflows.empty()) {
+    throw std::logic_error("case \"" + c.id + "\": stilling-basin geometry without inflow/outflow");
+  }
+  const cases::InflowBoundary& in = g.inflows.front();
+  const double y1 = in.depth_m;
+  if (y1 < 2.0 * h) {
+    throw std::invalid_argument(
+        "case \"" + c.id + "\": resolution." + r.name + ".vof_cell_size_bed_m = " +
+        foam::format_number(h) + " m leaves fewer than 2 cells across the inflow depth y1 = " +
+        foam::format_number(y1) + " m: must be <= y1/2");
+  }
+  plan.x_bands.push_back(uniform_band(g.x_min_m, g.x_max_m, h, 4));
+  plan.z_floor_m = g.bed.elevation(in.x_m);
+  plan.z_inflow_top_m = plan.z_floor_m + y1;
+  const double z_low = std::min(g.z_min_m, g.bed.lowest_elevation());
+  // Highest expected surface: the initial water surface (y1 ramping to the tailwater) and the
+  // tailwater level at the outlet.
+  double z_surface = plan.z_inflow_top_m;
+  for (double z : g.initial_water.surface_z_m) z_surface = std::max(z_surface, z);
+  for (const auto& out : g.outflows) {
+    z_surface = std::max(z_surface, g.bed.elevation(out.x_m) + out.tailwater_depth_m);
+  }
+  const double band = c.vof.surface_refinement_band_m > 0.0
+                          ? c.vof.surface_refinement_band_m
+                          : std::max(0.25 * basin.tailwater_depth_m, 3.0 * h);
+  plan.z_fine_top_m = std::min(z_surface + band, g.z_max_m);
+  const bool has_troughs = z_low < plan.z_floor_m - 1e-9;
+  GridBand floor_band{z_low, plan.z_floor_m, 0, 1.0};
+  if (has_troughs) floor_band = uniform_band(z_low, plan.z_floor_m, h);
+  const GridBand inflow_band = uniform_band(plan.z_floor_m, plan.z_inflow_top_m, h, 2);
+  if (strategy == cases::MeshStrategy::body_fitted) {
+    // The lowest band follows the bed from z_b(x) up to the inflow surface.
+    plan.z_bands.push_back(
+        GridBand{z_low, plan.z_inflow_top_m, floor_band.cells + inflow_band.cells, 1.0});
+  } else {
+    if (has_troughs) plan.z_bands.push_back(floor_band);
+    plan.z_bands.push_back(inflow_band);
+  }
+  if (plan.z_fine_top_m > plan.z_inflow_top_m + 0.5 * h) {
+    plan.z_bands.push_back(uniform_band(plan.z_inflow_top_m, plan.z_fine_top_m, h));
+  } else {
+    plan.z_fine_top_m = plan.z_inflow_top_m;
+  }
+  append_transition_and_bulk(plan.z_bands, plan.z_fine_top_m, g.z_max_m, h, h_bulk);
+
+  if (strategy == cases::MeshStrategy::body_fitted) {
+    plan.bed_vertices = g.bed.polyline(g.x_min_m, g.x_max_m, 0.05 * h);
+    plan.x_bands.clear();
+    for (std::size_t i = 0; i + 1 < plan.bed_vertices.size(); ++i) {
+      plan.x_bands.push_back(uniform_band(plan.bed_vertices[i].x(), plan.bed_vertices[i + 1].x(), h));
+    }
+  } else if (has_troughs) {
+    cut_below_bed(plan, g);
+  }
+}
+
+// Closed tanks: dam break and still water (floor at z = 0, walls at both ends, open top).
+void plan_tank(MeshPlan& plan, const cases::Case& c, const cases::CaseGeometry& g, double h, double h_bulk) {
+  const cases::MeshStrategy strategy = plan.strategy;
   if (!c.dam_break() && !c.still_water()) {
     throw std::invalid_argument("case \"" + c.id + "\": kind \"" + c.kind +
                                 "\" has no VOF reference (stilling_basin, dam_break, still_water)");
   }
-  if (strategy == "body_fitted") {
+  if (strategy == cases::MeshStrategy::body_fitted) {
     throw std::invalid_argument("case \"" + c.id + "\": vof.mesh_strategy = \"body_fitted\" is only "
                                 "meaningful for stilling basins (a tank is already Cartesian): use "
                                 "\"cartesian_cut\"");
@@ -236,6 +245,21 @@ MeshPlan plan_mesh(const cases::Case& c, const cases::CaseGeometry& g, const cas
     plan.z_fine_top_m = plan.z_inflow_top_m;
   }
   append_transition_and_bulk(plan.z_bands, plan.z_fine_top_m, g.z_max_m, h, h_bulk);
+}
+
+}  // namespace
+
+MeshPlan plan_mesh(const cases::Case& c, const cases::CaseGeometry& g, const cases::Resolution& r) {
+  check_cell_sizes(c, g, r);
+  MeshPlan plan;
+  plan.strategy = c.vof.mesh_strategy;
+  plan.thickness_m = r.vof_cell_size_bed_m;
+
+  if (const auto* basin = c.stilling_basin()) {
+    plan_basin(plan, c, *basin, g, r);
+  } else {
+    plan_tank(plan, c, g, r.vof_cell_size_bed_m, r.vof_cell_size_bulk_m);
+  }
   return plan;
 }
 

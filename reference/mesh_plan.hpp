@@ -51,7 +51,7 @@ struct RemovedColumns {
 };
 
 struct MeshPlan {
-  std::string strategy;                 // "cartesian_cut" | "body_fitted"
+  cases::MeshStrategy strategy = cases::MeshStrategy::cartesian_cut;  // vof.mesh_strategy
   std::vector<GridBand> x_bands;        // along the channel
   std::vector<GridBand> z_bands;        // vertical, bottom to top
   double thickness_m = 0.0;             // spanwise extent (one cell)

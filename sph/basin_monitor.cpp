@@ -87,13 +87,13 @@ BasinMonitorSetup BasinMonitorSetup::from_case(const cases::Case& c, const cases
   s.discharge_m2_s = cases::unit_discharge(b->inflow_depth_m, b->inflow_velocity_m_s);
   s.froude1 = cases::froude_number(b->inflow_depth_m, b->inflow_velocity_m_s, std::abs(geometry.body_force_m_s2.y()));
   s.tailwater_depth_m = b->tailwater_depth_m;
-  s.tailwater_held_at = c.holds_toe()                           ? "toe_held"
-                        : c.sph.outflow_condition == "tailgate" ? "tailgate"
-                                                                : c.sph.outflow_level_reference;
+  s.tailwater_held_at = c.holds_toe()                                                ? "toe_held"
+                        : c.sph.outflow_condition == cases::OutflowCondition::tailgate ? "tailgate"
+                                                                                       : std::string(cases::option_name(c.sph.outflow_level_reference));
   s.belanger_y2_m = cases::belanger_sequent_depth(b->inflow_depth_m, s.froude1);
   s.floor_z_m = geometry.bed.elevation(geometry.inflows.front().x_m);
   s.x_inflow_m = geometry.inflows.front().x_m;
-  s.reservoir_upstream = parse_inflow_condition(c.sph.inflow_condition) == InflowCondition::piston;
+  s.reservoir_upstream = c.sph.inflow_condition == InflowCondition::piston;
   s.x_outflow_m = geometry.outflows.front().x_m;
   s.toe_search_from_m = s.x_inflow_m;
   for (const auto& sec : geometry.sections)

@@ -35,13 +35,13 @@ void mdbc_with(ParticleSet& ps, const CellList& cells, const SolverSettings& s, 
   const Eigen::Index n = ps.size();
   const double support2 = s.support() * s.support();
   const double rho0 = s.eos.rho0;
-  const double period = s.x_max - s.x_min;
+  const double period = s.domain.x_max - s.domain.x_min;
 #pragma omp parallel for schedule(dynamic, 64) if (use_threads(n))
   for (Eigen::Index i = 0; i < n; ++i) {
     if (!is_wall_type(ps.type[i])) continue;  // walls only; buffers have imposed densities
     double gx = ps.x[i] + ps.ghost_dx[i];
     const double gz = ps.z[i] + ps.ghost_dz[i];
-    if (s.periodic_x) gx = s.x_min + std::fmod(std::fmod(gx - s.x_min, period) + period, period);
+    if (s.domain.periodic_x) gx = s.domain.x_min + std::fmod(std::fmod(gx - s.domain.x_min, period) + period, period);
     Eigen::Matrix3d a = Eigen::Matrix3d::Zero();
     Eigen::Vector3d rhs = Eigen::Vector3d::Zero(), rhs_u = Eigen::Vector3d::Zero(), rhs_w = Eigen::Vector3d::Zero();
     cells.for_each_neighbour_range(cells.cell_of_point(gx, gz), [&](int begin, int end, double shift) {
@@ -84,7 +84,7 @@ void mdbc_with(ParticleSet& ps, const CellList& cells, const SolverSettings& s, 
       }
     }
     ps.rho[i] = dbc_wall_density(rho_b, rho0);  // never below rho0, as DBC
-    const double n_len = s.viscous_walls_free_slip ? std::hypot(ps.ghost_dx[i], ps.ghost_dz[i]) : 0.0;
+    const double n_len = s.viscosity.viscous_walls_free_slip ? std::hypot(ps.ghost_dx[i], ps.ghost_dz[i]) : 0.0;
     if (n_len > 0.0) {
       // Free slip: the ghost velocity relative to the wall with its normal part reversed,
       //   v_b = v_wall + v_rel - 2 (v_rel . n) n,   v_rel = v_g - v_wall,  n = (g - b)/|g - b|

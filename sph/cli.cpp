@@ -6,6 +6,7 @@
 #include "util/fingerprint.hpp"
 #include "cases/results_case.hpp"
 #include "util/stop_signals.hpp"
+#include "util/system_memory.hpp"
 #include "hydrojump/version.hpp"
 
 #include <atomic>
@@ -64,9 +65,10 @@ extern "C" void request_stop(int sig) {
 
 }  // namespace
 
-int run_sph_directory(const SphOptions& opt) {
-  const std::filesystem::path dir = opt.dir;
-  const std::filesystem::path case_file = dir / "case.toml";
+namespace {
+
+// DIR must be an SPH run directory written by `generate`, not the OpenFOAM case beside it.
+void check_run_directory(const std::filesystem::path& dir, const std::filesystem::path& case_file) {
   if (!std::filesystem::exists(case_file))
     throw std::runtime_error("'" + case_file.string() +
                              "' not found: DIR must be a directory written by `hydrojump generate` (DIR/<case>/sph)");
@@ -76,25 +78,22 @@ int run_sph_directory(const SphOptions& opt) {
     throw std::runtime_error("'" + dir.string() + "' is an OpenFOAM case (it has system/controlDict; run it with `hydrojump vof`): " +
                              "`hydrojump sph` runs the SPH directory beside it, " + (named.parent_path() / "sph").string());
   }
-  // One process per run directory (a second one stops here, naming the first).
-  const util::DirectoryLock lock(dir, "hydrojump sph");
-  // What a run killed outright left half-written (its complete files are all in place).
-  util::remove_orphaned_temporaries(dir);
-  if (opt.threads > 0) omp_set_num_threads(opt.threads);
-  const cases::Study study = cases::load_study(case_file);
+}
+
+// The resolved case of a run directory: exactly one case at exactly one resolution.
+cases::Study load_run_study(const std::filesystem::path& case_file) {
+  cases::Study study = cases::load_study(case_file);
   if (study.cases.size() != 1)
     throw std::runtime_error("'" + case_file.string() + "' holds " + std::to_string(study.cases.size()) +
                              " cases; a run directory holds exactly one (write it with `hydrojump generate`)");
-  const cases::Case& c = study.cases.front();
-  if (c.resolutions.size() != 1)
-    throw std::runtime_error("'" + case_file.string() + "' defines " + std::to_string(c.resolutions.size()) +
+  if (study.cases.front().resolutions.size() != 1)
+    throw std::runtime_error("'" + case_file.string() + "' defines " + std::to_string(study.cases.front().resolutions.size()) +
                              " resolutions; a run directory holds exactly one");
-  const cases::Resolution& resolution = c.resolutions.begin()->second;
-  const cases::CaseGeometry geometry = solver_geometry(c, study.fluid, resolution.particle_spacing_m);
-  const SolverSettings settings = make_settings(c, study.fluid, geometry, resolution.particle_spacing_m);
+  return study;
+}
 
-  RunOptions ro;
-  ro.dir = dir;
+// The run's end time: --end-time within what the case allows, else the case's own.
+double run_end_time(const SphOptions& opt, const cases::Case& c, const std::filesystem::path& case_file) {
   if (opt.end_time > c.run.latest_end_time_s()) {
     std::ostringstream e;
     e << "--end-time " << opt.end_time << " s is out of range for '" << case_file.string() << "': must be <= "
@@ -102,13 +101,22 @@ int run_sph_directory(const SphOptions& opt) {
       << c.run.output_interval_s << " s, and at most " << cases::max_end_time_s << " s)";
     throw std::runtime_error(e.str());
   }
-  ro.end_time_s = opt.end_time > 0.0 ? opt.end_time : c.run.end_time_s;
-  if (c.sph.inflow_condition == "piston" && ro.end_time_s > c.run.end_time_s)
-    throw std::runtime_error("'" + case_file.string() + "': --end-time " + std::to_string(ro.end_time_s) +
+  const double end = opt.end_time > 0.0 ? opt.end_time : c.run.end_time_s;
+  if (c.sph.inflow_condition == cases::InflowCondition::piston && end > c.run.end_time_s)
+    throw std::runtime_error("'" + case_file.string() + "': --end-time " + std::to_string(end) +
                              " s runs past case.run.end_time_s = " + std::to_string(c.run.end_time_s) +
                              " s, for which the piston's stroke and the reservoir's length were made (sph.inflow_condition = "
                              "\"piston\"): the piston would stop and the inflow die. Raise case.run.end_time_s and "
                              "generate the case again.");
+  return end;
+}
+
+RunOptions run_options(const SphOptions& opt, const cases::Study& study, const cases::CaseGeometry& geometry,
+                       const SolverSettings& settings, const std::filesystem::path& case_file) {
+  const cases::Case& c = study.cases.front();
+  RunOptions ro;
+  ro.dir = opt.dir;
+  ro.end_time_s = run_end_time(opt, c, case_file);
   ro.output_interval_s = c.run.output_interval_s;
   ro.checkpoint_interval_wall_s = c.sph.checkpoint_interval_wall_s;
   // The resolved case and the program version: a checkpoint only resumes the run it was written for.
@@ -128,27 +136,34 @@ int run_sph_directory(const SphOptions& opt) {
     ro.progress_is_terminal = ::isatty(STDERR_FILENO) != 0;
   }
   ro.stop_requested = &g_stop_requested;
+  return ro;
+}
 
-  std::optional<Checkpoint> checkpoint;
+// The checkpoint to resume (--resume), or nothing for a fresh start; refuses to overwrite a run that
+// was neither resumed nor explicitly restarted.
+std::optional<Checkpoint> previous_run(const SphOptions& opt, const std::filesystem::path& case_file, const RunOptions& ro) {
+  const std::filesystem::path& dir = opt.dir;
   const auto ck = checkpoint_path(dir);
   if (opt.resume) {
     if (!std::filesystem::exists(ck))
       throw std::runtime_error("--resume: no checkpoint '" + ck.string() + "' to resume from");
-    checkpoint = read_checkpoint(ck);
-    if (checkpoint->fingerprint != ro.fingerprint)
+    Checkpoint checkpoint = read_checkpoint(ck);
+    if (checkpoint.fingerprint != ro.fingerprint)
       throw std::runtime_error("--resume: '" + case_file.string() +
                                "' changed since the checkpoint was written (beyond descriptive texts, the laboratory's "
                                "values and sph.max_density_variation and sph.checkpoint_interval_wall_s, which may "
                                "change); run with --restart to start over");
-    if (checkpoint->clock.time >= ro.end_time_s - 1e-12)
-      std::cerr << "hydrojump sph: the checkpoint is at t = " << checkpoint->clock.time
+    if (checkpoint.clock.time >= ro.end_time_s - 1e-12)
+      std::cerr << "hydrojump sph: the checkpoint is at t = " << checkpoint.clock.time
                 << " s, already at or past the end time " << ro.end_time_s
                 << " s: nothing to run (give a later --end-time to go on)\n";
-  } else if (std::filesystem::exists(ck) && !opt.restart) {
+    return checkpoint;
+  }
+  if (std::filesystem::exists(ck) && !opt.restart)
     throw std::runtime_error("'" + dir.string() +
                              "' already holds a run (checkpoint.bin): use --resume to continue it or --restart to "
                              "start over (overwriting its outputs)");
-  } else if (!opt.restart) {
+  if (!opt.restart) {
     // A run that stopped before its first checkpoint (a failure, a kill) left outputs but nothing to
     // resume: a plain start would delete them, the failure's diagnosis among them.
     for (const char* name : {"failure.txt", "particles.pvd"})
@@ -157,34 +172,64 @@ int run_sph_directory(const SphOptions& opt) {
                                  name + (std::string(name) == "failure.txt" ? ", its diagnosis" : "") +
                                  "): nothing to resume; use --restart to start over (deleting them)");
   }
+  return std::nullopt;
+}
 
-  std::unique_ptr<Solver> solver;
-  if (checkpoint) {
-    solver = std::make_unique<Solver>(settings, checkpoint->particles, checkpoint->clock,
-                                      OpenBoundaries::from_geometry(geometry, buffer_parameters(settings)));
-    checkpoint->particles = ParticleSet{};
-  } else {
-    solver = std::make_unique<Solver>(settings, generate_particles(geometry, settings, c.sph.boundary_layers),
-                                      SolverClock{}, OpenBoundaries::from_geometry(geometry, buffer_parameters(settings)));
-    // A fresh start (possibly --restart) that has its particles: outputs of an earlier run in DIR are
-    // removed so the new series is not mixed with stale snapshots, and the case is recorded. (Not
-    // before: a case the generator refuses leaves the earlier results beside the record that made them.)
-    for (const auto& entry : std::filesystem::directory_iterator(dir)) {
-      const std::string name = entry.path().filename().string();
-      const bool snapshot = name.rfind("particles_", 0) == 0 && entry.path().extension() == ".vtp";
-      if (snapshot || name == "failure.txt" || name == "failure_state.vtp" || name == "checkpoint.bin")
-        std::filesystem::remove(entry.path());
-    }
-    // What `compare` and `generate` check these results against.
-    cases::record_results_case(dir);
+// The memory an SPH run needs, measured with `hydrojump bench --model jump --steps 3` at dx = 0.01,
+// 0.005 and 0.0025 m (23k, 86k, 332k particles: peaks 34.9, 67.1, 195.7 MB), a line within 3 MB of
+// each:  M = 25 MB + 0.52 kB N.
+double run_memory_bytes(std::size_t particles) { return 25.0e6 + 520.0 * static_cast<double>(particles); }
+
+// Refuses a run whose particles need more memory than the machine has available, before the solver
+// allocates its neighbour lists and step arrays.
+void check_run_memory(const cases::Case& c, const SolverSettings& settings, std::size_t particles) {
+  std::ostringstream what, basis;
+  what << "hydrojump sph: case \"" << c.id << "\" at dx = " << settings.dx << " m";
+  basis << "25 MB + 0.52 kB a particle x " << particles << " particles";
+  util::check_memory_need(what.str(), run_memory_bytes(particles), basis.str(),
+                          "use a coarser resolution (a larger particle_spacing_m) or free memory");
+}
+
+// A fresh start removes the outputs of an earlier run in DIR, so that the new series is not mixed
+// with stale snapshots, and records the case the results belong to.
+void start_afresh(const std::filesystem::path& dir) {
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    const std::string name = entry.path().filename().string();
+    const bool snapshot = name.rfind("particles_", 0) == 0 && entry.path().extension() == ".vtp";
+    if (snapshot || name == "failure.txt" || name == "failure_state.vtp" || name == "checkpoint.bin")
+      std::filesystem::remove(entry.path());
   }
+  // What `compare` and `generate` check these results against.
+  cases::record_results_case(dir);
+}
+
+std::unique_ptr<Solver> make_solver(const cases::Case& c, const cases::CaseGeometry& geometry, const SolverSettings& settings,
+                                    std::optional<Checkpoint>& checkpoint, const std::filesystem::path& dir) {
+  OpenBoundaries boundaries = OpenBoundaries::from_geometry(geometry, buffer_parameters(settings));
+  if (checkpoint) {
+    check_run_memory(c, settings, static_cast<std::size_t>(checkpoint->particles.size()));
+    auto solver = std::make_unique<Solver>(settings, checkpoint->particles, checkpoint->clock, std::move(boundaries));
+    checkpoint->particles = ParticleSet{};
+    return solver;
+  }
+  ParticleSet particles = generate_particles(geometry, settings, c.sph.boundary_layers);
+  check_run_memory(c, settings, static_cast<std::size_t>(particles.size()));
+  auto solver = std::make_unique<Solver>(settings, std::move(particles), SolverClock{}, std::move(boundaries));
+  // Not before the particles exist: a case the generator refuses leaves the earlier results beside
+  // the record that made them.
+  start_afresh(dir);
+  return solver;
+}
+
+void print_run_header(const cases::Case& c, const cases::CaseGeometry& geometry, const SolverSettings& settings,
+                      const Solver& solver, bool resumed) {
   std::cerr << "hydrojump sph: case \"" << c.id << "\" (" << c.kind << "), dx = " << settings.dx << " m, "
-            << solver->particles().fluid_count() << " fluid + "
-            << solver->particles().size() - solver->particles().fluid_count() << " boundary and buffer particles, "
+            << solver.particles().fluid_count() << " fluid + "
+            << solver.particles().size() - solver.particles().fluid_count() << " boundary and buffer particles, "
             << omp_get_max_threads() << " thread(s), c0 = " << settings.eos.c0 << " m/s, "
-            << (checkpoint ? "resuming at t = " + std::to_string(solver->time()) + " s" : std::string("from t = 0"))
+            << (resumed ? "resuming at t = " + std::to_string(solver.time()) + " s" : std::string("from t = 0"))
             << "\n";
-  if (settings.inflow == InflowCondition::piston) {
+  if (settings.open.inflow == InflowCondition::piston) {
     const auto& piston = geometry.moving_walls.front();
     double opening = 0.0;
     for (const auto& wall : geometry.walls)
@@ -193,7 +238,7 @@ int run_sph_directory(const SphOptions& opt) {
               << geometry.initial_water.surface_z_m.front() << " m, piston at " << piston.velocity_m_s.x()
               << " m/s until t = " << piston.end_s << " s, sluice gate opening " << opening << " m\n";
   }
-  for (const Tailgate& gate : solver->open_boundaries().tailgates()) {
+  for (const Tailgate& gate : solver.open_boundaries().tailgates()) {
     // The design head over the crest and Rehbock's range (tailgate.hpp).
     const double q = cases::inflow_discharge(geometry);
     const double gravity = std::abs(settings.body_force_z);
@@ -207,6 +252,29 @@ int run_sph_directory(const SphOptions& opt) {
                 << cases::rehbock_valid_head_ratio
                 << "): the gate is a low sill and the tailwater it holds may differ; see y2 in summary.json\n";
   }
+}
+
+}  // namespace
+
+int run_sph_directory(const SphOptions& opt) {
+  const std::filesystem::path dir = opt.dir;
+  const std::filesystem::path case_file = dir / "case.toml";
+  check_run_directory(dir, case_file);
+  // One process per run directory (a second one stops here, naming the first).
+  const util::DirectoryLock lock(dir, "hydrojump sph");
+  // What a run killed outright left half-written (its complete files are all in place).
+  util::remove_orphaned_temporaries(dir);
+  if (opt.threads > 0) omp_set_num_threads(opt.threads);
+  const cases::Study study = load_run_study(case_file);
+  const cases::Case& c = study.cases.front();
+  const cases::Resolution& resolution = c.resolutions.begin()->second;
+  const cases::CaseGeometry geometry = solver_geometry(c, study.fluid, resolution.particle_spacing_m);
+  const SolverSettings settings = make_settings(c, study.fluid, geometry, resolution.particle_spacing_m);
+  const RunOptions ro = run_options(opt, study, geometry, settings, case_file);
+  std::optional<Checkpoint> checkpoint = previous_run(opt, case_file, ro);
+  const bool resumed = checkpoint.has_value();
+  const std::unique_ptr<Solver> solver = make_solver(c, geometry, settings, checkpoint, dir);
+  print_run_header(c, geometry, settings, *solver, resumed);
 
   g_stop_requested.store(false);
   RunStatus status;
@@ -222,7 +290,7 @@ int run_sph_directory(const SphOptions& opt) {
   if (status == RunStatus::interrupted) {
     const int sig = g_stop_signal.load();
     std::cerr << "hydrojump sph: stopped by " << util::stop_signal_name(sig) << " at t = " << solver->time()
-              << " s; checkpoint written to " << ck.string() << " (continue with --resume)\n";
+              << " s; checkpoint written to " << checkpoint_path(dir).string() << " (continue with --resume)\n";
     return 128 + sig;
   }
   std::cerr << "hydrojump sph: finished at t = " << solver->time() << " s after " << solver->clock().steps

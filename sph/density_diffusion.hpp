@@ -21,19 +21,12 @@
 #include <stdexcept>
 #include <string>
 
+#include "cases/options.hpp"
 #include "sph/equation_of_state.hpp"
 
 namespace hydrojump::sph {
 
-enum class DensityDiffusion { none, molteni, fourtakas };
-
-inline DensityDiffusion parse_density_diffusion(const std::string& name) {
-  if (name == "none") return DensityDiffusion::none;
-  if (name == "molteni") return DensityDiffusion::molteni;
-  if (name == "fourtakas") return DensityDiffusion::fourtakas;
-  throw std::invalid_argument("sph.density_diffusion = \"" + name +
-                              "\" is not allowed: use \"none\", \"molteni\" or \"fourtakas\"");
-}
+using cases::DensityDiffusion;  // sph.density_diffusion (cases/options.hpp)
 
 // rho^H_ji = rho0 ((1 + x)^(1/gamma) - 1),  gamma = 7,  x = rho0 g.(r_j - r_i)/B = rho0 g_z (z_j - z_i) / B.
 // x is O(rho0 g 2h / B) ~ 1e-3, so the power is replaced by its second-order Taylor expansion

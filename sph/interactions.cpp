@@ -28,6 +28,9 @@ constexpr std::uint8_t kFluid = static_cast<std::uint8_t>(ParticleType::fluid);
 // and the time-step inputs max|a_i| and max_ij |h v_ij.r_ij / (r_ij^2 + eta^2)|.
 // The symmetric pressure term conserves momentum pairwise (Monaghan 1992, Annu. Rev. Astron.
 // Astrophys. 30:543-574).
+// One function of ~215 lines on purpose: it is the pair loop, where the run spends its time, and its
+// terms share the pair's kernel gradient, distance and velocity difference in registers. Split into
+// per-model functions it is the compile-time specialisation of the speed issue (54), measured there.
 template <class K>
 InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, const SolverSettings& s, const K& kernel,
                                      const WallDistanceTable* wall_distances) {
@@ -52,19 +55,19 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
   const double support2 = s.support() * s.support();
   const double eta2 = s.eta2();
   const double h = s.h;
-  const double alpha_c0_h = s.artificial_alpha * s.eos.c0 * h;
-  const double wall_factor = s.artificial_wall_factor;
-  const double delta_h_c0 = s.diffusion_delta * h * s.eos.c0;
+  const double alpha_c0_h = s.viscosity.artificial_alpha * s.eos.c0 * h;
+  const double wall_factor = s.viscosity.artificial_wall_factor;
+  const double delta_h_c0 = s.density.diffusion_delta * h * s.eos.c0;
   const double rho0 = s.eos.rho0, b = s.eos.b;
   const double gz = s.body_force_z;
-  const bool artificial = s.viscosity == Viscosity::artificial;
-  const bool sps = s.viscosity == Viscosity::laminar_sps;
-  const bool diffusion = s.density_diffusion != DensityDiffusion::none && delta_h_c0 > 0.0;
-  const bool fourtakas = s.density_diffusion == DensityDiffusion::fourtakas;
+  const bool artificial = s.viscosity.model == Viscosity::artificial;
+  const bool sps = s.viscosity.model == Viscosity::laminar_sps;
+  const bool diffusion = s.density.diffusion != DensityDiffusion::none && delta_h_c0 > 0.0;
+  const bool fourtakas = s.density.diffusion == DensityDiffusion::fourtakas;
   const bool dbc = s.boundary == BoundaryMethod::dbc;
-  const double nu0 = s.kinematic_viscosity;
-  const bool free_slip_walls = sps && s.viscous_walls_free_slip;
-  const bool wall_function = sps && s.wall_function_shear;
+  const double nu0 = s.viscosity.kinematic_viscosity;
+  const bool free_slip_walls = sps && s.viscosity.viscous_walls_free_slip;
+  const bool wall_function = sps && s.viscosity.wall_function_shear;
 
   // V_j = m_j / rho_j, once per particle instead of once per pair.
   const Eigen::Index n = ps.size();
@@ -83,7 +86,7 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
   // With a mixing length: the distance from each fluid particle to the nearest wall particle within
   // the kernel support (none: infinity, or the fixed walls' table value with "whole_domain"), for
   // Prandtl's l = min(l_m, kappa d).
-  const bool wall_distance_needed = sps && s.sps_length_near_walls;
+  const bool wall_distance_needed = sps && s.viscosity.sps_length_near_walls;
   std::vector<double> wall_distance_store(wall_distance_needed ? static_cast<std::size_t>(n) : 0,
                                           std::numeric_limits<double>::infinity());
   double* wall_distance = wall_distance_store.data();
@@ -234,8 +237,8 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
         continue;
       }
       const double* gi = grad + 4 * static_cast<std::size_t>(i);
-      const double length = wall_distance_needed ? mixing_length_near_wall(s.sps_length, wall_distance[i], s.dx) : s.sps_length;
-      const SpsStress t = sps_stress(gi[0], gi[1], gi[2], gi[3], length, s.blin, s.dx);
+      const double length = wall_distance_needed ? mixing_length_near_wall(s.viscosity.sps_length, wall_distance[i], s.dx) : s.viscosity.sps_length;
+      const SpsStress t = sps_stress(gi[0], gi[1], gi[2], gi[3], length, s.viscosity.blin, s.dx);
       ps.tau_xx[i] = t.xx;
       ps.tau_xz[i] = t.xz;
       ps.tau_zz[i] = t.zz;

@@ -23,6 +23,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "cases/options.hpp"
+
 namespace hydrojump::sph {
 
 struct WendlandC2 {
@@ -68,15 +70,10 @@ struct CubicSpline {
 
 // A kernel chosen by name at run time (tests, diagnostics, interpolation). The interaction loop is
 // instantiated on the concrete kernel types above instead.
-// The kernel names of the spec (sph.kernel): the one parser, used by the solver and the comparator.
-enum class KernelType { wendland_c2, cubic_spline };
-// Throws std::invalid_argument naming the allowed values.
-inline KernelType parse_kernel(const std::string& name) {
-  if (name == "wendland_c2") return KernelType::wendland_c2;
-  if (name == "cubic_spline") return KernelType::cubic_spline;
-  throw std::invalid_argument("sph.kernel = \"" + name + "\" is not allowed: use \"wendland_c2\" or \"cubic_spline\"");
-}
-inline const char* to_string(KernelType k) { return k == KernelType::wendland_c2 ? "wendland_c2" : "cubic_spline"; }
+// The kernel names of the spec (sph.kernel, cases/options.hpp), for a name given outside a spec (the
+// comparator's kernel, tests). Throws std::invalid_argument naming the allowed values.
+using cases::KernelType;
+inline KernelType parse_kernel(const std::string& name) { return cases::option_from_name<KernelType>("sph.kernel", name); }
 
 class Kernel {
  public:

@@ -229,13 +229,13 @@ BufferParameters buffer_parameters(const SolverSettings& settings) {
   p.support = settings.support();
   p.eos = settings.eos;
   p.gravity = std::abs(settings.body_force_z);
-  p.layers = settings.open_boundary_layers;
-  p.inflow = settings.inflow;
-  p.outflow = settings.outflow;
-  p.tailgate_height = settings.tailgate_height;
-  p.level_at_section = settings.outflow_level_at_section;
-  p.level_section_x = settings.outflow_level_section_x;
-  p.level_time = settings.outflow_level_time;
+  p.layers = settings.open.layers;
+  p.inflow = settings.open.inflow;
+  p.outflow = settings.open.outflow;
+  p.tailgate_height = settings.open.tailgate_height;
+  p.level_at_section = settings.open.level_at_section;
+  p.level_section_x = settings.open.level_section_x;
+  p.level_time = settings.open.level_time;
   return p;
 }
 

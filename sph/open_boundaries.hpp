@@ -153,7 +153,7 @@ class OutflowBuffer {
 
 // The open boundaries of a case: its inflow and outflow buffers, or a tailgate in place of the outflow
 // buffers (sph.outflow_condition = "tailgate"), and a piston reservoir's gate crossing in place of the
-// inflow buffers (sph.inflow_condition = "piston"; none for closed cases). Their state
+// inflow buffers (sph.inflow_condition = cases::InflowCondition::piston; none for closed cases). Their state
 // is derived from the particles (the buffer particles' types and positions), so a run resumed from
 // its particles continues exactly; only the running totals start again from zero.
 //

@@ -90,35 +90,36 @@ std::vector<BedParticle> corrugated_bed_layers(const cases::BedProfile& bed, dou
   return out;
 }
 
-ParticleSet generate_particles(const cases::CaseGeometry& g, const SolverSettings& s, int layers) {
-  const double dx = s.dx;
-  const int n_layers = boundary_layer_count(s.h, dx, layers);
-  // The lattice corner: the domain box corner, moved (down and left, by less than dx) so that with an
-  // inflow the rows and columns line up with the inflow buffer's (rows at z_b(x_in) + (k + 1/2) dx,
-  // columns at x_in - (k + 1/2) dx) even when the corrugation troughs lie below the upstream floor.
-  double x0 = g.x_min_m, z0 = g.z_min_m;
+namespace {
+
+// The particle lattice: points (x0 + (i + 1/2) dx, z0 + (j + 1/2) dx). The corner is the domain box
+// corner, moved (down and left, by less than dx) so that with an inflow the rows and columns line up
+// with the inflow buffer's (rows at z_b(x_in) + (k + 1/2) dx, columns at x_in - (k + 1/2) dx) even
+// when the corrugation troughs lie below the upstream floor.
+struct Lattice {
+  double x0 = 0.0, z0 = 0.0, dx = 0.0;
+  double x(long i) const { return x0 + (static_cast<double>(i) + 0.5) * dx; }
+  double z(long j) const { return z0 + (static_cast<double>(j) + 0.5) * dx; }
+};
+
+Lattice make_lattice(const cases::CaseGeometry& g, double dx) {
+  Lattice l{g.x_min_m, g.z_min_m, dx};
   if (!g.inflows.empty()) {
     const double x_in = g.inflows.front().x_m, z_in = g.bed.elevation(x_in);
-    x0 = x_in - std::ceil((x_in - g.x_min_m) / dx - 1e-9) * dx;
-    z0 = z_in - std::ceil((z_in - g.z_min_m) / dx - 1e-9) * dx;
+    l.x0 = x_in - std::ceil((x_in - g.x_min_m) / dx - 1e-9) * dx;
+    l.z0 = z_in - std::ceil((z_in - g.z_min_m) / dx - 1e-9) * dx;
   }
-  const double gravity = std::abs(s.body_force_z);
-  auto lattice_x = [&](long i) { return x0 + (static_cast<double>(i) + 0.5) * dx; };
-  auto lattice_z = [&](long j) { return z0 + (static_cast<double>(j) + 0.5) * dx; };
-  const double period = g.x_max_m - g.x_min_m;
-  if (g.periodic_x) {
-    const double cells = period / dx;
-    if (std::abs(cells - std::round(cells)) > 1e-6)
-      throw std::invalid_argument("periodic length " + std::to_string(period) +
-                                  " m is not a whole number of particle spacings dx = " + std::to_string(dx) + " m");
-  }
-  auto in_period = [&](double x) { return !g.periodic_x || (x >= g.x_min_m && x < g.x_max_m); };
+  return l;
+}
 
-  // Open boundaries (stilling basins): the bed continues flat under the inflow buffer (x < x_in) and
-  // past the outflow section (x > x_out) by the buffer length, so buffer particles and the fluid next
-  // to the sections have a wall below them.
-  const OpenBoundaries open = OpenBoundaries::from_geometry(g, buffer_parameters(s));
-  const double buffer_length = open.empty() ? 0.0 : open.buffer_length();
+// The walls the particles are made for: the geometry's, plus (stilling basins) the bed continued flat
+// under the inflow buffer (x < x_in) and past the outflow section (x > x_out) by the buffer length, so
+// buffer particles and the fluid next to the sections have a wall below them. A tailgate
+// (tailgate.hpp) closes the end of the bed instead of an outflow buffer: its plate is a wall from the
+// bed's last point up to the crest and down again (no bed under it, whose "fluid above" side would
+// leave the plate's lowest rows empty).
+std::vector<cases::WallPolyline> particle_walls(const cases::CaseGeometry& g, const OpenBoundaries& open,
+                                                double buffer_length) {
   std::vector<cases::WallPolyline> walls = g.walls;
   for (const auto& in : g.inflows) {
     if (open.inflows().empty()) break;  // a piston reservoir has its own floor
@@ -130,32 +131,17 @@ ParticleSet generate_particles(const cases::CaseGeometry& g, const SolverSetting
     const double zb = g.bed.elevation(out.x_m);
     walls.push_back({"outflow_bed", {cases::Vec2(out.x_m, zb), cases::Vec2(out.x_m + buffer_length, zb)}});
   }
-  // A tailgate (tailgate.hpp) closes the end of the bed instead of an outflow buffer: its plate is a
-  // wall from the bed's last point up to the crest and down again (no bed under it, whose "fluid
-  // above" side would leave the plate's lowest rows empty).
   for (const auto& gate : open.tailgates()) walls.push_back(gate.plate());
-  // Inside an inflow buffer (above the extended bed, below the inflow depth) there is no wall: the
-  // lower end of the sluice gate would otherwise put boundary particles among the buffer particles.
-  auto in_inflow_buffer = [&](double x, double z) {
-    for (std::size_t k = 0; k < g.inflows.size() && k < open.inflows().size(); ++k) {
-      const auto& in = g.inflows[k];
-      const double zb = g.bed.elevation(in.x_m);
-      const double top = zb + std::max(in.depth_m, open.inflows()[k].rows() * dx);
-      if (x < in.x_m && z > zb && z < top) return true;
-    }
-    return false;
-  };
-  // Outflow buffers start filled with tailwater: x_out < x < x_out + buffer length (a tailgate has none).
-  auto outflow_at = [&](double x) -> const cases::OutflowBoundary* {
-    if (open.outflows().empty()) return nullptr;
-    for (const auto& out : g.outflows)
-      if (x > out.x_m && x < out.x_m + buffer_length) return &out;
-    return nullptr;
-  };
+  return walls;
+}
 
-  // Boundary candidates: lattice points within n_layers dx of some wall segment.
-  std::map<std::pair<long, long>, Candidate> near_wall;
-  const double reach = n_layers * dx;
+using WallCandidates = std::map<std::pair<long, long>, Candidate>;
+
+// Boundary candidates: lattice points within `reach` of some wall segment, with the nearest wall point
+// and the normal(s) into the fluid there.
+WallCandidates wall_candidates(const std::vector<cases::WallPolyline>& walls, const Lattice& l, double reach) {
+  WallCandidates near_wall;
+  const double dx = l.dx;
   for (const auto& wall : walls) {
     for (std::size_t k = 0; k + 1 < wall.points.size(); ++k) {
       const Eigen::Vector2d a = wall.points[k], b = wall.points[k + 1];
@@ -163,13 +149,13 @@ ParticleSet generate_particles(const cases::CaseGeometry& g, const SolverSetting
       const double len2 = d.squaredNorm();
       if (len2 <= 0.0) continue;
       const Eigen::Vector2d normal = Eigen::Vector2d(-d.y(), d.x()) / std::sqrt(len2);  // into the fluid
-      const long i0 = static_cast<long>(std::floor((std::min(a.x(), b.x()) - reach - x0) / dx)) - 1;
-      const long i1 = static_cast<long>(std::ceil((std::max(a.x(), b.x()) + reach - x0) / dx)) + 1;
-      const long j0 = static_cast<long>(std::floor((std::min(a.y(), b.y()) - reach - z0) / dx)) - 1;
-      const long j1 = static_cast<long>(std::ceil((std::max(a.y(), b.y()) + reach - z0) / dx)) + 1;
+      const long i0 = static_cast<long>(std::floor((std::min(a.x(), b.x()) - reach - l.x0) / dx)) - 1;
+      const long i1 = static_cast<long>(std::ceil((std::max(a.x(), b.x()) + reach - l.x0) / dx)) + 1;
+      const long j0 = static_cast<long>(std::floor((std::min(a.y(), b.y()) - reach - l.z0) / dx)) - 1;
+      const long j1 = static_cast<long>(std::ceil((std::max(a.y(), b.y()) + reach - l.z0) / dx)) + 1;
       for (long i = i0; i <= i1; ++i)
         for (long j = j0; j <= j1; ++j) {
-          const Eigen::Vector2d p(lattice_x(i), lattice_z(j));
+          const Eigen::Vector2d p(l.x(i), l.z(j));
           const double t = std::clamp((p - a).dot(d) / len2, 0.0, 1.0);
           const Eigen::Vector2d q = a + t * d;
           const double dist = (p - q).norm();
@@ -185,37 +171,41 @@ ParticleSet generate_particles(const cases::CaseGeometry& g, const SolverSetting
         }
     }
   }
+  return near_wall;
+}
 
-  std::vector<Seed> seeds;
-  // Fluid.
-  const auto& water = g.initial_water;
-  if (water.x_end_m > water.x_begin_m) {
-    const long i0 = static_cast<long>(std::floor((water.x_begin_m - x0) / dx)) - 1;
-    const long i1 = static_cast<long>(std::ceil((water.x_end_m + buffer_length - x0) / dx)) + 1;
-    for (long i = i0; i <= i1; ++i) {
-      const double x = lattice_x(i);
-      const cases::OutflowBoundary* outflow = outflow_at(x);
-      if (x < water.x_begin_m || (x > water.x_end_m && outflow == nullptr) || !in_period(x)) continue;
-      const ParticleType type = outflow != nullptr ? ParticleType::outflow : ParticleType::fluid;
-      const double bed = outflow != nullptr ? g.bed.elevation(outflow->x_m) : g.bed.elevation(x);
-      const double surface = outflow != nullptr ? bed + outflow->tailwater_depth_m : water.surface_at(x);
-      const double depth = surface - bed;
-      const double u = depth > 0.0 ? water.discharge_m2_s / depth : 0.0;
-      const long j0 = static_cast<long>(std::floor((bed - z0) / dx)) - 1;
-      const long j1 = static_cast<long>(std::ceil((surface - z0) / dx)) + 1;
-      for (long j = j0; j <= j1; ++j) {
-        const double z = lattice_z(j);
-        if (z <= bed + 0.25 * dx || z >= surface) continue;
-        auto it = near_wall.find({i, j});
-        if (it != near_wall.end() && (it->second.distance < 0.25 * dx || it->second.side({x, z}) <= 0.0))
-          continue;  // on or behind a wall
-        seeds.push_back({type, x, z, s.eos.hydrostatic_density(gravity, surface - z), u, 0.0, 0.0});
-      }
+// What the seeding steps share: the geometry, settings, open boundaries and lattice.
+struct SeedContext {
+  const cases::CaseGeometry& g;
+  const SolverSettings& s;
+  const OpenBoundaries& open;
+  Lattice lattice;
+  double buffer_length = 0.0;
+  double gravity = 0.0;
+  int n_layers = 0;
+
+  bool in_period(double x) const { return !g.periodic_x || (x >= g.x_min_m && x < g.x_max_m); }
+  // Inside an inflow buffer (above the extended bed, below the inflow depth) there is no wall: the
+  // lower end of the sluice gate would otherwise put boundary particles among the buffer particles.
+  bool in_inflow_buffer(double x, double z) const {
+    for (std::size_t k = 0; k < g.inflows.size() && k < open.inflows().size(); ++k) {
+      const auto& in = g.inflows[k];
+      const double zb = g.bed.elevation(in.x_m);
+      const double top = zb + std::max(in.depth_m, open.inflows()[k].rows() * lattice.dx);
+      if (x < in.x_m && z > zb && z < top) return true;
     }
+    return false;
   }
-  const std::size_t n_fluid = seeds.size();
-  // Boundary.
-  auto boundary_density = [&](const Eigen::Vector2d& p) {
+  // Outflow buffers start filled with tailwater: x_out < x < x_out + buffer length (a tailgate has none).
+  const cases::OutflowBoundary* outflow_at(double x) const {
+    if (open.outflows().empty()) return nullptr;
+    for (const auto& out : g.outflows)
+      if (x > out.x_m && x < out.x_m + buffer_length) return &out;
+    return nullptr;
+  }
+  // A wall particle starts at the hydrostatic density of the water above it, else at rho0.
+  double boundary_density(const Eigen::Vector2d& p) const {
+    const auto& water = g.initial_water;
     double rho = s.eos.rho0;
     if (water.x_end_m > water.x_begin_m && p.x() >= water.x_begin_m - buffer_length &&
         p.x() <= water.x_end_m + buffer_length) {
@@ -223,75 +213,147 @@ ParticleSet generate_particles(const cases::CaseGeometry& g, const SolverSetting
       if (depth > 0.0) rho = s.eos.hydrostatic_density(gravity, depth);
     }
     return rho;
-  };
-  // A corrugated reach gets its own layers, spaced evenly along the bed (corrugated_bed_layers); the
-  // lattice gives the straight walls and floors. The layers span the reach widened to the lattice's
-  // column edges around it [layers_from, layers_to], and a lattice point whose nearest wall point lies
-  // in that span is left to them: the layers end half a spacing inside it and the lattice columns
-  // half a spacing outside, so the wall has no slit where the reach ends between two lattice columns
-  // (the reach itself left one up to 1.5 dx wide: 1.4 dx at the end of run C's reach, through which
-  // fluid seeped into the floor and out of the domain).
+  }
+};
+
+// Fluid: the lattice points of the initial water (and the outflow buffers' tailwater) above the bed
+// and off the walls, at hydrostatic density, moving with u = q / depth.
+void add_fluid_seeds(const SeedContext& ctx, const WallCandidates& near_wall, std::vector<Seed>& seeds) {
+  const auto& g = ctx.g;
+  const auto& water = g.initial_water;
+  const Lattice& l = ctx.lattice;
+  const double dx = l.dx;
+  if (!(water.x_end_m > water.x_begin_m)) return;
+  const long i0 = static_cast<long>(std::floor((water.x_begin_m - l.x0) / dx)) - 1;
+  const long i1 = static_cast<long>(std::ceil((water.x_end_m + ctx.buffer_length - l.x0) / dx)) + 1;
+  for (long i = i0; i <= i1; ++i) {
+    const double x = l.x(i);
+    const cases::OutflowBoundary* outflow = ctx.outflow_at(x);
+    if (x < water.x_begin_m || (x > water.x_end_m && outflow == nullptr) || !ctx.in_period(x)) continue;
+    const ParticleType type = outflow != nullptr ? ParticleType::outflow : ParticleType::fluid;
+    const double bed = outflow != nullptr ? g.bed.elevation(outflow->x_m) : g.bed.elevation(x);
+    const double surface = outflow != nullptr ? bed + outflow->tailwater_depth_m : water.surface_at(x);
+    const double depth = surface - bed;
+    const double u = depth > 0.0 ? water.discharge_m2_s / depth : 0.0;
+    const long j0 = static_cast<long>(std::floor((bed - l.z0) / dx)) - 1;
+    const long j1 = static_cast<long>(std::ceil((surface - l.z0) / dx)) + 1;
+    for (long j = j0; j <= j1; ++j) {
+      const double z = l.z(j);
+      if (z <= bed + 0.25 * dx || z >= surface) continue;
+      auto it = near_wall.find({i, j});
+      if (it != near_wall.end() && (it->second.distance < 0.25 * dx || it->second.side({x, z}) <= 0.0))
+        continue;  // on or behind a wall
+      seeds.push_back({type, x, z, ctx.s.eos.hydrostatic_density(ctx.gravity, surface - z), u, 0.0, 0.0});
+    }
+  }
+}
+
+// Walls: the lattice candidates behind the walls, with ghost nodes mirrored through the nearest wall
+// point. A corrugated reach gets its own layers, spaced evenly along the bed (corrugated_bed_layers); the
+// lattice gives the straight walls and floors. The layers span the reach widened to the lattice's
+// column edges around it [layers_from, layers_to], and a lattice point whose nearest wall point lies
+// in that span is left to them: the layers end half a spacing inside it and the lattice columns
+// half a spacing outside, so the wall has no slit where the reach ends between two lattice columns
+// (the reach itself left one up to 1.5 dx wide: 1.4 dx at the end of run C's reach, through which
+// fluid seeped into the floor and out of the domain).
+void add_boundary_seeds(const SeedContext& ctx, const WallCandidates& near_wall, std::vector<Seed>& seeds) {
+  const auto& g = ctx.g;
+  const Lattice& l = ctx.lattice;
+  const double dx = l.dx;
   const bool corrugated = g.bed.corrugated();
-  const double layers_from = x0 + std::floor((g.bed.reach_start_m() - x0) / dx + 1e-9) * dx;
-  const double layers_to = x0 + std::ceil((g.bed.reach_end_m() - x0) / dx - 1e-9) * dx;
+  const double layers_from = l.x0 + std::floor((g.bed.reach_start_m() - l.x0) / dx + 1e-9) * dx;
+  const double layers_to = l.x0 + std::ceil((g.bed.reach_end_m() - l.x0) / dx - 1e-9) * dx;
   const std::vector<BedParticle> bed_layers =
-      corrugated ? corrugated_bed_layers(g.bed, dx, n_layers, layers_from, layers_to) : std::vector<BedParticle>{};
+      corrugated ? corrugated_bed_layers(g.bed, dx, ctx.n_layers, layers_from, layers_to) : std::vector<BedParticle>{};
   auto left_to_bed_layers = [&](const Eigen::Vector2d& q) {
     return corrugated && q.x() > layers_from + 1e-9 * dx && q.x() < layers_to - 1e-9 * dx;
   };
   for (const auto& [ij, c] : near_wall) {
-    const Eigen::Vector2d p(lattice_x(ij.first), lattice_z(ij.second));
-    if (!in_period(p.x())) continue;
+    const Eigen::Vector2d p(l.x(ij.first), l.z(ij.second));
+    if (!ctx.in_period(p.x())) continue;
     if (c.side(p) >= 0.0 || c.distance < 0.25 * dx) continue;  // on the wall line or the fluid side
-    if (in_inflow_buffer(p.x(), p.y())) continue;
+    if (ctx.in_inflow_buffer(p.x(), p.y())) continue;
     if (left_to_bed_layers(c.nearest)) continue;
     const Eigen::Vector2d ghost = 2.0 * (c.nearest - p);
-    seeds.push_back({ParticleType::boundary, p.x(), p.y(), boundary_density(p), 0.0, ghost.x(), ghost.y()});
+    seeds.push_back({ParticleType::boundary, p.x(), p.y(), ctx.boundary_density(p), 0.0, ghost.x(), ghost.y()});
   }
   for (const BedParticle& b : bed_layers) {
     const Eigen::Vector2d ghost = 2.0 * (b.nearest - b.position);
-    seeds.push_back({ParticleType::boundary, b.position.x(), b.position.y(), boundary_density(b.position), 0.0,
+    seeds.push_back({ParticleType::boundary, b.position.x(), b.position.y(), ctx.boundary_density(b.position), 0.0,
                      ghost.x(), ghost.y()});
   }
-  // Moving walls (a lifted dam-break gate): a plate n_layers dx thick behind the (vertical) face,
-  // on the lattice, ghost nodes mirrored through the face.
-  for (const auto& moving : g.moving_walls) {
+}
+
+// Moving walls (a lifted dam-break gate): a plate n_layers dx thick behind the (vertical) face, on the
+// lattice, ghost nodes mirrored through the face; hydrostatic with the water standing against the face
+// (DBC walls start at the fluid's pressure).
+void add_moving_wall_seeds(const SeedContext& ctx, std::vector<Seed>& seeds) {
+  const auto& water = ctx.g.initial_water;
+  const Lattice& l = ctx.lattice;
+  const double dx = l.dx;
+  for (const auto& moving : ctx.g.moving_walls) {
     const auto& pts = moving.face.points;
     if (pts.size() != 2 || std::abs(pts[0].x() - pts[1].x()) > 1e-12)
       throw std::invalid_argument("moving wall \"" + moving.face.name + "\": the SPH generator supports one vertical face");
     const double xf = pts[0].x(), z_lo = std::min(pts[0].y(), pts[1].y()), z_hi = std::max(pts[0].y(), pts[1].y());
     const double side = pts[1].y() > pts[0].y() ? 1.0 : -1.0;  // fluid at x < face when going up
-    const long i0 = static_cast<long>(std::floor((xf - x0) / dx)) - n_layers - 1;
-    const long i1 = static_cast<long>(std::ceil((xf - x0) / dx)) + n_layers + 1;
+    const long i0 = static_cast<long>(std::floor((xf - l.x0) / dx)) - ctx.n_layers - 1;
+    const long i1 = static_cast<long>(std::ceil((xf - l.x0) / dx)) + ctx.n_layers + 1;
     for (long i = i0; i <= i1; ++i) {
-      const double x = lattice_x(i);
+      const double x = l.x(i);
       const double depth = side * (x - xf);  // behind the face
-      if (!(depth > 0.0 && depth < n_layers * dx)) continue;
-      for (long j = static_cast<long>(std::floor((z_lo - z0) / dx)); lattice_z(j) < z_hi; ++j) {
-        const double z = lattice_z(j);
+      if (!(depth > 0.0 && depth < ctx.n_layers * dx)) continue;
+      for (long j = static_cast<long>(std::floor((z_lo - l.z0) / dx)); l.z(j) < z_hi; ++j) {
+        const double z = l.z(j);
         if (z <= z_lo) continue;
-        // Hydrostatic with the water standing against the face (DBC walls start at the fluid's pressure).
         const double held = water.x_end_m > water.x_begin_m ? water.surface_at(xf) - z : 0.0;
-        seeds.push_back({ParticleType::moving_wall, x, z, s.eos.hydrostatic_density(gravity, std::max(0.0, held)), 0.0,
-                         2.0 * (xf - x), 0.0});
+        seeds.push_back({ParticleType::moving_wall, x, z, ctx.s.eos.hydrostatic_density(ctx.gravity, std::max(0.0, held)),
+                         0.0, 2.0 * (xf - x), 0.0});
       }
     }
   }
-  if (n_fluid == 0) throw std::invalid_argument("the initial water region holds no fluid particle at dx = " + std::to_string(dx) + " m");
+}
 
+// The particle set of the seeds, in their order. m = rho dx^2: every particle starts with the volume
+// dx^2 of its lattice cell, so the lattice and the hydrostatic densities are consistent (with
+// m = rho0 dx^2 the column would first have to contract by g H^2 / (2 c0^2), which starts an oscillation).
+ParticleSet particle_set(const std::vector<Seed>& seeds, double dx) {
   ParticleSet ps;
   ps.resize(static_cast<Eigen::Index>(seeds.size()));
   for (std::size_t k = 0; k < seeds.size(); ++k) {
     const Seed& sd = seeds[k];
     const auto i = static_cast<Eigen::Index>(k);
-    // m = rho dx^2: every particle starts with the volume dx^2 of its lattice cell, so the lattice and
-    // the hydrostatic densities are consistent (with m = rho0 dx^2 the column would first have to
-    // contract by g H^2 / (2 c0^2), which starts an oscillation).
     ps.assign(i, sd.type, sd.x, sd.z, sd.rho, sd.rho * dx * dx, static_cast<std::int64_t>(k));
     ps.u[i] = ps.u_old[i] = sd.u;
     ps.ghost_dx[i] = sd.ghost_dx;
     ps.ghost_dz[i] = sd.ghost_dz;
   }
+  return ps;
+}
+
+}  // namespace
+
+ParticleSet generate_particles(const cases::CaseGeometry& g, const SolverSettings& s, int layers) {
+  const double dx = s.dx;
+  if (g.periodic_x) {
+    const double period = g.x_max_m - g.x_min_m;
+    const double cells = period / dx;
+    if (std::abs(cells - std::round(cells)) > 1e-6)
+      throw std::invalid_argument("periodic length " + std::to_string(period) +
+                                  " m is not a whole number of particle spacings dx = " + std::to_string(dx) + " m");
+  }
+  const OpenBoundaries open = OpenBoundaries::from_geometry(g, buffer_parameters(s));
+  const SeedContext ctx{g, s, open, make_lattice(g, dx), open.empty() ? 0.0 : open.buffer_length(),
+                        std::abs(s.body_force_z), boundary_layer_count(s.h, dx, layers)};
+  const WallCandidates near_wall =
+      wall_candidates(particle_walls(g, open, ctx.buffer_length), ctx.lattice, ctx.n_layers * dx);
+  std::vector<Seed> seeds;
+  add_fluid_seeds(ctx, near_wall, seeds);
+  const std::size_t n_fluid = seeds.size();
+  add_boundary_seeds(ctx, near_wall, seeds);
+  add_moving_wall_seeds(ctx, seeds);
+  if (n_fluid == 0) throw std::invalid_argument("the initial water region holds no fluid particle at dx = " + std::to_string(dx) + " m");
+  ParticleSet ps = particle_set(seeds, dx);
   open.create(ps);  // the inflow buffers, ids after the others
   return ps;
 }

@@ -29,10 +29,10 @@ inline FluidHealth fluid_health(const ParticleSet& ps, Eigen::Index i, const Sol
   if (!std::isfinite(ps.x[i]) || !std::isfinite(ps.z[i]) || !std::isfinite(ps.u[i]) || !std::isfinite(ps.w[i]) ||
       !std::isfinite(ps.rho[i]))
     return FluidHealth::non_finite;
-  const double m = s.domain_margin;
-  if (ps.z[i] < s.z_min - m) return FluidHealth::below_bed;
-  if (ps.x[i] < s.x_min - m || ps.x[i] > s.x_max + m || ps.z[i] > s.fluid_ceiling + m) return FluidHealth::outside;
-  if (std::abs(ps.rho[i] / s.eos.rho0 - 1.0) > s.max_density_variation) return FluidHealth::density;
+  const double m = s.domain.margin;
+  if (ps.z[i] < s.domain.z_min - m) return FluidHealth::below_bed;
+  if (ps.x[i] < s.domain.x_min - m || ps.x[i] > s.domain.x_max + m || ps.z[i] > s.domain.fluid_ceiling + m) return FluidHealth::outside;
+  if (std::abs(ps.rho[i] / s.eos.rho0 - 1.0) > s.density.max_variation) return FluidHealth::density;
   return FluidHealth::ok;
 }
 

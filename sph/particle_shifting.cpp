@@ -11,20 +11,6 @@
 
 namespace hydrojump::sph {
 
-ParticleShifting parse_particle_shifting(const std::string& name) {
-  if (name == "none") return ParticleShifting::none;
-  if (name == "fickian") return ParticleShifting::fickian;
-  throw std::invalid_argument("sph.particle_shifting = \"" + name + "\" is not allowed: use \"none\" or \"fickian\"");
-}
-
-ShiftingCorrection parse_shifting_correction(const std::string& name) {
-  if (name == "none") return ShiftingCorrection::none;
-  if (name == "taylor") return ShiftingCorrection::taylor;
-  if (name == "taylor_volume") return ShiftingCorrection::taylor_volume;
-  throw std::invalid_argument("sph.particle_shifting_correction = \"" + name +
-                              "\" is not allowed: use \"none\", \"taylor\" or \"taylor_volume\"");
-}
-
 namespace {
 
 constexpr std::uint8_t kFluid = static_cast<std::uint8_t>(ParticleType::fluid);
@@ -142,7 +128,7 @@ void shift_divergence_with(const ParticleSet& ps, const CellList& cells, const S
 
 void concentration_gradients(const ParticleSet& ps, const CellList& cells, const SolverSettings& s,
                              ConcentrationGradients& out) {
-  const bool taylor = s.shifting_correction != ShiftingCorrection::none;
+  const bool taylor = s.shifting.correction != ShiftingCorrection::none;
   if (s.kernel == KernelType::wendland_c2) {
     if (taylor) gradients_with<WendlandC2, true>(ps, cells, s, WendlandC2(s.h), out);
     else gradients_with<WendlandC2, false>(ps, cells, s, WendlandC2(s.h), out);
@@ -160,14 +146,14 @@ ShiftSummary shift_particles(ParticleSet& ps, ConcentrationGradients& g, const S
   const Eigen::Index n = ps.size();
   if (static_cast<Eigen::Index>(g.grad_x.size()) != n)
     throw std::logic_error("shift_particles: the concentration gradients are of another particle set");
-  const bool volume = s.shifting_correction == ShiftingCorrection::taylor_volume;
-  const bool taylor = s.shifting_correction == ShiftingCorrection::taylor || volume;
+  const bool volume = s.shifting.correction == ShiftingCorrection::taylor_volume;
+  const bool taylor = s.shifting.correction == ShiftingCorrection::taylor || volume;
   if (taylor && static_cast<Eigen::Index>(g.du_dx.size()) != n)
     throw std::logic_error("shift_particles: correction \"taylor\" needs the velocity and density gradients");
   if (volume && cells == nullptr)
     throw std::logic_error("shift_particles: correction \"taylor_volume\" needs the cell list");
-  const double a_h_dt = s.shifting_coefficient * s.h * dt;
-  const double tfs = s.shifting_surface_threshold;
+  const double a_h_dt = s.shifting.coefficient * s.h * dt;
+  const double tfs = s.shifting.surface_threshold;
   const double ramp_width = 2.0 - tfs;  // > 0: SolverSettings::validate keeps TFS <= 1.9
   const double max_shift = 0.1 * s.dx;
   Eigen::Index shifted = 0, at_surface = 0, capped = 0;

@@ -66,6 +66,7 @@
 #include <string>
 #include <vector>
 
+#include "cases/options.hpp"
 #include "sph/cell_list.hpp"
 #include "sph/particles.hpp"
 
@@ -73,11 +74,8 @@ namespace hydrojump::sph {
 
 struct SolverSettings;
 
-enum class ParticleShifting { none, fickian };
-enum class ShiftingCorrection { none, taylor, taylor_volume };
-
-ParticleShifting parse_particle_shifting(const std::string& name);
-ShiftingCorrection parse_shifting_correction(const std::string& name);
+using cases::ParticleShifting;    // sph.particle_shifting (cases/options.hpp)
+using cases::ShiftingCorrection;  // sph.particle_shifting_correction
 
 // grad C and div r of every fluid particle (zero for the others), at the current positions; the
 // particle arrays must be in the order of `cells`. With correction "taylor" also the gradients of

@@ -223,13 +223,13 @@ double surge_front_x(const ParticleSet& ps, double dx, double layer_m) {
 }
 
 std::pair<double, double> velocity_at(const ParticleSet& ps, const SolverSettings& s, double x, double z) {
-  const Kernel kernel = Kernel::make(to_string(s.kernel), s.h);
+  const Kernel kernel = Kernel::make(std::string(cases::option_name(s.kernel)), s.h);
   double sum_w = 0.0, sum_u = 0.0, sum_v = 0.0;
-  const double period = s.x_max - s.x_min;
+  const double period = s.domain.x_max - s.domain.x_min;
   for (Eigen::Index i = 0; i < ps.size(); ++i) {
     if (!ps.is_fluid(i)) continue;
     double dx = x - ps.x[i];
-    if (s.periodic_x) dx -= period * std::round(dx / period);
+    if (s.domain.periodic_x) dx -= period * std::round(dx / period);
     const double r = std::hypot(dx, z - ps.z[i]);
     if (r >= 2.0 * s.h) continue;
     const double vw = ps.mass[i] / ps.rho[i] * kernel.value(r);
@@ -273,7 +273,7 @@ std::string diagnose(const Solver& solver) {
       case FluidHealth::density: {
         std::ostringstream w;
         w << "|rho/rho0 - 1| = " << std::abs(ps.rho[i] / s.eos.rho0 - 1.0) << " above the limit "
-          << s.max_density_variation << " (sph.max_density_variation)";
+          << s.density.max_variation << " (sph.max_density_variation)";
         report(w.str(), i);
         break;
       }
@@ -309,7 +309,7 @@ std::string diagnose(const Solver& solver) {
   head << "the SPH run went unstable at t = " << t << " s (step " << solver.clock().steps << "); " << reported
        << " problem(s)" << (reported > 5 ? ", the first 5:" : ":") << "\n"
        << out.str();
-  head << "  domain box [" << s.x_min << ", " << s.x_max << "] x [" << s.z_min << ", " << s.fluid_ceiling << "] m (margin " << s.domain_margin
+  head << "  domain box [" << s.domain.x_min << ", " << s.domain.x_max << "] x [" << s.domain.z_min << ", " << s.domain.fluid_ceiling << "] m (margin " << s.domain.margin
        << " m). Try a smaller sph.cfl_number, a finer resolution, or check the geometry.";
   return head.str();
 }

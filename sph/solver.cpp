@@ -11,10 +11,10 @@ namespace hydrojump::sph {
 Solver::Solver(SolverSettings settings, ParticleSet particles, SolverClock clock, OpenBoundaries open)
     : settings_(std::move(settings)), particles_(std::move(particles)), clock_(clock), open_(std::move(open)) {
   settings_.validate();
-  if (settings_.sps_wall_distance_table) {
+  if (settings_.viscosity.sps_wall_distance_table) {
     // Far enough for l = min(l_m, kappa d) to reach l_m; nodes at dx/2.
-    wall_distances_ = WallDistanceTable::tabulate(particles_, mixing_length_wall_reach(settings_.sps_length, settings_.dx),
-                                                  0.5 * settings_.dx, settings_.periodic_x, settings_.x_min, settings_.x_max);
+    wall_distances_ = WallDistanceTable::tabulate(particles_, mixing_length_wall_reach(settings_.viscosity.sps_length, settings_.dx),
+                                                  0.5 * settings_.dx, settings_.domain.periodic_x, settings_.domain.x_min, settings_.domain.x_max);
   }
   open_.start(particles_);
   if (clock_.outflow_target_depth > 0.0) open_.set_outflow_target_depth(clock_.outflow_target_depth);
@@ -22,13 +22,13 @@ Solver::Solver(SolverSettings settings, ParticleSet particles, SolverClock clock
 }
 
 CellGrid::Box Solver::grid_limit() const {
-  const double pad = settings_.domain_margin + 3.0 * settings_.support();
-  return {settings_.x_min - pad, settings_.x_max + pad, settings_.z_min - pad, settings_.z_max + pad};
+  const double pad = settings_.domain.margin + 3.0 * settings_.support();
+  return {settings_.domain.x_min - pad, settings_.domain.x_max + pad, settings_.domain.z_min - pad, settings_.domain.z_max + pad};
 }
 
 void Solver::sort_by_cell() {
-  const CellGrid grid = settings_.periodic_x
-                            ? CellGrid::periodic_x(settings_.x_min, settings_.x_max, particles_.z, settings_.support())
+  const CellGrid grid = settings_.domain.periodic_x
+                            ? CellGrid::periodic_x(settings_.domain.x_min, settings_.domain.x_max, particles_.z, settings_.support())
                             : CellGrid::enclosing(particles_.x, particles_.z, settings_.support(), grid_limit());
   cells_.build(particles_.x, particles_.z, grid);
   bool identity = true;
@@ -44,7 +44,7 @@ InteractionSummary Solver::interactions() {
   sort_by_cell();
   if (settings_.boundary == BoundaryMethod::mdbc) mdbc_boundary_density(particles_, cells_, settings_);
   compute_pressure(particles_, settings_);
-  return compute_interactions(particles_, cells_, settings_, settings_.sps_wall_distance_table ? &wall_distances_ : nullptr);
+  return compute_interactions(particles_, cells_, settings_, settings_.viscosity.sps_wall_distance_table ? &wall_distances_ : nullptr);
 }
 
 void Solver::step() {
@@ -52,17 +52,17 @@ void Solver::step() {
   const double dt = variable_time_step(start, settings_);
   const double t = clock_.time;
   const WallMotion walls = settings_.wall_motion.for_step(particles_);
-  if (settings_.time_integrator == TimeIntegrator::symplectic) {
+  if (settings_.time.integrator == TimeIntegrator::symplectic) {
     symplectic_predictor(particles_, settings_, dt);
     move_walls(particles_, walls, t, t + 0.5 * dt);
     interactions();
-    const bool shifting = settings_.particle_shifting != ParticleShifting::none;
+    const bool shifting = settings_.shifting.model != ParticleShifting::none;
     if (shifting) concentration_gradients(particles_, cells_, settings_, shifting_gradients_);
     symplectic_corrector(particles_, settings_, dt);
     if (shifting) shift_particles(particles_, shifting_gradients_, settings_, dt, &cells_);
     move_walls(particles_, walls, t + 0.5 * dt, t + dt);
   } else {
-    const bool euler = clock_.steps % settings_.verlet_euler_interval == 0;
+    const bool euler = clock_.steps % settings_.time.verlet_euler_interval == 0;
     verlet_update(particles_, settings_, dt, euler);
     move_walls(particles_, walls, t, t + dt);
   }

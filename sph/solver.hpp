@@ -63,7 +63,7 @@ class Solver {
   const OpenBoundaries& open_boundaries() const { return open_; }
   double time() const { return clock_.time; }
   // Nominal acoustic time step CFL h / c0 (used to detect a collapsing time step).
-  double acoustic_time_step() const { return settings_.cfl * settings_.h / settings_.eos.c0; }
+  double acoustic_time_step() const { return settings_.time.cfl * settings_.h / settings_.eos.c0; }
   // Pressures of the current state (for output): recomputed from the densities.
   void update_pressure();
   // The toe-holding control's step (toe_hold_control.hpp): the outflow buffers' new target depth and

@@ -24,9 +24,9 @@ double variable_time_step(const InteractionSummary& summary, const SolverSetting
   const double dt_f = summary.max_acceleration > 0.0 ? std::sqrt(s.h / summary.max_acceleration)
                                                      : std::numeric_limits<double>::infinity();
   const double dt_cv = s.h / (s.eos.c0 + summary.max_viscous_rate);
-  double dt = s.cfl * std::min(dt_f, dt_cv);
-  if (s.viscosity == Viscosity::laminar_sps) {
-    const double diffusivity = s.kinematic_viscosity + summary.max_eddy_viscosity;
+  double dt = s.time.cfl * std::min(dt_f, dt_cv);
+  if (s.viscosity.model == Viscosity::laminar_sps) {
+    const double diffusivity = s.viscosity.kinematic_viscosity + summary.max_eddy_viscosity;
     if (diffusivity > 0.0) dt = std::min(dt, 0.125 * s.h * s.h / diffusivity);
   }
   return dt;
@@ -119,15 +119,15 @@ void verlet_update(ParticleSet& ps, const SolverSettings& s, double dt, bool eul
 
 // x -> x - P floor((x - x_min) / P),  P = x_max - x_min, for fluid that crossed the periodic seam.
 void wrap_periodic(ParticleSet& ps, const SolverSettings& s) {
-  if (!s.periodic_x) return;
-  const double period = s.x_max - s.x_min;
+  if (!s.domain.periodic_x) return;
+  const double period = s.domain.x_max - s.domain.x_min;
   for (Eigen::Index i = 0; i < ps.size(); ++i) {
     if (!ps.is_fluid(i) || !std::isfinite(ps.x[i])) continue;
-    if (ps.x[i] >= s.x_min && ps.x[i] < s.x_max) continue;
-    const double shift = period * std::floor((ps.x[i] - s.x_min) / period);
+    if (ps.x[i] >= s.domain.x_min && ps.x[i] < s.domain.x_max) continue;
+    const double shift = period * std::floor((ps.x[i] - s.domain.x_min) / period);
     ps.x[i] -= shift;
     ps.x_old[i] -= shift;
-    if (ps.x[i] >= s.x_max) ps.x[i] = s.x_min;  // round-off at the seam
+    if (ps.x[i] >= s.domain.x_max) ps.x[i] = s.domain.x_min;  // round-off at the seam
   }
 }
 

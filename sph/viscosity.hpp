@@ -47,17 +47,12 @@
 #include <stdexcept>
 #include <string>
 
+#include "cases/options.hpp"
 #include "sph/wall_function.hpp"
 
 namespace hydrojump::sph {
 
-enum class Viscosity { artificial, laminar_sps };
-
-inline Viscosity parse_viscosity(const std::string& name) {
-  if (name == "artificial") return Viscosity::artificial;
-  if (name == "laminar_sps") return Viscosity::laminar_sps;
-  throw std::invalid_argument("sph.viscosity = \"" + name + "\" is not allowed: use \"artificial\" or \"laminar_sps\"");
-}
+using cases::Viscosity;  // sph.viscosity (cases/options.hpp)
 
 // Pi_ij (m^2/s^2 per kg/m^3 scaled): returns the factor P with  dv_i/dt += -m_j P grad_i W_ij.
 //   P = -alpha c0 mu_ij / rho_ij  for approaching particles.

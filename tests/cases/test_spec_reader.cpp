@@ -97,7 +97,7 @@ TEST_CASE("The minimal spec is valid and derives sections", "[cases][spec]") {
   CHECK(b->bed.reach_start_m == Approx(0.2));
   CHECK(b->bed.reach_end_m == Approx(0.2 + 20 * 0.068));
   CHECK(c.run.average_end_s == 10.0);
-  CHECK(c.sph.kernel == "wendland_c2");
+  CHECK(c.sph.kernel == hydrojump::cases::KernelType::wendland_c2);
   REQUIRE(c.sections.size() >= 3);
   CHECK(c.sections.front().role == "upstream");
   CHECK(c.sections.back().role == "downstream");
@@ -582,9 +582,9 @@ TEST_CASE("The artificial viscosity is given as alpha or as nu, not both", "[cas
   SECTION("a case that switches to laminar + SPS drops the study's nu, and its resolved case reloads") {
     const auto text = replaced(with_sph, "[case.run]", "[case.sph]\nviscosity = \"laminar_sps\"\n[case.run]");
     const Study s = parse_study(text, "spec.toml", ".");
-    CHECK(s.cases[0].sph.viscosity == "laminar_sps");
+    CHECK(s.cases[0].sph.viscosity == hydrojump::cases::Viscosity::laminar_sps);
     CHECK(s.cases[0].sph.artificial_viscosity_nu_m2_s == 0.0);
-    CHECK(resolved_reload(s, "nu_sps").cases[0].sph.viscosity == "laminar_sps");
+    CHECK(resolved_reload(s, "nu_sps").cases[0].sph.viscosity == hydrojump::cases::Viscosity::laminar_sps);
   }
   SECTION("negative nu") {
     const auto msg = rejection(replaced(with_sph, "= 0.002", "= -0.002"));
@@ -653,10 +653,10 @@ TEST_CASE("The SPS eddy viscosity takes a mixing length in metres instead of C_s
 TEST_CASE("The mixing length's wall distance is kernel_support or whole_domain, with a mixing length only", "[cases][spec]") {
   const auto with = [](const std::string& lines) { return replaced(valid_spec, "[[case]]", "[sph]\n" + lines + "\n\n[[case]]"); };
   const std::string mixing = "viscosity = \"laminar_sps\"\nsps_mixing_length_m = 0.015";
-  CHECK(parse_study(with(mixing), "spec.toml", ".").cases[0].sph.sps_wall_distance == "kernel_support");
+  CHECK(parse_study(with(mixing), "spec.toml", ".").cases[0].sph.sps_wall_distance == hydrojump::cases::SpsWallDistance::kernel_support);
   const Study s = parse_study(with(mixing + "\nsps_wall_distance = \"whole_domain\""), "spec.toml", ".");
-  CHECK(s.cases[0].sph.sps_wall_distance == "whole_domain");
-  CHECK(resolved_reload(s, "whole_domain").cases[0].sph.sps_wall_distance == "whole_domain");
+  CHECK(s.cases[0].sph.sps_wall_distance == hydrojump::cases::SpsWallDistance::whole_domain);
+  CHECK(resolved_reload(s, "whole_domain").cases[0].sph.sps_wall_distance == hydrojump::cases::SpsWallDistance::whole_domain);
   CHECK_THAT(rejection(with(mixing + "\nsps_wall_distance = \"everywhere\"")),
              Catch::Contains("sps_wall_distance") && Catch::Contains("\"kernel_support\"") && Catch::Contains("\"whole_domain\""));
   CHECK_THAT(rejection(with("viscosity = \"laminar_sps\"\nsps_wall_distance = \"whole_domain\"")),
@@ -666,25 +666,25 @@ TEST_CASE("The mixing length's wall distance is kernel_support or whole_domain, 
   // A case that drops the mixing length (C_s instead) drops the inherited rule too.
   const auto text = replaced(with(mixing + "\nsps_wall_distance = \"whole_domain\""), "[case.run]",
                              "[case.sph]\nsps_smagorinsky_constant = 0.2\n[case.run]");
-  CHECK(parse_study(text, "spec.toml", ".").cases[0].sph.sps_wall_distance == "kernel_support");
+  CHECK(parse_study(text, "spec.toml", ".").cases[0].sph.sps_wall_distance == hydrojump::cases::SpsWallDistance::kernel_support);
 }
 
 TEST_CASE("Particle shifting is none or fickian, its numbers only with fickian and the symplectic integrator", "[cases][spec]") {
   const auto with = [](const std::string& lines) { return replaced(valid_spec, "[[case]]", "[sph]\n" + lines + "\n\n[[case]]"); };
-  CHECK(parse_study(with(""), "spec.toml", ".").cases[0].sph.particle_shifting == "none");
+  CHECK(parse_study(with(""), "spec.toml", ".").cases[0].sph.particle_shifting == hydrojump::cases::ParticleShifting::none);
   const Study s = parse_study(with("particle_shifting = \"fickian\"\nparticle_shifting_coefficient = 3\n"
                                    "particle_shifting_surface_threshold = 1.4\nparticle_shifting_correction = \"taylor\""),
                               "spec.toml", ".");
-  CHECK(s.cases[0].sph.particle_shifting == "fickian");
+  CHECK(s.cases[0].sph.particle_shifting == hydrojump::cases::ParticleShifting::fickian);
   CHECK(s.cases[0].sph.particle_shifting_coefficient == 3.0);
   const Study again = resolved_reload(s, "shifting");
-  CHECK(again.cases[0].sph.particle_shifting == "fickian");
+  CHECK(again.cases[0].sph.particle_shifting == hydrojump::cases::ParticleShifting::fickian);
   CHECK(again.cases[0].sph.particle_shifting_coefficient == 3.0);
   CHECK(again.cases[0].sph.particle_shifting_surface_threshold == 1.4);
-  CHECK(again.cases[0].sph.particle_shifting_correction == "taylor");
-  CHECK(parse_study(with("particle_shifting = \"fickian\""), "spec.toml", ".").cases[0].sph.particle_shifting_correction == "none");
+  CHECK(again.cases[0].sph.particle_shifting_correction == hydrojump::cases::ShiftingCorrection::taylor);
+  CHECK(parse_study(with("particle_shifting = \"fickian\""), "spec.toml", ".").cases[0].sph.particle_shifting_correction == hydrojump::cases::ShiftingCorrection::none);
   CHECK(parse_study(with("particle_shifting = \"fickian\"\nparticle_shifting_correction = \"taylor_volume\""), "spec.toml", ".")
-            .cases[0].sph.particle_shifting_correction == "taylor_volume");
+            .cases[0].sph.particle_shifting_correction == hydrojump::cases::ShiftingCorrection::taylor_volume);
   CHECK_THAT(rejection(with("particle_shifting = \"fickian\"\nparticle_shifting_correction = \"ale\"")),
              Catch::Contains("particle_shifting_correction") && Catch::Contains("\"none\"") && Catch::Contains("\"taylor\""));
   CHECK_THAT(rejection(with("particle_shifting_correction = \"taylor\"")),
@@ -702,19 +702,19 @@ TEST_CASE("Particle shifting is none or fickian, its numbers only with fickian a
   // A case that switches shifting off drops the study's coefficient.
   const auto text = replaced(with("particle_shifting = \"fickian\"\nparticle_shifting_coefficient = 3"), "[case.run]",
                              "[case.sph]\nparticle_shifting = \"none\"\n[case.run]");
-  CHECK(parse_study(text, "spec.toml", ".").cases[0].sph.particle_shifting == "none");
+  CHECK(parse_study(text, "spec.toml", ".").cases[0].sph.particle_shifting == hydrojump::cases::ParticleShifting::none);
 }
 
 TEST_CASE("The viscous wall condition is no_slip, free_slip or wall_function, with laminar_sps and mDBC only", "[cases][spec]") {
   const auto with = [](const std::string& lines) { return replaced(valid_spec, "[[case]]", "[sph]\n" + lines + "\n\n[[case]]"); };
   const Study s = parse_study(with("viscosity = \"laminar_sps\"\nboundary = \"mdbc\"\nviscous_wall_condition = \"free_slip\""),
                               "spec.toml", ".");
-  CHECK(s.cases[0].sph.viscous_wall_condition == "free_slip");
-  CHECK(resolved_reload(s, "free_slip").cases[0].sph.viscous_wall_condition == "free_slip");
-  CHECK(parse_study(with("viscosity = \"laminar_sps\""), "spec.toml", ".").cases[0].sph.viscous_wall_condition == "no_slip");
+  CHECK(s.cases[0].sph.viscous_wall_condition == hydrojump::cases::ViscousWallCondition::free_slip);
+  CHECK(resolved_reload(s, "free_slip").cases[0].sph.viscous_wall_condition == hydrojump::cases::ViscousWallCondition::free_slip);
+  CHECK(parse_study(with("viscosity = \"laminar_sps\""), "spec.toml", ".").cases[0].sph.viscous_wall_condition == hydrojump::cases::ViscousWallCondition::no_slip);
   const Study wf = parse_study(with("viscosity = \"laminar_sps\"\nboundary = \"mdbc\"\nviscous_wall_condition = \"wall_function\""),
                                "spec.toml", ".");
-  CHECK(resolved_reload(wf, "wall_function").cases[0].sph.viscous_wall_condition == "wall_function");
+  CHECK(resolved_reload(wf, "wall_function").cases[0].sph.viscous_wall_condition == hydrojump::cases::ViscousWallCondition::wall_function);
   CHECK_THAT(rejection(with("viscosity = \"laminar_sps\"\nboundary = \"mdbc\"\nviscous_wall_condition = \"slip\"")),
              Catch::Contains("viscous_wall_condition") && Catch::Contains("\"no_slip\"") && Catch::Contains("\"free_slip\"") &&
                  Catch::Contains("\"wall_function\""));
@@ -727,7 +727,7 @@ TEST_CASE("The viscous wall condition is no_slip, free_slip or wall_function, wi
   // A case that switches to artificial viscosity drops the inherited wall condition.
   const auto text = replaced(with("viscosity = \"laminar_sps\"\nboundary = \"mdbc\"\nviscous_wall_condition = \"free_slip\""),
                              "[case.run]", "[case.sph]\nviscosity = \"artificial\"\n[case.run]");
-  CHECK(parse_study(text, "spec.toml", ".").cases[0].sph.viscous_wall_condition == "no_slip");
+  CHECK(parse_study(text, "spec.toml", ".").cases[0].sph.viscous_wall_condition == hydrojump::cases::ViscousWallCondition::no_slip);
 }
 
 TEST_CASE("Resolutions given for an inflow depth scale with each basin's own y1 and a case's own levels stand", "[cases][spec]") {
@@ -842,6 +842,5 @@ TEST_CASE("The tailwater control is hold_toe by default or fixed_depth in case.t
                  Catch::Contains("control = \"fixed_depth\""));
   CHECK_THAT(rejection(replaced(valid_spec, "[case.run]", "[case.sph]\noutflow_condition = \"tailgate\"\n[case.run]")),
              Catch::Contains("sph.outflow_condition = \"tailgate\"") && Catch::Contains("control = \"fixed_depth\""));
-  CHECK(parse_study(tail("control = \"fixed_depth\"") + "", "spec.toml", ".").cases[0].sph.outflow_condition ==
-        "hydrostatic_level");
+  CHECK(parse_study(tail("control = \"fixed_depth\"") + "", "spec.toml", ".").cases[0].sph.outflow_condition == hydrojump::cases::OutflowCondition::hydrostatic_level);
 }

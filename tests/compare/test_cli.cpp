@@ -269,6 +269,48 @@ TEST_CASE("hydrojump sph keeps the outputs of a run that failed before its first
   CHECK(fs::exists(dir / "particles.pvd"));
 }
 
+// `hydrojump sph DIR` with the environment change `env` (e.g. "HYDROJUMP_MEMORY_LIMIT_MB=20"); its exit status.
+int run_sph_with(const fs::path& dir, const std::string& env, const fs::path& log) {
+  hydrojump::util::ChildCommand command({HYDROJUMP_EXECUTABLE, "sph", dir.string(), "--quiet", "--threads", "1", "--end-time", "0.01"},
+                                        log);
+  command.append_to_log = false;
+  command.environment = {env};
+  return wait_exit_status(hydrojump::util::start_child(command));
+}
+
+TEST_CASE("hydrojump sph and vof refuse up front a run that needs more memory than is available, with the figures",
+          "[compare][integration][cli]") {
+  hydrojump::testing::TempDir tmp("memory");
+  const std::string spec = std::string(HYDROJUMP_SOURCE_DIR) + "/cases/dam_break.toml";
+  REQUIRE(run({"generate", spec, "--out", tmp.path().string(), "--resolution", "quick"}, tmp.path() / "generate.log") == 0);
+  const fs::path dir = tmp.path() / "dam_break" / "sph";
+  // The dam break at quick needs 25 MB + 0.52 kB a particle: more than 20 MB, less than 1000 MB.
+  CHECK(run_sph_with(dir, "HYDROJUMP_MEMORY_LIMIT_MB=20", tmp.path() / "short.log") == 1);
+  const std::string refused = read_text(tmp.path() / "short.log");
+  CHECK_THAT(refused, Catch::Contains("hydrojump sph: case \"dam_break\" at dx = ") && Catch::Contains("needs about ") &&
+                          Catch::Contains("(25 MB + 0.52 kB a particle x ") &&
+                          Catch::Contains("but this machine has 20 MB available") && Catch::Contains("coarser resolution"));
+  CHECK_FALSE(fs::exists(dir / "particles.pvd"));
+  CHECK_FALSE(fs::exists(dir / "checkpoint.bin"));
+  CHECK(run_sph_with(dir, "HYDROJUMP_MEMORY_LIMIT_MB=lots", tmp.path() / "bad.log") == 1);
+  CHECK_THAT(read_text(tmp.path() / "bad.log"), Catch::Contains("HYDROJUMP_MEMORY_LIMIT_MB = \"lots\"") &&
+                                                    Catch::Contains("positive number of MB"));
+  CHECK(run_sph_with(dir, "HYDROJUMP_MEMORY_LIMIT_MB=1000", tmp.path() / "enough.log") == 0);
+  CHECK(fs::exists(dir / "particles.pvd"));
+
+  // interFoam: 145 MB a process + 2.04 kB a cell, refused before meshing.
+  const fs::path vof = tmp.path() / "dam_break" / "vof";
+  hydrojump::util::ChildCommand command({HYDROJUMP_EXECUTABLE, "vof", vof.string()}, tmp.path() / "vof.log");
+  command.append_to_log = false;
+  command.environment = {"HYDROJUMP_MEMORY_LIMIT_MB=100"};
+  CHECK(wait_exit_status(hydrojump::util::start_child(command)) == 1);
+  CHECK_THAT(read_text(tmp.path() / "vof.log"),
+             Catch::Contains("hydrojump vof: case \"dam_break\" at resolution \"quick\" needs about ") &&
+                 Catch::Contains("(145 MB x 1 process(es) + 2.04 kB a cell x ") &&
+                 Catch::Contains("but this machine has 100 MB available") && Catch::Contains("coarser resolution"));
+  CHECK_FALSE(fs::exists(vof / "log.blockMesh"));
+}
+
 TEST_CASE("hydrojump check prints run A's derived hydraulics", "[compare][integration][cli]") {
   hydrojump::testing::TempDir tmp("check");
   REQUIRE(run({"check", std::string(HYDROJUMP_SOURCE_DIR) + "/cases/ead2002.toml"}, tmp.path() / "check.log") == 0);

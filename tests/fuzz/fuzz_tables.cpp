@@ -4,7 +4,7 @@
 #include "tests/fuzz/fuzz_input.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  using namespace hydrojump::cases;
+  using namespace hydrojump::util;
   const CsvTable table = read_csv_table(hydrojump::fuzz::as_file(data, size, "table.csv"));
   double sum = 0.0;
   for (const auto& row : table.rows)

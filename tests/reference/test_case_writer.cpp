@@ -394,7 +394,7 @@ TEST_CASE("body_fitted plan follows the bed and removes nothing", "[reference][m
   const cases::Case& c = study.cases.front();
   const cases::CaseGeometry geo = cases::make_geometry(c, study.fluid);
   const reference::VofCase vof = reference::build_vof_case(study, c, "quick");
-  CHECK(vof.mesh.strategy == "body_fitted");
+  CHECK(vof.mesh.strategy == hydrojump::cases::MeshStrategy::body_fitted);
   CHECK(vof.mesh.removed.empty());
   CHECK(vof.mesh.cell_count() == vof.mesh.background_cells());
   REQUIRE(vof.mesh.bed_vertices.size() == vof.mesh.x_bands.size() + 1);

@@ -43,12 +43,12 @@ inline LoadedCase load_case(const std::string& file, double dx,
 // The fixtures test open boundaries, gates and bookkeeping, and their measured figures were taken
 // with this model.
 inline void use_fixture_viscosity(hydrojump::cases::Case& c) {
-  c.sph.viscosity = "artificial";
+  c.sph.viscosity = hydrojump::cases::Viscosity::artificial;
   c.sph.artificial_viscosity_alpha = 0.1;
   c.sph.artificial_viscosity_nu_m2_s = 0.0;
   c.sph.artificial_viscosity_wall_factor = 0.0;
   c.sph.sps_mixing_length_m = 0.0;
-  c.sph.viscous_wall_condition = "no_slip";
+  c.sph.viscous_wall_condition = hydrojump::cases::ViscousWallCondition::no_slip;
 }
 
 // Case A_smooth of tests/data/basins.toml (the reference study frozen for the tests) (y1 = 25.4 mm, U1 = 2 m/s) on a shortened domain (0.1 m

@@ -50,8 +50,8 @@ struct DamBreakRun {
 // shifting: sph.particle_shifting.
 DamBreakRun run_dam_break(double dx, double gate_speed = 0.0, const std::string& shifting = "none") {
   auto loaded = sph_test::load_case("dam_break.toml", dx, [&](hydrojump::cases::Case& c) {
-    c.sph.time_integrator = "symplectic";
-    c.sph.particle_shifting = shifting;
+    c.sph.time_integrator = hydrojump::cases::TimeIntegrator::symplectic;
+    c.sph.particle_shifting = hydrojump::cases::option_from_name<hydrojump::cases::ParticleShifting>("test", shifting);
     auto& d = std::get<hydrojump::cases::DamBreakCase>(c.data);
     if (gate_speed > 0.0) {
       d.gate = "lifted";

@@ -178,20 +178,20 @@ TEST_CASE("the gate above the inflow reaches past the height where escaped fluid
     INFO("inflow " << inflow);
     const auto c = sph_test::short_smooth_basin(0.005, [&](hydrojump::cases::Case& k) {
       k.run.end_time_s = 0.6;
-      k.sph.inflow_condition = inflow;
+      k.sph.inflow_condition = hydrojump::cases::option_from_name<hydrojump::cases::InflowCondition>("test", inflow);
     });
     double gate_top = -1.0;
     for (const auto& w : c.geometry.walls)
       if (w.name == "inlet_gate" || w.name == "sluice_gate")
         for (const auto& p : w.points) gate_top = std::max(gate_top, p.y());
     REQUIRE(gate_top > 0.0);
-    CHECK(gate_top > c.settings.fluid_ceiling + c.settings.domain_margin);
+    CHECK(gate_top > c.settings.domain.fluid_ceiling + c.settings.domain.margin);
     double highest_gate_particle = -1.0;
     for (Eigen::Index i = 0; i < c.particles.size(); ++i)
       if (c.particles.type[i] == static_cast<std::uint8_t>(hydrojump::sph::ParticleType::boundary) &&
           std::abs(c.particles.x[i]) < 0.02)
         highest_gate_particle = std::max(highest_gate_particle, c.particles.z[i]);
-    CHECK(highest_gate_particle > c.settings.fluid_ceiling + c.settings.domain_margin);
+    CHECK(highest_gate_particle > c.settings.domain.fluid_ceiling + c.settings.domain.margin);
   }
 }
 
@@ -207,7 +207,7 @@ TEST_CASE("a fluid particle gone unhealthy at the outlet is left to the run's ch
     if (c.particles.is_fluid(i) && (k < 0 || c.particles.x[i] > c.particles.x[k])) k = i;
   REQUIRE(k >= 0);
   c.particles.x[k] = x_out + 0.25 * c.settings.dx;
-  c.particles.rho[k] = c.particles.rho_old[k] = rho0 * (1.0 + 4.0 * c.settings.max_density_variation);
+  c.particles.rho[k] = c.particles.rho_old[k] = rho0 * (1.0 + 4.0 * c.settings.density.max_variation);
   const std::int64_t id = c.particles.id[k];
   Solver solver(c.settings, c.particles, {}, OpenBoundaries::from_geometry(c.geometry, buffer_parameters(c.settings)));
   solver.step();

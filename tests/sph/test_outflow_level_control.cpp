@@ -118,27 +118,27 @@ TEST_CASE("the level-controlled outlet drains at the Riemann invariant of its mo
 TEST_CASE("the level control is set from the spec, at the downstream section, and refused where it cannot work", "[sph][level_control][options]") {
   cases::Study study = cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/tests/data/basins.toml");
   cases::Case a = case_named(study, "A");
-  a.sph.outflow_level_reference = "downstream_section";  // a level held at the measuring section
+  a.sph.outflow_level_reference = hydrojump::cases::OutflowLevelReference::downstream_section;  // a level held at the measuring section
   a.sph.outflow_level_time_s = 3.0;
   const auto geometry = solver_geometry(a, study.fluid, 0.005);
   const SolverSettings s = make_settings(a, study.fluid, geometry, 0.005);
-  CHECK(s.outflow_level_at_section);
-  CHECK(s.outflow_level_time == 3.0);
+  CHECK(s.open.level_at_section);
+  CHECK(s.open.level_time == 3.0);
   double x_down = -1.0;
   for (const auto& sec : geometry.sections)
     if (sec.role == "downstream") x_down = sec.x_m;
-  CHECK(s.outflow_level_section_x == x_down);
+  CHECK(s.open.level_section_x == x_down);
   CHECK(buffer_parameters(s).level_at_section);
   // The default holds the tailwater at the outlet (run B of the study file sets no level control).
   const cases::Case plain = case_named(study, "B");
-  CHECK_FALSE(make_settings(plain, study.fluid, solver_geometry(plain, study.fluid, 0.005), 0.005).outflow_level_at_section);
+  CHECK_FALSE(make_settings(plain, study.fluid, solver_geometry(plain, study.fluid, 0.005), 0.005).open.level_at_section);
   // A dam break has no outflow and no downstream section.
   cases::Study dam = cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/cases/dam_break.toml");
   cases::Case* dam_break = nullptr;
   for (auto& c : dam.cases)
     if (c.kind == "dam_break") dam_break = &c;
   REQUIRE(dam_break != nullptr);
-  dam_break->sph.outflow_level_reference = "downstream_section";
+  dam_break->sph.outflow_level_reference = hydrojump::cases::OutflowLevelReference::downstream_section;
   const auto dam_geometry = solver_geometry(*dam_break, dam.fluid, 0.01);
   CHECK_THROWS_WITH(make_settings(*dam_break, dam.fluid, dam_geometry, 0.01),
                     Catch::Contains("sph.outflow_level_reference = \"downstream_section\" needs an outflow buffer") &&

@@ -39,12 +39,12 @@ SolverSettings shifting_settings(bool periodic, double x_max) {
   s.dx = kDx;
   s.h = smoothing_length(1.0, kDx);
   s.eos = TaitEquationOfState(kRho0, 20.0);
-  s.particle_shifting = ParticleShifting::fickian;
-  s.periodic_x = periodic;
-  s.x_min = 0.0;
-  s.x_max = x_max;
-  s.z_min = -1.0;
-  s.z_max = 1.0;
+  s.shifting.model = ParticleShifting::fickian;
+  s.domain.periodic_x = periodic;
+  s.domain.x_min = 0.0;
+  s.domain.x_max = x_max;
+  s.domain.z_min = -1.0;
+  s.domain.z_max = 1.0;
   return s;
 }
 
@@ -92,7 +92,7 @@ Eigen::Index index_of(const ParticleSet& ps, std::int64_t id) {
 // Sorts the particles by cell as the solver does and returns the cell list.
 CellList sorted_cells(ParticleSet& ps, const SolverSettings& s) {
   CellList cells;
-  const CellGrid grid = s.periodic_x ? CellGrid::periodic_x(s.x_min, s.x_max, ps.z, s.support())
+  const CellGrid grid = s.domain.periodic_x ? CellGrid::periodic_x(s.domain.x_min, s.domain.x_max, ps.z, s.support())
                                      : CellGrid::enclosing(ps.x, ps.z, s.support());
   cells.build(ps.x, ps.z, grid);
   ps.permute(cells.order());
@@ -107,12 +107,12 @@ struct Oracle {
 };
 Oracle brute_force(const ParticleSet& ps, const SolverSettings& s, Eigen::Index i) {
   const WendlandC2 kernel(s.h);
-  const double period = s.x_max - s.x_min;
+  const double period = s.domain.x_max - s.domain.x_min;
   Oracle o;
   for (Eigen::Index j = 0; j < ps.size(); ++j) {
     if (j == i) continue;
     double dx = ps.x[i] - ps.x[j];
-    if (s.periodic_x) dx -= period * std::round(dx / period);
+    if (s.domain.periodic_x) dx -= period * std::round(dx / period);
     const double dz = ps.z[i] - ps.z[j];
     const double r = std::hypot(dx, dz);
     if (r >= s.support()) continue;
@@ -135,11 +135,11 @@ Oracle brute_force(const ParticleSet& ps, const SolverSettings& s, Eigen::Index 
 // sum_j V_j W_ij (including j = i) of particle i: 1 where the particles are uniform.
 double kernel_sum(const ParticleSet& ps, const SolverSettings& s, Eigen::Index i) {
   const WendlandC2 kernel(s.h);
-  const double period = s.x_max - s.x_min;
+  const double period = s.domain.x_max - s.domain.x_min;
   double sum = 0.0;
   for (Eigen::Index j = 0; j < ps.size(); ++j) {
     double dx = ps.x[i] - ps.x[j];
-    if (s.periodic_x) dx -= period * std::round(dx / period);
+    if (s.domain.periodic_x) dx -= period * std::round(dx / period);
     const double r = std::hypot(dx, ps.z[i] - ps.z[j]);
     if (r < s.support()) sum += ps.mass[j] / ps.rho[j] * kernel.value(r);
   }
@@ -198,7 +198,7 @@ TEST_CASE("particle shifting: a uniform lattice has no gradient in the bulk, div
   CHECK(max_bulk_grad < 1e-10);
   CHECK(std::abs(min_bulk_div - 2.0) < 0.06);
   CHECK(std::abs(max_bulk_div - 2.0) < 0.06);
-  CHECK(max_top_div < s.shifting_surface_threshold);
+  CHECK(max_top_div < s.shifting.surface_threshold);
 
   // At rest nothing moves; moving, the bulk does not move either, and the top row is left alone.
   for (Eigen::Index i = 0; i < ps.size(); ++i) ps.u[i] = 1.0;
@@ -223,7 +223,7 @@ TEST_CASE("particle shifting: a uniform lattice has no gradient in the bulk, div
             << " m, rows under the surface row <= " << max_near_surface_move << " m (0.1 dx = " << 0.1 * kDx << " m)\n";
   CHECK(max_bulk_move < 1e-12);
   // A h |v| dt |grad C| with |grad C| < 1/h: the rows under the surface move at most A |v| dt.
-  CHECK(max_near_surface_move <= s.shifting_coefficient * 1.0 * 1e-4);
+  CHECK(max_near_surface_move <= s.shifting.coefficient * 1.0 * 1e-4);
 }
 
 // The swelling under a flowing free surface (particle_shifting.hpp): a lattice layer 10 dx deep over
@@ -238,7 +238,7 @@ TEST_CASE("particle shifting: under a flowing free surface the layer swells, tay
   double rise_none = 0.0, rise_volume = 0.0, change_none = 0.0, change_volume = 0.0;
   for (const ShiftingCorrection correction : {ShiftingCorrection::none, ShiftingCorrection::taylor_volume}) {
     SolverSettings s = shifting_settings(true, 0.3);
-    s.shifting_correction = correction;
+    s.shifting.correction = correction;
     ParticleSet ps = lattice_block(30, 10, 3, 0.0);
     for (Eigen::Index i = 0; i < ps.size(); ++i) ps.u[i] = ps.is_fluid(i) ? 1.0 : 0.0;
     const auto centre_of_mass = [](const ParticleSet& p) {
@@ -289,7 +289,7 @@ TEST_CASE("particle shifting: under a flowing free surface the layer swells, tay
 // grad_j W_ji; rho changes by -rho div(delta r) (the Taylor part vanishes: rho is uniform).
 TEST_CASE("particle shifting, correction taylor_volume: the density follows the divergence of the shift", "[sph][shifting]") {
   SolverSettings s = shifting_settings(true, 0.3);
-  s.shifting_correction = ShiftingCorrection::taylor_volume;
+  s.shifting.correction = ShiftingCorrection::taylor_volume;
   ParticleSet ps = lattice_block(30, 12, 3, 0.0);
   const std::int64_t moved_id = displace_lattice_particle(ps, 15, 5, 0.2, 0.1);
   const Eigen::Index moved = index_of(ps, moved_id);
@@ -359,7 +359,7 @@ TEST_CASE("particle shifting: the surface ramp and the 0.1 dx cap on prescribed 
 
 TEST_CASE("particle shifting: a displaced particle is moved back by -A h |v| dt f grad C", "[sph][shifting]") {
   SolverSettings s = shifting_settings(true, 0.3);
-  s.shifting_coefficient = 3.0;
+  s.shifting.coefficient = 3.0;
   ParticleSet ps = lattice_block(30, 12, 3, 0.0);
   // Particle in column 15, row 5 (well inside), pushed 0.2 dx to the right and 0.1 dx up.
   const std::int64_t moved_id = displace_lattice_particle(ps, 15, 5, 0.2, 0.1);
@@ -372,8 +372,8 @@ TEST_CASE("particle shifting: a displaced particle is moved back by -A h |v| dt 
   const Eigen::Index i = index_of(ps, moved_id);
   const double x0 = ps.x[i], z0 = ps.z[i], dt = 1e-4;
   const auto k = static_cast<std::size_t>(i);
-  const double ramp = (g.div_r[k] - s.shifting_surface_threshold) / (2.0 - s.shifting_surface_threshold);
-  const double d = s.shifting_coefficient * s.h * std::hypot(2.0, -1.0) * dt * ramp;
+  const double ramp = (g.div_r[k] - s.shifting.surface_threshold) / (2.0 - s.shifting.surface_threshold);
+  const double d = s.shifting.coefficient * s.h * std::hypot(2.0, -1.0) * dt * ramp;
   shift_particles(ps, g, s, dt);
   CHECK(ps.x[i] - x0 == Approx(-d * g.grad_x[k]).epsilon(1e-12));
   CHECK(ps.z[i] - z0 == Approx(-d * g.grad_z[k]).epsilon(1e-12));
@@ -400,7 +400,7 @@ TEST_CASE("particle shifting: repeated shifts make a jittered block uniform", "[
   };
   const double before = spread(ps);
   // A h |v| dt = 0.05 h^2 per shift: 100 shifts.
-  const double dt = 0.05 * s.h / (s.shifting_coefficient * 1.0);
+  const double dt = 0.05 * s.h / (s.shifting.coefficient * 1.0);
   ConcentrationGradients g;
   for (int iteration = 0; iteration < 100; ++iteration) {
     const CellList cells = sorted_cells(ps, s);
@@ -431,7 +431,7 @@ struct LinearField {
 TEST_CASE("particle shifting, correction taylor: velocity and density gradients equal the brute-force sums and "
           "a linear field's slopes", "[sph][shifting]") {
   SolverSettings s = shifting_settings(false, 0.3);
-  s.shifting_correction = ShiftingCorrection::taylor;
+  s.shifting.correction = ShiftingCorrection::taylor;
   ParticleSet ps = lattice_block(30, 16, 3, 0.25);
   const LinearField field;
   field.apply(ps);
@@ -482,7 +482,7 @@ TEST_CASE("particle shifting, correction taylor: a shifted particle carries the 
     const bool taylor = correction == ShiftingCorrection::taylor;
     INFO("taylor " << taylor);
     SolverSettings s = shifting_settings(false, 0.3);
-    s.shifting_correction = correction;
+    s.shifting.correction = correction;
     ParticleSet ps = lattice_block(30, 16, 3, 0.0);
     // Particle in column 15, row 8 (well inside), pushed 0.3 dx to the right and 0.2 dx down: the
     // shift moves it part of the way back towards its site.
@@ -513,27 +513,20 @@ TEST_CASE("particle shifting, correction taylor: a shifted particle carries the 
   }
 }
 
-TEST_CASE("particle shifting: options and ranges", "[sph][shifting]") {
-  CHECK(parse_particle_shifting("none") == ParticleShifting::none);
-  CHECK(parse_particle_shifting("fickian") == ParticleShifting::fickian);
-  CHECK_THROWS_WITH(parse_particle_shifting("lind"), Catch::Contains("\"none\" or \"fickian\""));
-  CHECK(parse_shifting_correction("none") == ShiftingCorrection::none);
-  CHECK(parse_shifting_correction("taylor") == ShiftingCorrection::taylor);
-  CHECK(parse_shifting_correction("taylor_volume") == ShiftingCorrection::taylor_volume);
-  CHECK_THROWS_WITH(parse_shifting_correction("ale"), Catch::Contains("\"none\", \"taylor\" or \"taylor_volume\""));
+TEST_CASE("particle shifting: ranges and combinations", "[sph][shifting]") {
   SolverSettings s = shifting_settings(false, 1.0);
   CHECK_NOTHROW(s.validate());
-  s.time_integrator = TimeIntegrator::verlet;
+  s.time.integrator = TimeIntegrator::verlet;
   CHECK_THROWS_WITH(s.validate(), Catch::Contains("symplectic"));
-  s.time_integrator = TimeIntegrator::symplectic;
-  s.shifting_coefficient = 0.0;
+  s.time.integrator = TimeIntegrator::symplectic;
+  s.shifting.coefficient = 0.0;
   CHECK_THROWS_WITH(s.validate(), Catch::Contains("particle_shifting_coefficient"));
-  s.shifting_coefficient = 2.0;
-  s.shifting_surface_threshold = 1.95;  // the ramp (div r - TFS)/(2 - TFS) needs room below 2
+  s.shifting.coefficient = 2.0;
+  s.shifting.surface_threshold = 1.95;  // the ramp (div r - TFS)/(2 - TFS) needs room below 2
   CHECK_THROWS_WITH(s.validate(), Catch::Contains("particle_shifting_surface_threshold") && Catch::Contains("[0, 1.9]"));
-  s.shifting_surface_threshold = 1.5;
-  s.shifting_correction = ShiftingCorrection::taylor;
+  s.shifting.surface_threshold = 1.5;
+  s.shifting.correction = ShiftingCorrection::taylor;
   CHECK_NOTHROW(s.validate());
-  s.particle_shifting = ParticleShifting::none;
+  s.shifting.model = ParticleShifting::none;
   CHECK_THROWS_WITH(s.validate(), Catch::Contains("particle_shifting_correction") && Catch::Contains("fickian"));
 }

@@ -30,7 +30,7 @@ namespace {
 sph_test::LoadedCase piston_basin() {
   return sph_test::short_smooth_basin(0.005, [](cases::Case& c) {
     c.run.end_time_s = 0.6;
-    c.sph.inflow_condition = "piston";
+    c.sph.inflow_condition = hydrojump::cases::InflowCondition::piston;
   });
 }
 
@@ -56,7 +56,7 @@ double contraction(double q, double a, double h, double g) {
 
 TEST_CASE("piston inflow: reservoir, gate and piston are generated", "[sph][piston]") {
   const auto c = piston_basin();
-  CHECK(c.settings.inflow == sph::InflowCondition::piston);
+  CHECK(c.settings.open.inflow == sph::InflowCondition::piston);
   const auto open = sph::OpenBoundaries::from_geometry(c.geometry, sph::buffer_parameters(c.settings));
   CHECK(open.inflows().empty());  // no buffer
   int piston = 0, inflow = 0, reservoir_water = 0;
@@ -74,7 +74,7 @@ TEST_CASE("piston inflow: reservoir, gate and piston are generated", "[sph][pist
   CHECK(piston > 0);
   CHECK(inflow == 0);
   CHECK(reservoir_water > 1000);
-  CHECK(c.settings.x_min == Approx(x_p));
+  CHECK(c.settings.domain.x_min == Approx(x_p));
   // The sluice gate is a solid plate: every lattice column across its thickness holds boundary
   // particles (an odd layer count once left the middle column out: its two faces' normals cancel).
   const cases::WallPolyline* gate = nullptr;
@@ -126,7 +126,7 @@ TEST_CASE("piston inflow: an opening of fewer than 5 particle spacings is refuse
   auto study = cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/tests/data/basins.toml");
   REQUIRE(study.find_case("A_smooth") != nullptr);
   cases::Case c = *study.find_case("A_smooth");
-  c.sph.inflow_condition = "piston";
+  c.sph.inflow_condition = hydrojump::cases::InflowCondition::piston;
   c.sph.sluice_opening_m = 0.012;  // 2.4 dx at dx = 5 mm
   CHECK_THROWS_WITH(sph::solver_geometry(c, study.fluid, 0.005),
                     Catch::Contains("sph.sluice_opening_m") && Catch::Contains("5 particle spacings"));

@@ -15,7 +15,7 @@ namespace {
 double poiseuille_l2_error(double dx, double end_time) {
   // mDBC gives the walls their no-slip velocity; with DBC the zero-velocity boundary particles leave
   // an effective slip of about 0.7 dx at each wall (14 % too fast at dx = 1 mm).
-  auto loaded = sph_test::load_case("poiseuille.toml", dx, [](hydrojump::cases::Case& c) { c.sph.boundary = "mdbc"; });
+  auto loaded = sph_test::load_case("poiseuille.toml", dx, [](hydrojump::cases::Case& c) { c.sph.boundary = hydrojump::cases::BoundaryMethod::mdbc; });
   const auto* p = loaded.spec.poiseuille();
   const double nu = loaded.study.fluid.kinematic_viscosity_m2_s;
   const double w = p->channel_width_m, f = p->body_force_m_s2;

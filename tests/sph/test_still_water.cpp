@@ -25,8 +25,8 @@ struct StillWaterResult {
 StillWaterResult run_still_water(double dx, const std::string& boundary, double end_time,
                                  const std::string& shifting = "none") {
   auto loaded = sph_test::load_case("still_water.toml", dx, [&](hydrojump::cases::Case& c) {
-    c.sph.boundary = boundary;
-    c.sph.particle_shifting = shifting;
+    c.sph.boundary = hydrojump::cases::option_from_name<hydrojump::cases::BoundaryMethod>("test", boundary);
+    c.sph.particle_shifting = hydrojump::cases::option_from_name<hydrojump::cases::ParticleShifting>("test", shifting);
   });
   const double depth = loaded.spec.still_water()->water_depth_m;
   const double g = loaded.study.fluid.gravity_m_s2;

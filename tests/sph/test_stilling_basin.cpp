@@ -63,12 +63,12 @@ ShortBasin short_smooth_basin(bool level_control = false) {
   // mDBC and c0 = 20 sqrt(g H_max): with the spec's DBC walls (c0 = 10 sqrt(g H_max)) the walls next
   // to the inlet (gate and bed) pressurise and the density limit of 5 % is exceeded by t = 0.25 s
   // (see sph/README.md, "Stilling basins").
-  out.spec.sph.boundary = "mdbc";
+  out.spec.sph.boundary = hydrojump::cases::BoundaryMethod::mdbc;
   out.spec.sph.sound_speed_coefficient = 20.0;
   sph_test::use_fixture_viscosity(out.spec);
   if (level_control) {
-    out.spec.sph.outflow_condition = "absorbing";
-    out.spec.sph.outflow_level_reference = "downstream_section";
+    out.spec.sph.outflow_condition = hydrojump::cases::OutflowCondition::absorbing;
+    out.spec.sph.outflow_level_reference = hydrojump::cases::OutflowLevelReference::downstream_section;
     out.spec.sph.outflow_level_time_s = 0.1;
     out.spec.sections = cases::default_stilling_basin_sections(basin);
   }
@@ -180,17 +180,17 @@ TEST_CASE("open-channel spray may rise to the energy line, not above it", "[sph]
   const auto geometry = sph::solver_geometry(c, study.fluid, 0.005);
   const auto settings = sph::make_settings(c, study.fluid, geometry, 0.005);
   const double e1 = 0.0254 + 3.0 * 3.0 / (2.0 * 9.81);
-  CHECK(settings.z_max == Approx(geometry.z_max_m));
-  CHECK(settings.fluid_ceiling == Approx(e1).epsilon(1e-9));
-  CHECK(settings.fluid_ceiling > settings.z_max);
+  CHECK(settings.domain.z_max == Approx(geometry.z_max_m));
+  CHECK(settings.domain.fluid_ceiling == Approx(e1).epsilon(1e-9));
+  CHECK(settings.domain.fluid_ceiling > settings.domain.z_max);
   // A drop of spray between the domain top and the energy line is no failure; one above it is.
   sph::ParticleSet ps;
   ps.resize(1);
-  ps.assign(0, sph::ParticleType::fluid, 1.0, 0.5 * (settings.z_max + e1), 1000.0, 0.025, 0);
+  ps.assign(0, sph::ParticleType::fluid, 1.0, 0.5 * (settings.domain.z_max + e1), 1000.0, 0.025, 0);
   CHECK(sph::diagnose(sph::Solver(settings, ps)).empty());
-  ps.z[0] = e1 + 2.0 * settings.domain_margin;
+  ps.z[0] = e1 + 2.0 * settings.domain.margin;
   CHECK_THAT(sph::diagnose(sph::Solver(settings, ps)), Catch::Contains("left the domain"));
   // A closed tank keeps its top.
   const auto tank = sph_test::load_case("still_water.toml", 0.02);
-  CHECK(tank.settings.fluid_ceiling == tank.settings.z_max);
+  CHECK(tank.settings.domain.fluid_ceiling == tank.settings.domain.z_max);
 }

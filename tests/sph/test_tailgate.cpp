@@ -26,7 +26,7 @@ namespace {
 // the tailwater depth.
 sph_test::LoadedCase gate_basin(double height) {
   return sph_test::short_smooth_basin(0.005, [&](cases::Case& c) {
-    c.sph.outflow_condition = "tailgate";
+    c.sph.outflow_condition = hydrojump::cases::OutflowCondition::tailgate;
     c.sph.tailgate_height_m = height;
   });
 }
@@ -36,11 +36,11 @@ sph_test::LoadedCase gate_basin(double height) {
 TEST_CASE("tailgate height: Rehbock's weir holds the tailwater, or the given height", "[sph][tailgate]") {
   const auto b = gate_basin(0.0);
   const double q = 0.0254 * 2.0, y_t = b.geometry.outflows.front().tailwater_depth_m;
-  const double p = b.settings.tailgate_height;
-  CHECK(b.settings.outflow == sph::OutflowCondition::tailgate);
+  const double p = b.settings.open.tailgate_height;
+  CHECK(b.settings.open.outflow == sph::OutflowCondition::tailgate);
   CHECK(p + cases::rehbock_weir_head(q, p, 9.81) == Approx(y_t).epsilon(1e-9));
   CHECK(p == Approx(cases::tailgate_height_for_depth(q, y_t, 9.81)).epsilon(1e-12));
-  CHECK(gate_basin(0.05).settings.tailgate_height == 0.05);
+  CHECK(gate_basin(0.05).settings.open.tailgate_height == 0.05);
   // A gate above the domain, one thinner than 2 dx, and a tailgate in a closed case are refused.
   try {
     gate_basin(5.0);
@@ -51,9 +51,8 @@ TEST_CASE("tailgate height: Rehbock's weir holds the tailwater, or the given hei
   }
   CHECK_THROWS_WITH(gate_basin(0.006), Catch::Contains("less than 2 particle spacings"));
   CHECK_THROWS_WITH(sph_test::load_case("dam_break.toml", 0.04,
-                                        [](cases::Case& c) { c.sph.outflow_condition = "tailgate"; }),
+                                        [](cases::Case& c) { c.sph.outflow_condition = hydrojump::cases::OutflowCondition::tailgate; }),
                     Catch::Contains("needs a case with an inflow and an outflow"));
-  CHECK_THROWS_WITH(sph::parse_outflow_condition("weir"), Catch::Contains("\"tailgate\""));
 }
 
 TEST_CASE("tailgate plate: boundary layers up to the crest, ghost nodes into the water, no outflow buffer",

@@ -53,9 +53,9 @@ sph_test::LoadedCase held_basin(const std::string& control, double toe_offset_m,
     b.control.toe_hold_time_s = 2.0;
     b.tailwater_depth_m *= tailwater_factor;
     b.initial_toe_x_m = b.upstream_length_m + toe_offset_m;
-    c.sph.boundary = "mdbc";
+    c.sph.boundary = hydrojump::cases::BoundaryMethod::mdbc;
     c.sph.sound_speed_coefficient = 20.0;
-    c.sph.outflow_condition = "absorbing";
+    c.sph.outflow_condition = hydrojump::cases::OutflowCondition::absorbing;
     c.run.output_interval_s = 0.05;
     c.sections = cases::default_stilling_basin_sections(b);
   });
@@ -89,7 +89,7 @@ double mean_toe(const RunOptions& o, const Solver& solver, double t0, double t1)
     const double tv = util::csv_number(row[*t]);
     if (tv < t0 - 1e-9 || tv > t1 + 1e-9) continue;
     const double xv = util::csv_number(row[*x]);
-    sum += std::isfinite(xv) ? xv : solver.settings().x_max;
+    sum += std::isfinite(xv) ? xv : solver.settings().domain.x_max;
     ++n;
   }
   REQUIRE(n > 0);
@@ -149,9 +149,9 @@ TEST_CASE("the held toe goes to the basin start: two basins starting 0.1 m apart
       b.tailwater_depth_m *= 0.8;
       b.control.volume_hold_time_s = 0.5;
       b.control.toe_hold_time_s = 1.5;
-      spec.sph.boundary = "mdbc";
+      spec.sph.boundary = hydrojump::cases::BoundaryMethod::mdbc;
       spec.sph.sound_speed_coefficient = 20.0;
-      spec.sph.outflow_condition = "absorbing";
+      spec.sph.outflow_condition = hydrojump::cases::OutflowCondition::absorbing;
       spec.run.output_interval_s = 0.05;
       spec.sections = cases::default_stilling_basin_sections(b);
     });

@@ -36,10 +36,10 @@ void slide_and_sort(sph::ParticleSet& ps, sph::CellList& cells, const sph::Solve
 double bottom_row_drag(double wall_factor) {
   const double dx = 0.02;
   auto c = sph_test::load_case("still_water.toml", dx, [&](cases::Case& k) {
-    k.sph.viscosity = "artificial";
+    k.sph.viscosity = hydrojump::cases::Viscosity::artificial;
     k.sph.artificial_viscosity_alpha = 0.1;
     k.sph.artificial_viscosity_wall_factor = wall_factor;
-    k.sph.boundary = "dbc";
+    k.sph.boundary = hydrojump::cases::BoundaryMethod::dbc;
   });
   sph::ParticleSet ps = c.particles;
   sph::CellList cells;
@@ -73,12 +73,12 @@ TEST_CASE("a viscosity given as nu sets alpha = 8 nu / (h c0) at each resolution
   const double nu = 2.0e-3;
   for (const double dx : {0.02, 0.01}) {
     auto c = sph_test::load_case("still_water.toml", dx, [&](cases::Case& k) {
-      k.sph.viscosity = "artificial";
+      k.sph.viscosity = hydrojump::cases::Viscosity::artificial;
       k.sph.artificial_viscosity_nu_m2_s = nu;
     });
     INFO("dx " << dx << ": h " << c.settings.h << " m, c0 " << c.settings.eos.c0 << " m/s");
     // nu = alpha h c0 / 8 back from the alpha the solver uses
-    CHECK(c.settings.artificial_alpha * c.settings.h * c.settings.eos.c0 / 8.0 == Approx(nu).epsilon(1e-12));
+    CHECK(c.settings.viscosity.artificial_alpha * c.settings.h * c.settings.eos.c0 / 8.0 == Approx(nu).epsilon(1e-12));
   }
   // A nu that would need alpha > 1 is refused, naming the key and the largest allowed nu.
   try {
@@ -107,23 +107,23 @@ TEST_CASE("SPS stress of a simple shear: Smagorinsky's length C_s dx or a mixing
 // dt <= 0.125 h^2 / (nu0 + max nu_t) (Morris, Fox & Zhu 1997), not only 0.125 h^2 / nu0.
 TEST_CASE("with SPS the time step is bounded by 0.125 h^2 / (nu0 + max nu_t)", "[sph][viscosity]") {
   auto c = sph_test::load_case("still_water.toml", 0.02, [](cases::Case& k) {
-    k.sph.viscosity = "laminar_sps";
+    k.sph.viscosity = hydrojump::cases::Viscosity::laminar_sps;
     k.sph.sps_mixing_length_m = 0.05;
-    k.sph.boundary = "mdbc";
+    k.sph.boundary = hydrojump::cases::BoundaryMethod::mdbc;
   });
   const sph::SolverSettings& s = c.settings;
-  const double acoustic = s.cfl * s.h / s.eos.c0;  // no acceleration, no approaching pair
+  const double acoustic = s.time.cfl * s.h / s.eos.c0;  // no acceleration, no approaching pair
   // nu_t = 0: the molecular bound 0.125 h^2 / 1e-6 is far above the acoustic step.
   CHECK(sph::variable_time_step({0.0, 0.0, 0.0}, s) == Approx(acoustic).epsilon(1e-12));
   // A large eddy viscosity binds: 0.125 h^2 / (nu0 + nu_t).
   const double nu_t = 1.0;
-  const double diffusive = 0.125 * s.h * s.h / (s.kinematic_viscosity + nu_t);
+  const double diffusive = 0.125 * s.h * s.h / (s.viscosity.kinematic_viscosity + nu_t);
   REQUIRE(diffusive < acoustic);
   CHECK(sph::variable_time_step({0.0, 0.0, nu_t}, s) == Approx(diffusive).epsilon(1e-12));
   // Not with the artificial viscosity, which has no eddy viscosity.
-  auto a = sph_test::load_case("still_water.toml", 0.02, [](cases::Case& k) { k.sph.viscosity = "artificial"; });
+  auto a = sph_test::load_case("still_water.toml", 0.02, [](cases::Case& k) { k.sph.viscosity = hydrojump::cases::Viscosity::artificial; });
   CHECK(sph::variable_time_step({0.0, 0.0, 0.0}, a.settings) ==
-        Approx(a.settings.cfl * a.settings.h / a.settings.eos.c0).epsilon(1e-12));
+        Approx(a.settings.time.cfl * a.settings.h / a.settings.eos.c0).epsilon(1e-12));
 }
 
 // The interactions report the largest eddy viscosity of the stress they computed: in a simple shear
@@ -132,9 +132,9 @@ TEST_CASE("the interactions report the SPS stress's largest eddy viscosity, l_m^
           "[sph][viscosity]") {
   const double gamma = 2.0, lm = 0.03;
   auto c = sph_test::load_case("still_water.toml", 0.02, [&](cases::Case& k) {
-    k.sph.viscosity = "laminar_sps";
+    k.sph.viscosity = hydrojump::cases::Viscosity::laminar_sps;
     k.sph.sps_mixing_length_m = lm;
-    k.sph.boundary = "mdbc";
+    k.sph.boundary = hydrojump::cases::BoundaryMethod::mdbc;
   });
   sph::ParticleSet ps = c.particles;
   sph::CellList cells;
@@ -153,15 +153,15 @@ TEST_CASE("the interactions report the SPS stress's largest eddy viscosity, l_m^
 TEST_CASE("the SPS length is C_s dx, or the mixing length at every resolution", "[sph][viscosity]") {
   for (const double dx : {0.02, 0.01}) {
     const auto smagorinsky = sph_test::load_case("still_water.toml", dx, [](cases::Case& k) {
-      k.sph.viscosity = "laminar_sps";
+      k.sph.viscosity = hydrojump::cases::Viscosity::laminar_sps;
       k.sph.sps_smagorinsky_constant = 0.12;
     });
-    CHECK(smagorinsky.settings.sps_length == Approx(0.12 * dx).epsilon(1e-12));
+    CHECK(smagorinsky.settings.viscosity.sps_length == Approx(0.12 * dx).epsilon(1e-12));
     const auto mixing = sph_test::load_case("still_water.toml", dx, [](cases::Case& k) {
-      k.sph.viscosity = "laminar_sps";
+      k.sph.viscosity = hydrojump::cases::Viscosity::laminar_sps;
       k.sph.sps_mixing_length_m = 0.015;
     });
-    CHECK(mixing.settings.sps_length == Approx(0.015).epsilon(1e-12));
+    CHECK(mixing.settings.viscosity.sps_length == Approx(0.015).epsilon(1e-12));
   }
 }
 
@@ -185,12 +185,12 @@ namespace {
 double bottom_row_sps_drag(const std::string& wall_condition) {
   const double dx = 0.02;
   auto c = sph_test::load_case("still_water.toml", dx, [&](cases::Case& k) {
-    k.sph.viscosity = "laminar_sps";
+    k.sph.viscosity = hydrojump::cases::Viscosity::laminar_sps;
     k.sph.sps_mixing_length_m = 0.05;
-    k.sph.boundary = "mdbc";
-    k.sph.viscous_wall_condition = wall_condition;
+    k.sph.boundary = hydrojump::cases::BoundaryMethod::mdbc;
+    k.sph.viscous_wall_condition = hydrojump::cases::option_from_name<hydrojump::cases::ViscousWallCondition>("test", wall_condition);
   });
-  REQUIRE(c.settings.viscous_walls_free_slip == (wall_condition == "free_slip"));
+  REQUIRE(c.settings.viscosity.viscous_walls_free_slip == (wall_condition == "free_slip"));
   sph::ParticleSet ps = c.particles;
   sph::CellList cells;
   slide_and_sort(ps, cells, c.settings);
@@ -271,13 +271,13 @@ namespace {
 // horizontal acceleration of each fluid particle with 0.3 < x < 0.7 m, by row above the floor.
 std::vector<double> row_accelerations_with_wall_function(double speed, double dx, int rows) {
   auto c = sph_test::load_case("still_water.toml", dx, [&](cases::Case& k) {
-    k.sph.viscosity = "laminar_sps";
+    k.sph.viscosity = hydrojump::cases::Viscosity::laminar_sps;
     k.sph.sps_mixing_length_m = 0.05;
-    k.sph.boundary = "mdbc";
-    k.sph.viscous_wall_condition = "wall_function";
+    k.sph.boundary = hydrojump::cases::BoundaryMethod::mdbc;
+    k.sph.viscous_wall_condition = hydrojump::cases::ViscousWallCondition::wall_function;
   });
-  REQUIRE(c.settings.viscous_walls_free_slip);
-  REQUIRE(c.settings.wall_function_shear);
+  REQUIRE(c.settings.viscosity.viscous_walls_free_slip);
+  REQUIRE(c.settings.viscosity.wall_function_shear);
   sph::ParticleSet ps = c.particles;
   sph::CellList cells;
   slide_and_sort(ps, cells, c.settings, speed);

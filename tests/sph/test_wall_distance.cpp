@@ -115,12 +115,12 @@ struct ShearSample {
 std::vector<ShearSample> mixing_lengths_in_shear(const std::string& wall_distance) {
   const double dx = 0.02, lm = 0.05, S = 1.0;
   auto c = sph_test::load_case("still_water.toml", dx, [&](cases::Case& k) {
-    k.sph.viscosity = "laminar_sps";
+    k.sph.viscosity = hydrojump::cases::Viscosity::laminar_sps;
     k.sph.sps_mixing_length_m = lm;
-    k.sph.sps_wall_distance = wall_distance;
-    k.sph.boundary = "mdbc";
+    k.sph.sps_wall_distance = hydrojump::cases::option_from_name<hydrojump::cases::SpsWallDistance>("test", wall_distance);
+    k.sph.boundary = hydrojump::cases::BoundaryMethod::mdbc;
   });
-  REQUIRE(c.settings.sps_wall_distance_table == (wall_distance == "whole_domain"));
+  REQUIRE(c.settings.viscosity.sps_wall_distance_table == (wall_distance == "whole_domain"));
   sph::ParticleSet ps = c.particles;
   for (Eigen::Index i = 0; i < ps.size(); ++i)
     if (ps.is_fluid(i)) ps.u[i] = S * (ps.z[i] - c.geometry.bed.elevation(ps.x[i]));
@@ -132,7 +132,7 @@ std::vector<ShearSample> mixing_lengths_in_shear(const std::string& wall_distanc
   cells.mark_sorted();
   sph::mdbc_boundary_density(ps, cells, c.settings);
   sph::compute_pressure(ps, c.settings);
-  sph::compute_interactions(ps, cells, c.settings, c.settings.sps_wall_distance_table ? &table : nullptr);
+  sph::compute_interactions(ps, cells, c.settings, c.settings.viscosity.sps_wall_distance_table ? &table : nullptr);
   std::vector<ShearSample> out;
   for (Eigen::Index i = 0; i < ps.size(); ++i)
     if (ps.is_fluid(i) && ps.x[i] > 0.35 && ps.x[i] < 0.65 && ps.z[i] > 0.02 && ps.z[i] < 0.3)
