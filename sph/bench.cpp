@@ -50,8 +50,8 @@ boundary = "dbc"
 time_integrator = "verlet"
 )";
 
-// The costliest model set of the stilling-basin runs (README, SPH corrugated beds, note f).
-constexpr const char* kJumpModel = R"(
+// Every costly path at once (`--model jump` up to commit 2851cbb).
+constexpr const char* kCostliestModel = R"(
 viscosity = "laminar_sps"
 sps_mixing_length_m = 0.1
 sps_wall_distance = "whole_domain"
@@ -89,7 +89,34 @@ struct NamedModel {
   const char* name;
   const char* sph_keys;
 };
-constexpr NamedModel kModels[] = {{"dualsphysics", kDualSphysicsModel}, {"jump", kJumpModel}};
+// "jump" parses with the DualSPHysics keys and then takes its [sph] from a study (study_model).
+constexpr NamedModel kModels[] = {
+    {"dualsphysics", kDualSphysicsModel}, {"jump", kDualSphysicsModel}, {"costliest", kCostliestModel}};
+
+// The [sph] settings of the first stilling basin of `spec_file` (empty: the embedded study), after its
+// rules, for the closed dam-break tank: the open-boundary settings of a basin (inflow, outflow, level
+// control, tailgate, piston) are left at their defaults, which a closed tank does not use.
+cases::SphSettings study_model(const std::string& spec_file, std::string& source) {
+  const cases::Study study = spec_file.empty() ? cases::load_embedded_default_study() : cases::load_study(spec_file);
+  for (const cases::Case& c : study.cases) {
+    if (c.stilling_basin() == nullptr) continue;
+    cases::SphSettings s = c.sph;
+    const cases::SphSettings closed;
+    s.inflow_condition = closed.inflow_condition;
+    s.sluice_opening_m = closed.sluice_opening_m;
+    s.reservoir_length_m = closed.reservoir_length_m;
+    s.piston_level_gain_per_s = closed.piston_level_gain_per_s;
+    s.outflow_condition = closed.outflow_condition;
+    s.tailgate_height_m = closed.tailgate_height_m;
+    s.outflow_level_reference = closed.outflow_level_reference;
+    s.outflow_level_time_s = closed.outflow_level_time_s;
+    s.open_boundary_layers = closed.open_boundary_layers;
+    source = "[sph] of case \"" + c.id + "\" in " + (spec_file.empty() ? std::string("the embedded study") : spec_file);
+    return s;
+  }
+  throw std::invalid_argument("hydrojump bench --model jump: " + (spec_file.empty() ? std::string("the embedded study") : spec_file) +
+                              " has no stilling-basin case whose [sph] model to run");
+}
 
 }  // namespace
 
@@ -113,7 +140,11 @@ BenchmarkResult run_benchmark(const BenchmarkOptions& options) {
     throw std::invalid_argument("hydrojump bench: model \"" + options.model + "\" is not allowed: use one of " + allowed);
   if (options.threads > 0) omp_set_num_threads(options.threads);
   const std::string text = std::string(kStudyTable) + kCommonSph + model + kBenchmarkCase;
-  const cases::Study study = cases::parse_study(text, "<hydrojump bench, model " + options.model + ">", ".");
+  cases::Study study = cases::parse_study(text, "<hydrojump bench, model " + options.model + ">", ".");
+  std::string source;
+  if (options.model == "jump") study.cases.front().sph = study_model(options.spec_file, source);
+  else if (!options.spec_file.empty())
+    throw std::invalid_argument("hydrojump bench: --spec is only used with --model jump (here \"" + options.model + "\")");
   const cases::Case& c = study.cases.front();
   const cases::CaseGeometry geometry = cases::make_geometry(c, study.fluid);
   const SolverSettings settings = make_settings(c, study.fluid, geometry, options.particle_spacing_m);
@@ -124,6 +155,7 @@ BenchmarkResult run_benchmark(const BenchmarkOptions& options) {
   r.fluid_particles = solver.particles().fluid_count();
   r.threads = omp_get_max_threads();
   r.model = options.model;
+  r.model_source = source;
   timespec cpu0{}, cpu1{};
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &cpu0);
   const auto t0 = std::chrono::steady_clock::now();

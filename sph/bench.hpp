@@ -5,11 +5,13 @@
 // Performance).
 // Only the time steps are timed (not the set-up).
 //
-// model = "dualsphysics" (the default) is that configuration; model = "jump" runs the same dam break
-// with the models the stilling-basin runs use when they go beyond the study file's defaults: symplectic
-// (two interactions a step), mDBC, laminar + SPS viscosity with a mixing length of 0.1 m limited by the
-// whole-domain wall distance, the log-law wall function and Fickian particle shifting (A = 2), so the
-// cost of those paths is measured too.
+// model = "dualsphysics" (the default) is that configuration. model = "jump" runs the same dam break
+// with exactly the SPH model a study's stilling-basin runs use: the [sph] settings of the study's first
+// stilling basin after its rules (spec_file; empty: the embedded study, cases/ead2002.toml), with the
+// open-boundary settings of a basin left out (the tank is closed). model = "costliest" runs every
+// costly path at once, as `--model jump` did up to commit 2851cbb: symplectic (two interactions a
+// step), mDBC, laminar + SPS viscosity with a mixing length of 0.1 m limited by the whole-domain wall
+// distance, the log-law wall function and Fickian particle shifting (A = 2).
 #pragma once
 
 #include <cstdint>
@@ -23,7 +25,8 @@ struct BenchmarkOptions {
   double end_time_s = 0.3;
   std::int64_t max_steps = -1;   // stop earlier
   int threads = 0;               // 0: OpenMP default
-  std::string model = "dualsphysics";  // or "jump"
+  std::string model = "dualsphysics";  // or "jump", "costliest"
+  std::string spec_file;               // model "jump": the study whose [sph] is run (empty: the embedded one)
 };
 
 // The allowed values of BenchmarkOptions::model.
@@ -35,6 +38,7 @@ struct BenchmarkResult {
   std::int64_t steps = 0;
   int threads = 1;
   std::string model;
+  std::string model_source;          // model "jump": the study and case whose [sph] ran
   double seconds = 0.0;              // wall time of the time loop
   double cpu_seconds = 0.0;          // CPU time of the process during the loop (all threads)
   double simulated_time_s = 0.0;

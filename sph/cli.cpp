@@ -175,7 +175,7 @@ std::optional<Checkpoint> previous_run(const SphOptions& opt, const std::filesys
   return std::nullopt;
 }
 
-// The memory an SPH run needs, measured with `hydrojump bench --model jump --steps 3` at dx = 0.01,
+// The memory an SPH run needs, measured with `hydrojump bench --model costliest --steps 3` at dx = 0.01,
 // 0.005 and 0.0025 m (23k, 86k, 332k particles: peaks 34.9, 67.1, 195.7 MB), a line within 3 MB of
 // each:  M = 25 MB + 0.52 kB N.
 double run_memory_bytes(std::size_t particles) { return 25.0e6 + 520.0 * static_cast<double>(particles); }
@@ -333,16 +333,22 @@ void register_commands(CLI::App& app) {
       "C2, h = sqrt(2) dx, artificial viscosity 0.02, Fourtakas diffusion 0.1, DBC, Verlet, CFL 0.2,\n"
       "c0 = 20 sqrt(g 2 m), 0.3 s of physical time. Prints particle-steps per second (all particles times\n"
       "steps over the wall time of the time loop) and the peak memory. --model jump runs the same dam break with\n"
-      "the stilling-basin runs' costliest models instead: symplectic, mDBC, laminar + SPS (mixing length,\n"
-      "whole-domain wall distance, log-law wall function) and Fickian particle shifting.");
+      "exactly the SPH model of a study's stilling basins (the [sph] of its first basin after the rules, open\n"
+      "boundaries left out; --spec, default the embedded study); --model costliest with every costly path at\n"
+      "once: symplectic, mDBC, laminar + SPS (mixing length, whole-domain wall distance, log-law wall function)\n"
+      "and Fickian particle shifting.");
   bench->add_option("--steps", bench_opt->max_steps, "stop after N steps (a quick figure)")->check(CLI::Range(std::int64_t{1}, std::int64_t{1000000000}));
   bench->add_option("--threads", bench_opt->threads, "OpenMP threads")->check(CLI::Range(1, 1024));
   bench->add_option("--end-time", bench_opt->end_time_s, "physical time to simulate in s (default 0.3)")
       ->check(util::positive_finite_number());
   bench->add_option("--dx", bench_opt->particle_spacing_m, "particle spacing in m (default 0.01)")
       ->check(CLI::Range(0.002, 0.1));
-  bench->add_option("--model", bench_opt->model, "\"dualsphysics\" (default: DualSPHysics-comparable settings) or \"jump\"")
+  bench->add_option("--model", bench_opt->model,
+                    "\"dualsphysics\" (default: DualSPHysics-comparable settings), \"jump\" (a study's SPH model) or "
+                    "\"costliest\"")
       ->check(CLI::IsMember(benchmark_models()));
+  bench->add_option("--spec", bench_opt->spec_file, "--model jump: the study file whose [sph] model runs (default: the embedded one)")
+      ->check(CLI::ExistingFile);
   bench->add_flag("--json", *json, "print the result as one JSON object");
   bench->callback([bench_opt, json]() {
     const BenchmarkResult r = run_benchmark(*bench_opt);
@@ -360,6 +366,7 @@ void register_commands(CLI::App& app) {
                                                   static_cast<double>(r.particles) / 1e6
               << " M counting fluid particles only)\n"
               << "  peak memory " << static_cast<double>(r.peak_memory_bytes) / 1048576.0 << " MiB\n";
+    if (!r.model_source.empty()) std::cout << "  model: the " << r.model_source << "\n";
   });
 }
 

@@ -599,12 +599,25 @@ TEST_CASE("hydrojump bench --json prints particles, steps, threads, speed and me
   CHECK_THAT(log, Catch::Contains("\"model\": \"dualsphysics\""));
 }
 
-TEST_CASE("hydrojump bench --model jump runs the stilling-basin models and refuses unknown models", "[compare][integration][cli]") {
+TEST_CASE("hydrojump bench --model jump runs a study's SPH model, costliest every costly path, and unknown models are refused",
+          "[compare][integration][cli]") {
   hydrojump::testing::TempDir tmp("bench_jump");
-  REQUIRE(run({"bench", "--model", "jump", "--steps", "2", "--threads", "1", "--json"}, tmp.path() / "bench.log") == 0);
+  REQUIRE(run({"bench", "--model", "jump", "--steps", "2", "--threads", "1"}, tmp.path() / "bench.log") == 0);
   const std::string log = read_text(tmp.path() / "bench.log");
   INFO(log);
-  CHECK_THAT(log, Catch::Contains("\"model\": \"jump\"") && Catch::Contains("\"steps\": 2"));
+  CHECK_THAT(log, Catch::Contains("(model jump)") && Catch::Contains("2 steps") &&
+                      Catch::Contains("model: the [sph] of case \"A\" in the embedded study"));
+  const std::string spec = std::string(HYDROJUMP_SOURCE_DIR) + "/cases/bed_matters.toml";
+  REQUIRE(run({"bench", "--model", "jump", "--spec", spec, "--steps", "2", "--threads", "1"}, tmp.path() / "spec.log") == 0);
+  CHECK_THAT(read_text(tmp.path() / "spec.log"), Catch::Contains("in " + spec));
+  REQUIRE(run({"bench", "--model", "costliest", "--steps", "2", "--threads", "1", "--json"}, tmp.path() / "costliest.log") == 0);
+  CHECK_THAT(read_text(tmp.path() / "costliest.log"), Catch::Contains("\"model\": \"costliest\"") && Catch::Contains("\"steps\": 2"));
+  // A study without a stilling basin has no jump model; --spec belongs to --model jump.
+  const std::string dam = std::string(HYDROJUMP_SOURCE_DIR) + "/cases/dam_break.toml";
+  CHECK(run({"bench", "--model", "jump", "--spec", dam, "--steps", "2"}, tmp.path() / "dam.log") != 0);
+  CHECK_THAT(read_text(tmp.path() / "dam.log"), Catch::Contains("has no stilling-basin case"));
+  CHECK(run({"bench", "--spec", spec, "--steps", "2"}, tmp.path() / "spec_alone.log") != 0);
+  CHECK_THAT(read_text(tmp.path() / "spec_alone.log"), Catch::Contains("--spec is only used with --model jump"));
   CHECK(run({"bench", "--model", "verlet"}, tmp.path() / "bad.log") != 0);
   CHECK_THAT(read_text(tmp.path() / "bad.log"), Catch::Contains("--model") && Catch::Contains("verlet"));
 }
