@@ -91,7 +91,7 @@ void print_study_summary(const cases::Study& study, std::ostream& out) {
       }
       const auto j = cases::jump_hydraulics(b->inflow_depth_m, b->inflow_velocity_m_s,
                                             b->tailwater_depth_m, g);
-      std::string bed = b->bed.profile == "sinusoidal"
+      std::string bed = b->bed.profile == cases::BedShape::sinusoidal
                             ? "S" + fixed(b->bed.wavelength_m * 1000, 0) + "/T" + fixed(b->bed.height_m * 1000, 0)
                             : "smooth";
       out << "  " << std::left << std::setw(id_width) << c.id << std::setw(12) << bed << std::right
@@ -101,7 +101,7 @@ void print_study_summary(const cases::Study& study, std::ostream& out) {
           << std::setw(9) << fixed(j.e1_m, 4) << std::setw(9) << fixed(j.e2_m, 4) << std::setw(9)
           << fixed(100 * j.eta, 2) << std::setw(11) << fixed(100 * j.eta_smooth, 2) << std::setw(11)
           << (b->measured.eta_percent ? fixed(*b->measured.eta_percent, 2) : std::string("-")) << "  "
-          << b->control.mode << "\n";
+          << cases::option_name(b->control.mode) << "\n";
     }
   }
   print_models_and_runs(study, id_width, out);

@@ -24,22 +24,22 @@ std::vector<Section> default_stilling_basin_sections(const StillingBasinCase& ba
   const double x_toe = basin.upstream_length_m;
   const double x_outlet = basin.upstream_length_m + basin.basin_length_m + basin.downstream_length_m;
   std::vector<Section> sections;
-  sections.push_back({"upstream", x_toe - std::min(10.0 * y1, 0.5 * basin.upstream_length_m), "upstream"});
-  sections.push_back({"toe", x_toe, "toe"});
+  sections.push_back({"upstream", x_toe - std::min(10.0 * y1, 0.5 * basin.upstream_length_m), SectionRole::upstream});
+  sections.push_back({"toe", x_toe, SectionRole::toe});
   for (int k : {2, 4, 6}) {
     const double x = x_toe + k * y2;
     if (x < x_outlet - 3.0 * y2) {
-      sections.push_back({"x_" + std::to_string(k) + "y2", x, "interior"});
+      sections.push_back({"x_" + std::to_string(k) + "y2", x, SectionRole::interior});
     }
   }
   double x_down = std::min(x_toe + 8.0 * y2, x_outlet - 3.0 * y2);
   // On a corrugated reach, E2 and y2 are taken over a crest (depth above the crests, as measured).
   const auto& bed = basin.bed;
-  if (bed.profile == "sinusoidal" && x_down > bed.reach_start_m && x_down < bed.reach_end_m) {
+  if (bed.profile == cases::BedShape::sinusoidal && x_down > bed.reach_start_m && x_down < bed.reach_end_m) {
     const double crest = bed.reach_start_m + std::round((x_down - bed.reach_start_m) / bed.wavelength_m) * bed.wavelength_m;
     x_down = crest <= x_outlet - 3.0 * y2 ? crest : crest - bed.wavelength_m;
   }
-  sections.push_back({"downstream", x_down, "downstream"});
+  sections.push_back({"downstream", x_down, SectionRole::downstream});
   return sections;
 }
 
@@ -55,7 +55,7 @@ CaseGeometry stilling_basin_geometry(const StillingBasinCase& b, double g) {
   const double y1 = b.inflow_depth_m, y2 = b.tailwater_depth_m;
   const double x_toe = b.upstream_length_m;
   const double x_end = b.upstream_length_m + b.basin_length_m + b.downstream_length_m;
-  geo.bed = b.bed.profile == "sinusoidal"
+  geo.bed = b.bed.profile == cases::BedShape::sinusoidal
                 ? BedProfile::sinusoidal(b.bed.wavelength_m, b.bed.height_m, b.bed.reach_start_m,
                                          b.bed.reach_end_m)
                 : BedProfile::flat(0.0);
@@ -125,7 +125,7 @@ CaseGeometry dam_break_geometry(const DamBreakCase& d, double g) {
   CaseGeometry geo = tank_geometry(d.tank_length_m, d.tank_height_m, d.column_width_m, d.column_height_m, g);
   geo.max_flow_speed_m_s = std::sqrt(2.0 * g * d.column_height_m);
   geo.dam_gate_x_m = d.column_width_m;
-  if (d.gate == "lifted") {
+  if (d.gate == cases::GateOpening::lifted) {
     // The gate: a plate on the floor at x = L holding the column, 5 % taller than it, pulled straight
     // up at the lift speed until its lower edge is 5 % above the column's top (then it rests).
     const double top = 1.05 * d.column_height_m;

@@ -45,8 +45,8 @@ std::size_t find_jump_toe(const std::vector<double>& x, const std::vector<double
   return x.size();
 }
 
-double toe_drift_tolerance_m(const std::string& bed_profile, double wavelength_m, double inflow_depth_m) {
-  return bed_profile == "smooth" ? 2.0 * inflow_depth_m : wavelength_m;
+double toe_drift_tolerance_m(BedShape bed_profile, double wavelength_m, double inflow_depth_m) {
+  return bed_profile == BedShape::smooth ? 2.0 * inflow_depth_m : wavelength_m;
 }
 
 bool steady_by_means(double outflow_minus_inflow_over_q, double toe_trend_m_per_s, double toe_drift_tolerance_m) {

@@ -35,6 +35,8 @@
 #include <string>
 #include <vector>
 
+#include "cases/options.hpp"
+
 namespace hydrojump::cases {
 
 struct ToeCriterion {
@@ -56,7 +58,7 @@ inline constexpr double steady_span_s = 1.0;                // the drift is meas
 
 // The toe drift allowed per steady_span_s: the bed wavelength on a corrugated bed, 2 y1 on a smooth one
 // (bed_profile "smooth").
-double toe_drift_tolerance_m(const std::string& bed_profile, double wavelength_m, double inflow_depth_m);
+double toe_drift_tolerance_m(BedShape bed_profile, double wavelength_m, double inflow_depth_m);
 
 // The rule above on a window's means: |outflow_minus_inflow_over_q| < steady_discharge_tolerance and
 // |toe_trend_m_per_s| * steady_span_s < toe_drift_tolerance_m (false when either input is NaN).

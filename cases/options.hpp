@@ -1,4 +1,5 @@
-// The named options of a study's [sph] and [vof] tables: one table per option lists its values and
+// The named options of a study (the [sph] and [vof] tables, and a case's bed, tailwater, gate and
+// sections): one table per option lists its values and
 // their names, and everything else is derived from it. The spec reader parses a name once into the
 // enum (`choice<E>` in spec_reader.cpp) and quotes the table in its error message; the resolved case
 // text writes the name back; the solvers only ever see the enum.
@@ -20,6 +21,11 @@
 //   | vof.turbulence_model               | TurbulenceModel         | laminar, kOmegaSST, kEpsilon, RNGkEpsilon     |
 //   | vof.turbulence_stabilization       | TurbulenceStabilization | none, nut_limiter, nut_limiter_and_buoyancy   |
 //   | vof.mesh_strategy                  | MeshStrategy            | cartesian_cut, body_fitted                    |
+//   | case.bed.profile                   | BedShape                | smooth, sinusoidal                            |
+//   | case.tailwater.control             | TailwaterControlMode    | hold_toe, fixed_depth                         |
+//   | case.tailwater.rule                | TailwaterRule           | given, belanger                               |
+//   | case.gate.type                     | GateOpening             | instant, lifted                               |
+//   | case.sections[].role               | SectionRole             | upstream, toe, interior, downstream, gauge    |
 //
 // Example:
 //   const auto v = cases::parse_option<cases::Viscosity>("laminar_sps");   // Viscosity::laminar_sps
@@ -63,6 +69,14 @@ enum class ShiftingCorrection { none, taylor, taylor_volume };
 enum class TurbulenceModel { laminar, kOmegaSST, kEpsilon, RNGkEpsilon };
 enum class TurbulenceStabilization { none, nut_limiter, nut_limiter_and_buoyancy };
 enum class MeshStrategy { cartesian_cut, body_fitted };
+// A stilling basin's bed (cases/bed_profile.hpp), how its tailwater is held (hold_toe: the outlet is
+// steered to hold the toe at the basin start; fixed_depth: the outlet holds the depth) and where the
+// depth comes from (given, or Belanger's y2*); a dam break's gate; a section's role.
+enum class BedShape { smooth, sinusoidal };
+enum class TailwaterControlMode { hold_toe, fixed_depth };
+enum class TailwaterRule { given, belanger };
+enum class GateOpening { instant, lifted };
+enum class SectionRole { upstream, toe, interior, downstream, gauge };
 
 template <class E>
 struct OptionValue {
@@ -161,6 +175,35 @@ struct OptionTable<MeshStrategy> {
       {{MeshStrategy::cartesian_cut, "cartesian_cut"}, {MeshStrategy::body_fitted, "body_fitted"}}};
 };
 
+template <>
+struct OptionTable<BedShape> {
+  static constexpr std::array<OptionValue<BedShape>, 2> values{
+      {{BedShape::smooth, "smooth"}, {BedShape::sinusoidal, "sinusoidal"}}};
+};
+template <>
+struct OptionTable<TailwaterControlMode> {
+  static constexpr std::array<OptionValue<TailwaterControlMode>, 2> values{
+      {{TailwaterControlMode::hold_toe, "hold_toe"}, {TailwaterControlMode::fixed_depth, "fixed_depth"}}};
+};
+template <>
+struct OptionTable<TailwaterRule> {
+  static constexpr std::array<OptionValue<TailwaterRule>, 2> values{
+      {{TailwaterRule::given, "given"}, {TailwaterRule::belanger, "belanger"}}};
+};
+template <>
+struct OptionTable<GateOpening> {
+  static constexpr std::array<OptionValue<GateOpening>, 2> values{
+      {{GateOpening::instant, "instant"}, {GateOpening::lifted, "lifted"}}};
+};
+template <>
+struct OptionTable<SectionRole> {
+  static constexpr std::array<OptionValue<SectionRole>, 5> values{{{SectionRole::upstream, "upstream"},
+                                                                  {SectionRole::toe, "toe"},
+                                                                  {SectionRole::interior, "interior"},
+                                                                  {SectionRole::downstream, "downstream"},
+                                                                  {SectionRole::gauge, "gauge"}}};
+};
+
 // The name of a value in the spec ("laminar_sps").
 template <class E>
 constexpr std::string_view option_name(E value) {
@@ -184,7 +227,9 @@ std::string allowed_option_names() {
   std::string text;
   for (std::size_t i = 0; i < values.size(); ++i) {
     if (i > 0) text += i + 1 == values.size() ? " or " : ", ";
-    text += "\"" + std::string(values[i].name) + "\"";
+    text += '"';
+    text += values[i].name;
+    text += '"';
   }
   return text;
 }

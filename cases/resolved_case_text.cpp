@@ -183,7 +183,7 @@ std::string resolved_case_text(const Study& study, const Case& c, const std::str
   if (const auto* b = c.stilling_basin()) {
     w.header("[case.bed]");
     w.str("profile", b->bed.profile);
-    if (b->bed.profile == "sinusoidal") {
+    if (b->bed.profile == cases::BedShape::sinusoidal) {
       w.num("wavelength_m", b->bed.wavelength_m);
       w.num("height_m", b->bed.height_m);
       w.num("reach_start_m", b->bed.reach_start_m);
@@ -195,7 +195,7 @@ std::string resolved_case_text(const Study& study, const Case& c, const std::str
     w.opt("discharge_m2_s", b->stated_discharge_m2_s);
     w.opt("froude", b->stated_froude);
     w.header("[case.tailwater]");
-    if (b->tailwater_rule == "belanger") w.comment("from rule = \"belanger\" (y2* of the inflow)");
+    if (b->tailwater_rule == TailwaterRule::belanger) w.comment("from rule = \"belanger\" (y2* of the inflow)");
     w.num("depth_m", b->tailwater_depth_m);
     w.str("control", b->control.mode);
     if (b->control.holds_toe()) {
@@ -227,7 +227,7 @@ std::string resolved_case_text(const Study& study, const Case& c, const std::str
     w.num("height_m", d->tank_height_m);
     w.header("[case.gate]");
     w.str("type", d->gate);
-    if (d->gate == "lifted") w.num("lift_speed_m_s", d->gate_lift_speed_m_s);
+    if (d->gate == GateOpening::lifted) w.num("lift_speed_m_s", d->gate_lift_speed_m_s);
     if (!d->gauges_x_m.empty()) {
       w.header("[case.gauges]");
       w.numbers("x_m", d->gauges_x_m);

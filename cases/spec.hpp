@@ -158,12 +158,12 @@ struct RunRule {
 struct Section {
   std::string name;
   double x_m = 0.0;
-  std::string role = "interior";
+  SectionRole role = SectionRole::interior;
 };
 
 // [case.bed]
 struct BedSpec {
-  std::string profile = "smooth";       // "smooth" | "sinusoidal"
+  BedShape profile = BedShape::smooth;  // "smooth" | "sinusoidal"
   double wavelength_m = 0.0;            // S
   double height_m = 0.0;                // T, trough to crest
   double reach_start_m = 0.0;           // x where the corrugations start (a crest)
@@ -193,10 +193,10 @@ struct MeasuredValues {
 //                 does the jump stand at this tailwater?), and its distance from the basin start is
 //                 the result to score.
 struct TailwaterControl {
-  std::string mode = "hold_toe";        // "hold_toe" | "fixed_depth"
+  TailwaterControlMode mode = TailwaterControlMode::hold_toe;  // "hold_toe" | "fixed_depth"
   double volume_hold_time_s = 1.0;      // "hold_toe": T_V, time to drain a volume error
   double toe_hold_time_s = 5.0;         // "hold_toe": T_x, time to bring the toe to the basin start
-  bool holds_toe() const { return mode == "hold_toe"; }
+  bool holds_toe() const { return mode == TailwaterControlMode::hold_toe; }
 };
 
 // kind = "stilling_basin": supercritical inflow into a basin, tailwater held at the outlet.
@@ -208,7 +208,7 @@ struct StillingBasinCase {
   double inflow_velocity_m_s = 0.0;     // U1
   std::optional<double> stated_discharge_m2_s;  // checked against y1*U1 (2 %)
   std::optional<double> stated_froude;           // checked against U1/sqrt(g y1) (2 %)
-  std::string tailwater_rule = "given"; // "given" | "belanger" (y2* from y1 and Fr1)
+  TailwaterRule tailwater_rule = TailwaterRule::given;  // "given" | "belanger" (y2* from y1 and Fr1)
   double tailwater_depth_m = 0.0;       // resolved tailwater depth (after the rule); with control
                                         // "hold_toe" the initial level only
   TailwaterControl control;
@@ -229,7 +229,7 @@ struct DamBreakCase {
   double column_height_m = 0.0;
   double tank_length_m = 0.0;
   double tank_height_m = 0.0;
-  std::string gate = "instant";         // "instant" | "lifted"
+  GateOpening gate = GateOpening::instant;  // "instant" | "lifted"
   double gate_lift_speed_m_s = 0.0;     // for "lifted"
   std::vector<double> gauges_x_m;       // water-level gauges
   std::filesystem::path measured_front_file;  // CSV t_s,x_front_over_L (absolute after loading)

@@ -47,21 +47,21 @@ StillingBasinCase read_stilling_basin(TableReader& c, double g) {
   inflow.reject_unknown_keys();
 
   auto tail = c.required_table("tailwater");
-  b.tailwater_rule = tail.choice("rule", "given", {"given", "belanger"});
-  if (b.tailwater_rule == "belanger" && tail.has("depth_m")) {
+  b.tailwater_rule = tail.choice("rule", TailwaterRule::given);
+  if (b.tailwater_rule == cases::TailwaterRule::belanger && tail.has("depth_m")) {
     tail.fail_at(tail.raw().get("rule"), "rule", "= \"belanger\" sets the depth, and tailwater.depth_m is given too: give one of them");
   }
-  if (b.tailwater_rule == "belanger") {
+  if (b.tailwater_rule == cases::TailwaterRule::belanger) {
     b.tailwater_depth_m = hyd0.belanger_y2_m;
   } else {
     b.tailwater_depth_m = tail.number("depth_m", Range{b.inflow_depth_m, 100.0, true, false, "m, above the inflow depth y1"});
   }
-  b.control.mode = tail.choice("control", b.control.mode, {"hold_toe", "fixed_depth"});
+  b.control.mode = tail.choice("control", b.control.mode);
   b.control.volume_hold_time_s = tail.number_or("volume_hold_time_s", b.control.volume_hold_time_s, positive("s", 1000.0));
   b.control.toe_hold_time_s = tail.number_or("toe_hold_time_s", b.control.toe_hold_time_s, positive("s", 1000.0));
   for (const char* key : {"volume_hold_time_s", "toe_hold_time_s"})
     if (!b.control.holds_toe() && tail.has(key))
-      tail.fail_at(tail.raw().get(key), key, "is only used with control = \"hold_toe\" (here \"" + b.control.mode + "\")");
+      tail.fail_at(tail.raw().get(key), key, "is only used with control = \"hold_toe\" (here \"" + std::string(cases::option_name(b.control.mode)) + "\")");
   tail.reject_unknown_keys();
 
   auto domain = c.required_table("domain");
@@ -73,8 +73,8 @@ StillingBasinCase read_stilling_basin(TableReader& c, double g) {
   domain.reject_unknown_keys();
 
   auto bed = c.required_table("bed");
-  b.bed.profile = bed.choice("profile", "", {"smooth", "sinusoidal"}, true);
-  if (b.bed.profile == "sinusoidal") {
+  b.bed.profile = bed.choice("profile", BedShape::smooth, true);
+  if (b.bed.profile == cases::BedShape::sinusoidal) {
     b.bed.wavelength_m = bed.number("wavelength_m", positive("m", 100.0));
     b.bed.height_m = bed.number("height_m", positive("m", 100.0));
     const double basin_start = b.upstream_length_m, basin_end = basin_start + b.basin_length_m;
@@ -111,8 +111,8 @@ DamBreakCase read_dam_break(TableReader& c, const std::filesystem::path& base_di
   d.tank_height_m = tank.number("height_m", Range{d.column_height_m, 1000.0, false, false, "m, at least the column height"});
   tank.reject_unknown_keys();
   if (auto gate = c.table("gate")) {
-    d.gate = gate->choice("type", "instant", {"instant", "lifted"});
-    if (d.gate == "lifted") d.gate_lift_speed_m_s = gate->number("lift_speed_m_s", positive("m/s", 1000.0));
+    d.gate = gate->choice("type", GateOpening::instant);
+    if (d.gate == cases::GateOpening::lifted) d.gate_lift_speed_m_s = gate->number("lift_speed_m_s", positive("m/s", 1000.0));
     gate->reject_unknown_keys();
   }
   if (auto gauges = c.table("gauges")) {

@@ -139,12 +139,12 @@ std::vector<Section> read_sections(TableReader& c, const toml::array& array, dou
                                                  plain_name_rule);
     if (!names.insert(s.name).second) t.fail_at(t.raw().get("name"), "name", "= \"" + s.name + "\" is used by two sections: names must be unique");
     s.x_m = t.number("x_m", Range{x_min, x_max, false, false, "m, inside the domain"});
-    s.role = t.choice("role", "interior", {"upstream", "toe", "interior", "downstream", "gauge"});
-    if (std::isfinite(basin_start) && s.role == "upstream" && !(s.x_m < basin_start))
+    s.role = t.choice("role", SectionRole::interior);
+    if (std::isfinite(basin_start) && s.role == cases::SectionRole::upstream && !(s.x_m < basin_start))
       t.fail_at(t.raw().get("x_m"), "x_m", "= " + util::number_text(s.x_m) + " is out of range for the upstream section \"" + s.name +
                                                "\": must be < " + util::number_text(basin_start) +
                                                " m, the basin start (E1 and the toe search are taken upstream of the jump)");
-    if (std::isfinite(basin_start) && s.role == "downstream" && !(s.x_m > basin_start))
+    if (std::isfinite(basin_start) && s.role == cases::SectionRole::downstream && !(s.x_m > basin_start))
       t.fail_at(t.raw().get("x_m"), "x_m", "= " + util::number_text(s.x_m) + " is out of range for the downstream section \"" + s.name +
                                                "\": must be > " + util::number_text(basin_start) +
                                                " m, the basin start (y2 and E2 are taken behind the jump)");
@@ -152,11 +152,11 @@ std::vector<Section> read_sections(TableReader& c, const toml::array& array, dou
     // section: a second one of either would be ignored, and a downstream section upstream of the
     // upstream one would turn eta and the jump length inside out.
     for (const Section& earlier : sections) {
-      if ((s.role == "upstream" || s.role == "downstream") && earlier.role == s.role)
-        t.fail_at(t.raw().get("role"), "role", "= \"" + s.role + "\" is also the role of section \"" + earlier.name +
+      if ((s.role == cases::SectionRole::upstream || s.role == cases::SectionRole::downstream) && earlier.role == s.role)
+        t.fail_at(t.raw().get("role"), "role", "= \"" + std::string(cases::option_name(s.role)) + "\" is also the role of section \"" + earlier.name +
                                                    "\": at most one section may have it");
-      const Section* up = s.role == "upstream" ? &s : (earlier.role == "upstream" ? &earlier : nullptr);
-      const Section* down = s.role == "downstream" ? &s : (earlier.role == "downstream" ? &earlier : nullptr);
+      const Section* up = s.role == cases::SectionRole::upstream ? &s : (earlier.role == cases::SectionRole::upstream ? &earlier : nullptr);
+      const Section* down = s.role == cases::SectionRole::downstream ? &s : (earlier.role == cases::SectionRole::downstream ? &earlier : nullptr);
       if (up && down && up != down && down->x_m <= up->x_m)
         t.fail_at(t.raw().get("x_m"), "x_m", "= " + util::number_text(s.x_m) + " puts the downstream section \"" + down->name +
                                                  "\" (x_m = " + util::number_text(down->x_m) + ") at or upstream of the upstream section \"" +
@@ -210,7 +210,7 @@ void check_resolution(const Case& c, const Resolution& r, double gravity_m_s2, c
          util::number_text(std::sqrt(water_area_m2 / max_fluid_particles)) + " m");
   }
   if (const auto* b = c.stilling_basin()) {
-    if (b->bed.profile == "sinusoidal" && b->bed.wavelength_m < 4.0 * dx - 1e-12) {
+    if (b->bed.profile == cases::BedShape::sinusoidal && b->bed.wavelength_m < 4.0 * dx - 1e-12) {
       fail("resolution." + r.name + ".particle_spacing_m = " + util::number_text(dx) + " resolves bed.wavelength_m = " + util::number_text(b->bed.wavelength_m) + " with " + util::number_text(b->bed.wavelength_m / dx) + " spacings: must be at least 4, i.e. particle_spacing_m <= " + util::number_text(b->bed.wavelength_m / 4.0) + " m");
     }
     if (b->inflow_depth_m < 5.0 * dx - 1e-12) {
@@ -261,7 +261,7 @@ void check_tailwater_control(TableReader& c, Case& result, StillingBasinCase& b)
     // The legs are the toe control's: a case's own leg length without that control is unused.
     if (auto v = c.table("vof"); v && v->has("tailwater_control_interval_s"))
       v->fail_at(v->raw().get("tailwater_control_interval_s"), "tailwater_control_interval_s",
-                 "is only used with [case.tailwater] control = \"hold_toe\" (here \"" + b.control.mode + "\")");
+                 "is only used with [case.tailwater] control = \"hold_toe\" (here \"" + std::string(cases::option_name(b.control.mode)) + "\")");
     return;
   }
   auto tail = c.required_table("tailwater");
@@ -396,15 +396,15 @@ Case read_case(TableReader& c, const Study& study, const SphSettings& sph,
   } else if (const auto* b = result.stilling_basin()) {
     result.sections = default_stilling_basin_sections(*b);
     // The downstream section (y2, E2) must lie past the toe, and 3 y2 clear of the outlet.
-    const double needed = 3.0 * b->tailwater_depth_m + (b->bed.profile == "sinusoidal" ? b->bed.wavelength_m : 0.0);
+    const double needed = 3.0 * b->tailwater_depth_m + (b->bed.profile == cases::BedShape::sinusoidal ? b->bed.wavelength_m : 0.0);
     if (result.sections.back().x_m <= b->upstream_length_m + b->tailwater_depth_m) {
       auto domain = c.required_table("domain");
       domain.fail_at(domain.raw().get("basin_length_m"), "basin_length_m",
-                     "= " + util::number_text(b->basin_length_m) + " is too short for the default sections: basin_length_m + downstream_length_m must exceed " + util::number_text(needed + b->tailwater_depth_m) + " m (4 tailwater depths" + (b->bed.profile == "sinusoidal" ? std::string(" plus a wavelength") : std::string()) + "), or list [[case.sections]] explicitly");
+                     "= " + util::number_text(b->basin_length_m) + " is too short for the default sections: basin_length_m + downstream_length_m must exceed " + util::number_text(needed + b->tailwater_depth_m) + " m (4 tailwater depths" + (b->bed.profile == cases::BedShape::sinusoidal ? std::string(" plus a wavelength") : std::string()) + "), or list [[case.sections]] explicitly");
     }
   } else if (const auto* d = result.dam_break()) {
     for (std::size_t i = 0; i < d->gauges_x_m.size(); ++i) {
-      result.sections.push_back({"H" + std::to_string(i + 1), d->gauges_x_m[i], "gauge"});
+      result.sections.push_back({"H" + std::to_string(i + 1), d->gauges_x_m[i], SectionRole::gauge});
     }
   }
   if (auto* b = std::get_if<StillingBasinCase>(&result.data)) check_tailwater_control(c, result, *b);

@@ -249,15 +249,16 @@ class TableReader {
 
   // An option of cases/options.hpp: its name parsed once into the enum, the allowed names from its table.
   template <class E>
-  E choice(std::string_view key, E fallback) {
+  E choice(std::string_view key, E fallback, bool required = false) {
+    std::string allowed;
+    for (const auto& option : OptionTable<E>::values)
+      allowed += (allowed.empty() ? "\"" : ", \"") + std::string(option.name) + "\"";
     if (!has(key)) {
+      if (required) fail_at(nullptr, key, "is missing (required; one of " + allowed + ")");
       get(key);
       return fallback;
     }
     const toml::node* node = get(key);
-    std::string allowed;
-    for (const auto& option : OptionTable<E>::values)
-      allowed += (allowed.empty() ? "\"" : ", \"") + std::string(option.name) + "\"";
     if (!node->is_string()) fail_at(node, key, "= " + node_text(*node) + " has the wrong type: expected one of " + allowed);
     const std::string v = *node->value<std::string>();
     const std::optional<E> value = parse_option<E>(v);

@@ -129,7 +129,7 @@ CaseComparison case_inputs(const CaseContext& ctx, const CompareOptions& options
   CaseComparison r;
   r.case_id = c.id;
   r.description = c.description;
-  r.tailwater_control = basin.control.mode;
+  r.tailwater_control = std::string(cases::option_name(basin.control.mode));
   r.resolution = ctx.res.name;
   r.inflow_depth_m = basin.inflow_depth_m;
   r.inflow_velocity_m_s = basin.inflow_velocity_m_s;
@@ -188,7 +188,7 @@ void set_smooth_bed_theory(CaseComparison& r) {
 // The case's sections as columns, each with `points` profile points.
 std::vector<ColumnSpec> case_sections(const cases::CaseGeometry& geo, int points) {
   std::vector<ColumnSpec> sections;
-  for (const auto& s : geo.sections) sections.push_back({s.name, s.role, s.x_m, geo.bed.elevation(s.x_m), points});
+  for (const auto& s : geo.sections) sections.push_back({s.name, std::string(cases::option_name(s.role)), s.x_m, geo.bed.elevation(s.x_m), points});
   return sections;
 }
 

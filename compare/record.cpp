@@ -146,8 +146,8 @@ std::vector<ValidationRecord> records_from_case_dir(const fs::path& case_dir, co
     r.recorded_on = provenance.recorded_on;
     r.command = provenance.command;
     if (const auto* b = c.stilling_basin()) {
-      r.tailwater_control = b->control.mode;
-      r.bed = b->bed.profile;
+      r.tailwater_control = std::string(cases::option_name(b->control.mode));
+      r.bed = std::string(cases::option_name(b->bed.profile));
       r.inflow_depth_m = b->inflow_depth_m;
       r.basin_start_m = b->upstream_length_m;
       r.bed_wavelength_m = b->bed.wavelength_m;

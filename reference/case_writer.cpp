@@ -21,8 +21,8 @@ void add_file(VofCase& vof, const std::string& path, const std::string& cls, con
 }  // namespace detail
 
 std::optional<std::string> vof_unsupported_reason(const cases::Case& c) {
-  if (const auto* dam = c.dam_break(); dam && dam->gate != "instant") {
-    return "case \"" + c.id + "\": gate.type = \"" + dam->gate +
+  if (const auto* dam = c.dam_break(); dam && dam->gate != cases::GateOpening::instant) {
+    return "case \"" + c.id + "\": gate.type = \"" + std::string(cases::option_name(dam->gate)) +
            "\" cannot be modelled by the OpenFOAM reference (a moving gate needs a moving mesh, not "
            "available on this build): allowed \"instant\"";
   }

@@ -37,7 +37,7 @@ TailwaterControlLaw tailwater_control_law(const cases::Case& c, const cases::Cas
   law.target_toe_x_m = geo.expected_toe_x_m;
   law.toe_search_from_m = geo.x_min_m;
   for (const cases::Section& s : geo.sections) {
-    if (s.role == "upstream") law.toe_search_from_m = s.x_m;
+    if (s.role == cases::SectionRole::upstream) law.toe_search_from_m = s.x_m;
   }
   law.outlet_x_m = geo.x_max_m;
   law.interval_s = c.vof.tailwater_control_interval_s;

@@ -97,7 +97,7 @@ BasinMonitorSetup BasinMonitorSetup::from_case(const cases::Case& c, const cases
   s.x_outflow_m = geometry.outflows.front().x_m;
   s.toe_search_from_m = s.x_inflow_m;
   for (const auto& sec : geometry.sections)
-    if (sec.role == "upstream") s.toe_search_from_m = sec.x_m;
+    if (sec.role == cases::SectionRole::upstream) s.toe_search_from_m = sec.x_m;
   s.drift_tolerance_m = cases::toe_drift_tolerance_m(b->bed.profile, b->bed.wavelength_m, b->inflow_depth_m);
   s.average_start_s = c.run.average_start_s;
   s.average_end_s = c.run.average_end_s > 0.0 ? c.run.average_end_s : c.run.end_time_s;
@@ -280,7 +280,7 @@ std::string BasinMonitor::jump_state() const {
   // Past the "downstream" section (where y2 and E2 are read) the jump has left the basin's measuring
   // reach, as the comparator reports it.
   for (const auto& sec : setup_.sections)
-    if (sec.role == "downstream" && toe > sec.x_m) return "swept_downstream";
+    if (sec.role == cases::SectionRole::downstream && toe > sec.x_m) return "swept_downstream";
   if (toe <= setup_.toe_search_from_m + setup_.dx) return "at_inflow";
   return "in_basin";
 }
@@ -345,7 +345,7 @@ std::string BasinMonitor::summary_json() const {
 
   double y2 = nan_value, y2_std = nan_value;
   for (std::size_t k = 0; k < n_sec; ++k)
-    if (setup_.sections[k].role == "downstream") {
+    if (setup_.sections[k].role == cases::SectionRole::downstream) {
       const MeanStd d = mean_std(depth[k]);
       y2 = d.mean;
       y2_std = d.std;
@@ -426,7 +426,7 @@ std::string BasinMonitor::summary_json() const {
   o << "  \"sections\": [";
   for (std::size_t k = 0; k < n_sec; ++k) {
     const auto& sec = setup_.sections[k];
-    o << (k ? ",\n" : "\n") << "    {\"name\": " << json_string(sec.name) << ", \"role\": " << json_string(sec.role)
+    o << (k ? ",\n" : "\n") << "    {\"name\": " << json_string(sec.name) << ", \"role\": " << json_string(std::string(cases::option_name(sec.role)))
       << ", \"x_m\": " << json_number(sec.x_m) << ", \"depth_m\": " << json_stats(mean_std(depth[k]))
       << ", \"surface_z_m\": " << json_stats(mean_std(surface[k]))
       << ", \"discharge_m2_s\": " << json_stats(mean_std(discharge[k])) << "}";

@@ -176,7 +176,7 @@ OpenBoundarySettings open_boundary_settings(const cases::SphSettings& s, const c
   if (o.outflow == OutflowCondition::tailgate) o.tailgate_height = tailgate_height(s, g, gravity, dx);
   if (s.outflow_level_reference == cases::OutflowLevelReference::downstream_section) {
     const auto down = std::find_if(g.sections.begin(), g.sections.end(),
-                                   [](const cases::Section& sec) { return sec.role == "downstream"; });
+                                   [](const cases::Section& sec) { return sec.role == cases::SectionRole::downstream; });
     if (g.outflows.empty() || o.outflow == OutflowCondition::tailgate || down == g.sections.end())
       throw std::invalid_argument("sph.outflow_level_reference = \"downstream_section\" needs an outflow buffer "
                                   "(outflow_condition \"absorbing\" or \"hydrostatic_level\") and a section with "

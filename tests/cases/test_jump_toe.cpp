@@ -87,8 +87,8 @@ TEST_CASE("steadiness rule: the least-squares slope of a toe track, the verdict 
   CHECK_FALSE(steady_by_means(nan, 0.0, 0.068));
   CHECK_FALSE(steady_by_means(0.0, nan, 0.068));
   // The tolerance: a bed wavelength on a corrugated bed, 2 y1 on a smooth one.
-  CHECK(toe_drift_tolerance_m("sinusoidal", 0.068, 0.0254) == 0.068);
-  CHECK(toe_drift_tolerance_m("smooth", 0.0, 0.0254) == Approx(0.0508));
+  CHECK(toe_drift_tolerance_m(hydrojump::cases::BedShape::sinusoidal, 0.068, 0.0254) == 0.068);
+  CHECK(toe_drift_tolerance_m(hydrojump::cases::BedShape::smooth, 0.0, 0.0254) == Approx(0.0508));
 }
 
 TEST_CASE("window balance: interval discharges weighted by their intervals, over the outputs in the window", "[cases][toe]") {

@@ -105,6 +105,11 @@ TEST_CASE("options: every table's names and values are unique and read back", "[
   check_table<TurbulenceModel>();
   check_table<TurbulenceStabilization>();
   check_table<MeshStrategy>();
+  check_table<BedShape>();
+  check_table<TailwaterControlMode>();
+  check_table<TailwaterRule>();
+  check_table<GateOpening>();
+  check_table<SectionRole>();
 }
 
 TEST_CASE("options: messages quote the names as a list", "[cases][options]") {
@@ -123,4 +128,30 @@ TEST_CASE("options: the spec reader reads every [sph] option's names from its ta
   check_spec_key("outflow_condition", &SphSettings::outflow_condition);
   check_spec_key("outflow_level_reference", &SphSettings::outflow_level_reference);
   check_spec_key("particle_shifting", &SphSettings::particle_shifting);
+}
+
+TEST_CASE("options: a case's bed profile, tailwater control and rule are read from their tables", "[cases][options]") {
+  const std::string base = study_with_sph("kernel", "wendland_c2");
+  const Study smooth = parse_study(base, "spec.toml", ".");
+  CHECK(smooth.cases.at(0).stilling_basin()->bed.profile == BedShape::smooth);
+  CHECK(smooth.cases.at(0).stilling_basin()->control.mode == TailwaterControlMode::hold_toe);
+  CHECK(smooth.cases.at(0).stilling_basin()->tailwater_rule == TailwaterRule::given);
+  const auto rejection = [&](const std::string& from, const std::string& to) {
+    std::string text = base;
+    text.replace(text.find(from), from.size(), to);
+    try {
+      parse_study(text, "spec.toml", ".");
+    } catch (const SpecError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  CHECK_THAT(rejection("profile = \"smooth\"", "profile = \"wavy\""),
+             Catch::Contains("profile = \"wavy\" is not a known option: allowed values are \"smooth\", \"sinusoidal\""));
+  CHECK_THAT(rejection("profile = \"smooth\"\n", ""),
+             Catch::Contains("profile") && Catch::Contains("is missing (required; one of \"smooth\", \"sinusoidal\")"));
+  CHECK_THAT(rejection("depth_m = 0.104", "depth_m = 0.104\ncontrol = \"gate\""),
+             Catch::Contains("allowed values are \"hold_toe\", \"fixed_depth\""));
+  CHECK_THAT(rejection("depth_m = 0.104", "depth_m = 0.104\nrule = \"sequent\""),
+             Catch::Contains("allowed values are \"given\", \"belanger\""));
 }

@@ -99,11 +99,11 @@ TEST_CASE("The minimal spec is valid and derives sections", "[cases][spec]") {
   CHECK(c.run.average_end_s == 10.0);
   CHECK(c.sph.kernel == hydrojump::cases::KernelType::wendland_c2);
   REQUIRE(c.sections.size() >= 3);
-  CHECK(c.sections.front().role == "upstream");
-  CHECK(c.sections.back().role == "downstream");
+  CHECK(c.sections.front().role == hydrojump::cases::SectionRole::upstream);
+  CHECK(c.sections.back().role == hydrojump::cases::SectionRole::downstream);
   // x_toe + 8 y2 = 1.032 m, moved to the nearest crest: 0.2 + 12 * 0.068 = 1.016 m.
   CHECK(c.sections.back().x_m == Approx(0.2 + 12 * 0.068));
-  CHECK(b->bed.profile == "sinusoidal");
+  CHECK(b->bed.profile == hydrojump::cases::BedShape::sinusoidal);
 }
 
 TEST_CASE("The reference study lists runs A-E with their smooth twins and two basins outside them", "[cases][spec]") {
@@ -784,7 +784,7 @@ TEST_CASE("The tailwater control is hold_toe by default or fixed_depth in case.t
   // The default: the flume's protocol; the VOF legs 0.5 s (the outputs come every 0.05 s).
   const Study plain = parse_study(valid_spec, "spec.toml", ".");
   REQUIRE(plain.cases[0].stilling_basin() != nullptr);
-  CHECK(plain.cases[0].stilling_basin()->control.mode == "hold_toe");
+  CHECK(plain.cases[0].stilling_basin()->control.mode == hydrojump::cases::TailwaterControlMode::hold_toe);
   CHECK(plain.cases[0].holds_toe());
   CHECK(plain.cases[0].stilling_basin()->control.volume_hold_time_s == 1.0);
   CHECK(plain.cases[0].stilling_basin()->control.toe_hold_time_s == 5.0);
@@ -798,7 +798,7 @@ TEST_CASE("The tailwater control is hold_toe by default or fixed_depth in case.t
   CHECK(again.cases[0].stilling_basin()->control.volume_hold_time_s == 2.0);
   CHECK(again.cases[0].stilling_basin()->control.toe_hold_time_s == 8.0);
   const Study fixed = resolved_reload(parse_study(tail("control = \"fixed_depth\""), "spec.toml", "."), "fixed");
-  CHECK(fixed.cases[0].stilling_basin()->control.mode == "fixed_depth");
+  CHECK(fixed.cases[0].stilling_basin()->control.mode == hydrojump::cases::TailwaterControlMode::fixed_depth);
   CHECK(!fixed.cases[0].holds_toe());
   // A short run: the legs default to the whole outputs that fit it (0.2 s of a 0.2-s run).
   CHECK(parse_study(replaced(valid_spec, "end_time_s = 10.0\naverage_start_s = 6.0", "end_time_s = 0.2\naverage_start_s = 0.1"), "spec.toml", ".")

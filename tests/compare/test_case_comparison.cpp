@@ -499,7 +499,7 @@ TEST_CASE("The VOF water balance is noted from the discharge samples, and a dama
   RunFixture fx;
   // Run A with its outlet holding the tailwater (control = "fixed_depth"): no tailgate log is this run's.
   for (auto& c : fx.study.cases)
-    if (c.id == "A") std::get<cases::StillingBasinCase>(c.data).control.mode = "fixed_depth";
+    if (c.id == "A") std::get<cases::StillingBasinCase>(c.data).control.mode = hydrojump::cases::TailwaterControlMode::fixed_depth;
   fx.write_vof(176, 30, {"6", "8", "10"});
   const double q = fx.jump.y1 * fx.jump.u1;
   const double thickness = fx.c->resolutions.at("quick").vof_cell_size_bed_m;  // the 2D mesh's span

@@ -43,7 +43,7 @@ inline hydrojump::sph::BasinMonitorSetup setup() {
   s.drift_tolerance_m = 0.068;
   s.average_start_s = 1.5;
   s.average_end_s = 3.0;
-  s.sections = {{"upstream", 0.0525, "upstream"}, {"downstream", 0.8025, "downstream"}};
+  s.sections = {{"upstream", 0.0525, hydrojump::cases::SectionRole::upstream}, {"downstream", 0.8025, hydrojump::cases::SectionRole::downstream}};
   s.bed_elevation = [](double) { return 0.0; };
   return s;
 }

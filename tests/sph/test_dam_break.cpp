@@ -54,10 +54,10 @@ DamBreakRun run_dam_break(double dx, double gate_speed = 0.0, const std::string&
     c.sph.particle_shifting = hydrojump::cases::option_from_name<hydrojump::cases::ParticleShifting>("test", shifting);
     auto& d = std::get<hydrojump::cases::DamBreakCase>(c.data);
     if (gate_speed > 0.0) {
-      d.gate = "lifted";
+      d.gate = hydrojump::cases::GateOpening::lifted;
       d.gate_lift_speed_m_s = gate_speed;
     } else {
-      d.gate = "instant";
+      d.gate = hydrojump::cases::GateOpening::instant;
     }
   });
   DamBreakRun run;

@@ -126,7 +126,7 @@ TEST_CASE("the level control is set from the spec, at the downstream section, an
   CHECK(s.open.level_time == 3.0);
   double x_down = -1.0;
   for (const auto& sec : geometry.sections)
-    if (sec.role == "downstream") x_down = sec.x_m;
+    if (sec.role == hydrojump::cases::SectionRole::downstream) x_down = sec.x_m;
   CHECK(s.open.level_section_x == x_down);
   CHECK(buffer_parameters(s).level_at_section);
   // The default holds the tailwater at the outlet (run B of the study file sets no level control).

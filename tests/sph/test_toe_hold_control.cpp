@@ -48,7 +48,7 @@ ToeHoldLaw hand_law() {
 sph_test::LoadedCase held_basin(const std::string& control, double toe_offset_m, double tailwater_factor) {
   return sph_test::short_smooth_basin(0.005, [&](cases::Case& c) {
     auto& b = std::get<cases::StillingBasinCase>(c.data);
-    b.control.mode = control;
+    b.control.mode = hydrojump::cases::option_from_name<hydrojump::cases::TailwaterControlMode>("test", control);
     b.control.volume_hold_time_s = 0.5;
     b.control.toe_hold_time_s = 2.0;
     b.tailwater_depth_m *= tailwater_factor;

@@ -17,7 +17,7 @@ namespace {
 sph_test::LoadedCase lifted_dam_break(double dx, double speed) {
   return sph_test::load_case("dam_break.toml", dx, [&](cases::Case& c) {
     auto& d = std::get<cases::DamBreakCase>(c.data);
-    d.gate = "lifted";
+    d.gate = hydrojump::cases::GateOpening::lifted;
     d.gate_lift_speed_m_s = speed;
   });
 }
