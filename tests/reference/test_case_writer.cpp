@@ -6,6 +6,7 @@
 #include <cmath>
 #include <fstream>
 #include <filesystem>
+#include <map>
 #include <set>
 #include <sstream>
 #include <stdexcept>
@@ -339,32 +340,55 @@ TEST_CASE("controlDict: run settings and sampling of every section", "[reference
   }
 }
 
-TEST_CASE("setFields: the initial water follows the spec's surface and carries q", "[reference][case]") {
+TEST_CASE("setFields: the initial water follows the spec's surface and carries q, in few regions", "[reference][case]") {
   const cases::Study study = parse(basin_spec());
   const cases::Case& c = study.cases.front();
   const cases::CaseGeometry geo = cases::make_geometry(c, study.fluid);
   const reference::VofCase vof = reference::build_vof_case(study, c, "quick");
   const auto& regions = vof.files.at("system/setFieldsDict").at("regions").items();
-  REQUIRE(!regions.empty());
-  const std::vector<double> z = reference::band_faces(vof.mesh.z_bands);
-  double covered = 0.0;
-  for (const foam::Value& r : regions) {
-    const auto& box = r.dict().at("box").items();
-    const double x0 = box[0].items()[0].number(), x1 = box[1].items()[0].number();
-    const double z_top = box[1].items()[1].number();
+  REQUIRE(regions.size() >= 2);
+  // The first region: alpha.water = 1 in every column's box, the boxes side by side (never overlapping,
+  // so the regions' order cannot matter), covering the channel.
+  const auto& water = regions[0].dict();
+  REQUIRE(water.at("fieldValues").items().size() == 1);
+  CHECK(water.at("fieldValues").items()[0].text() == "volScalarFieldValue alpha.water 1");
+  const auto& boxes = water.at("boxes").items();
+  REQUIRE(boxes.size() % 2 == 0);
+  double covered = 0.0, previous_x1 = -1e9;
+  std::map<double, double> box_of_x0;  // x0 -> x1
+  for (std::size_t k = 0; k < boxes.size(); k += 2) {
+    const double x0 = boxes[k].items()[0].number(), x1 = boxes[k + 1].items()[0].number();
+    const double z_top = boxes[k + 1].items()[1].number();
+    CHECK(x0 >= previous_x1 - 1e-12);
+    previous_x1 = x1;
     covered += x1 - x0;
+    box_of_x0[x0] = x1;
     for (double xc = x0 + 0.0025; xc < x1; xc += 0.005) {
       // The box top is the face between the last water cell (centre below the surface) and the next.
       const double surface = geo.initial_water.surface_at(xc);
       CHECK(std::abs(z_top - surface) <= 0.5 * 0.005 + 1e-9);
     }
-    const auto& values = r.dict().at("fieldValues").items();
-    REQUIRE(values.size() == 2);
-    const double u = values[1].items()[1].items()[0].number();
-    const double xm = 0.5 * (x0 + x1);
-    CHECK(u == Approx(0.0254 * 2.0 / (geo.initial_water.surface_at(xm) - geo.bed.elevation(xm))).epsilon(0.05));
   }
   CHECK(covered == Approx(geo.x_max_m).epsilon(1e-9));
+  // The others: U = q / local depth, one region per velocity, each box one of the water boxes.
+  std::set<double> velocities;
+  std::size_t moving_boxes = 0;
+  for (std::size_t i = 1; i < regions.size(); ++i) {
+    const auto& values = regions[i].dict().at("fieldValues").items();
+    REQUIRE(values.size() == 1);
+    const double u = values[0].items()[1].items()[0].number();
+    CHECK(velocities.insert(u).second);
+    const auto& own = regions[i].dict().at("boxes").items();
+    for (std::size_t k = 0; k < own.size(); k += 2) {
+      const double x0 = own[k].items()[0].number(), x1 = own[k + 1].items()[0].number();
+      REQUIRE(box_of_x0.count(x0) == 1);
+      CHECK(box_of_x0[x0] == x1);
+      const double xm = 0.5 * (x0 + x1);
+      CHECK(u == Approx(0.0254 * 2.0 / (geo.initial_water.surface_at(xm) - geo.bed.elevation(xm))).epsilon(0.05));
+      ++moving_boxes;
+    }
+  }
+  CHECK(moving_boxes == boxes.size() / 2);  // every column of this basin moves
 }
 
 TEST_CASE("dam break: closed tank, grid line at the gate, water column and floor line", "[reference][case]") {
@@ -377,7 +401,8 @@ TEST_CASE("dam break: closed tank, grid line at the gate, water column and floor
   CHECK(vof.mesh.cell_count() == 40L * vof.mesh.rows());
   const auto& regions = vof.files.at("system/setFieldsDict").at("regions").items();
   REQUIRE(regions.size() == 1);
-  const auto& box = regions[0].dict().at("box").items();
+  const auto& box = regions[0].dict().at("boxes").items();
+  REQUIRE(box.size() == 2);
   CHECK(box[1].items()[0].number() == Approx(0.1).margin(1e-12));
   CHECK(box[1].items()[1].number() == Approx(0.2).margin(1e-12));
   CHECK(regions[0].dict().at("fieldValues").items().size() == 1);  // at rest: alpha only
