@@ -231,8 +231,8 @@ class TableReader {
     return has(key) ? string(key) : (get(key), fallback);
   }
 
-  std::string choice(std::string_view key, const std::string& fallback,
-                     std::initializer_list<std::string_view> allowed, bool required = false) {
+  std::string choice(std::string_view key, const std::string& fallback, const std::vector<std::string_view>& allowed,
+                     bool required = false) {
     if (!has(key)) {
       if (required) fail_at(nullptr, key, "is missing (required; one of " + list(allowed) + ")");
       get(key);
@@ -247,23 +247,12 @@ class TableReader {
     return v;
   }
 
-  // An option of cases/options.hpp: its name parsed once into the enum, the allowed names from its table.
+  // An option of cases/options.hpp: the names of its table, parsed once into the enum.
   template <class E>
   E choice(std::string_view key, E fallback, bool required = false) {
-    std::string allowed;
-    for (const auto& option : OptionTable<E>::values)
-      allowed += (allowed.empty() ? "\"" : ", \"") + std::string(option.name) + "\"";
-    if (!has(key)) {
-      if (required) fail_at(nullptr, key, "is missing (required; one of " + allowed + ")");
-      get(key);
-      return fallback;
-    }
-    const toml::node* node = get(key);
-    if (!node->is_string()) fail_at(node, key, "= " + node_text(*node) + " has the wrong type: expected one of " + allowed);
-    const std::string v = *node->value<std::string>();
-    const std::optional<E> value = parse_option<E>(v);
-    if (!value) fail_at(node, key, "= \"" + v + "\" is not a known option: allowed values are " + allowed);
-    return *value;
+    std::vector<std::string_view> names;
+    for (const auto& option : OptionTable<E>::values) names.push_back(option.name);
+    return *parse_option<E>(choice(key, std::string(option_name(fallback)), names, required));
   }
 
   std::vector<double> number_array(std::string_view key, const Range& range) {
@@ -331,7 +320,7 @@ class TableReader {
   const std::string& file() const { return file_; }
 
  private:
-  static std::string list(std::initializer_list<std::string_view> allowed) {
+  static std::string list(const std::vector<std::string_view>& allowed) {
     std::string s;
     for (auto a : allowed) s += (s.empty() ? "\"" : ", \"") + std::string(a) + "\"";
     return s;
