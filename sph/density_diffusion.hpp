@@ -31,12 +31,19 @@ using cases::DensityDiffusion;  // sph.density_diffusion (cases/options.hpp)
 // rho^H_ji = rho0 ((1 + x)^(1/gamma) - 1),  gamma = 7,  x = rho0 g.(r_j - r_i)/B = rho0 g_z (z_j - z_i) / B.
 // x is O(rho0 g 2h / B) ~ 1e-3, so the power is replaced by its second-order Taylor expansion
 // (the first term left out is a(a-1)(a-2)/6 x^3, a = 1/gamma: a relative error of about 0.27 x^2 ~ 3e-7),
-// which keeps pow() out of the pair loop.
-inline double hydrostatic_density_difference(double rho0, double b, double gravity_z, double zj_minus_zi) {
-  constexpr double a = 1.0 / TaitEquationOfState::gamma;
-  const double x = rho0 * gravity_z * zj_minus_zi / b;
-  return rho0 * x * (a + 0.5 * a * (a - 1.0) * x);
-}
+// which keeps pow() out of the pair loop; rho0 g_z / B is made once, not once a pair.
+class HydrostaticDensity {
+ public:
+  HydrostaticDensity(double rho0, double b, double gravity_z) : rho0_(rho0), scale_(rho0 * gravity_z / b) {}
+  double difference(double zj_minus_zi) const {
+    constexpr double a = 1.0 / TaitEquationOfState::gamma;
+    const double x = scale_ * zj_minus_zi;
+    return rho0_ * x * (a + 0.5 * a * (a - 1.0) * x);
+  }
+
+ private:
+  double rho0_, scale_;
+};
 
 // Pair contribution to D_i:  delta h c0 (-2 F) (rho_j - rho_i - rho^H_ji) V_j
 inline double density_diffusion_pair(double delta_h_c0, double gradient_factor, double density_jump,

@@ -5,247 +5,222 @@
 #include <limits>
 #include <vector>
 
-#include "sph/boundary_dbc.hpp"
-#include "sph/density_diffusion.hpp"
+#include "sph/cell_pairs.hpp"
 #include "sph/kernel.hpp"
+#include "sph/pair_terms.hpp"
 #include "sph/parallel.hpp"
 #include "sph/viscosity.hpp"
 #include "sph/wall_function.hpp"
 
 namespace hydrojump::sph {
 
+// The weakly compressible SPH equations (Monaghan 1994, J. Comput. Phys. 110:399-406) for each particle
+// i over its neighbours j within 2h:
+//   continuity (fluid):  D_i = sum_j m_j (v_i - v_j) . grad_i W_ij + diffusion_i
+//   continuity (DBC wall b):  D_b = sum_j m_j (v_b - v_j) . grad_b W_bj          (boundary_dbc.hpp)
+//   momentum (fluid):    a_i = -sum_j m_j (p_i + p_j)/(rho_i rho_j) grad_i W_ij + viscous_i + g
+// and the time-step inputs max|a_i| and max_ij |h v_ij.r_ij / (r_ij^2 + eta^2)|. Each pair is
+// evaluated once and its terms added to both particles (pair_terms.hpp has them term by term); the
+// symmetric pressure term conserves momentum pairwise (Monaghan 1992, Annu. Rev. Astron. Astrophys.
+// 30:543-574). The pair loop is instantiated for each kernel, viscosity model and density diffusion
+// term, so it carries no branch on the model.
 namespace {
+
+using detail::PairArrays;
 
 constexpr std::uint8_t kFluid = static_cast<std::uint8_t>(ParticleType::fluid);
 
-// The weakly compressible SPH equations (Monaghan 1994, J. Comput. Phys. 110:399-406), gathered for
-// each particle i over its neighbours j within 2h, with grad_i W_ij = F(r_ij) (r_i - r_j):
-//   continuity (fluid):  D_i = d rho_i/dt = sum_j m_j (v_i - v_j) . grad_i W_ij + diffusion_i
-//                        (density_diffusion.hpp; between fluid particles only)
-//   continuity (DBC wall b):  D_b = sum_j m_j (v_b - v_j) . grad_b W_bj          (boundary_dbc.hpp)
-//   momentum (fluid):    a_i = -sum_j m_j (p_i + p_j)/(rho_i rho_j) grad_i W_ij + viscous_i + g
-//                        (viscosity.hpp: artificial Pi_ij, or laminar + SPS stress divergence)
-// and the time-step inputs max|a_i| and max_ij |h v_ij.r_ij / (r_ij^2 + eta^2)|.
-// The symmetric pressure term conserves momentum pairwise (Monaghan 1992, Annu. Rev. Astron.
-// Astrophys. 30:543-574).
-// One function of ~215 lines on purpose: it is the pair loop, where the run spends its time, and its
-// terms share the pair's kernel gradient, distance and velocity difference in registers. Split into
-// per-model functions it is the compile-time specialisation of the speed issue (54), measured there.
-template <class K>
+// Per-call storage: the per-particle factors V = m/rho, 1/rho and tau/rho^2, and for laminar_sps the
+// velocity gradients and each fluid particle's nearest wall particle.
+struct Scratch {
+  std::vector<double> volume, inv_rho, sxx, sxz, szz, grad, nearest_r2, nearest_dx, nearest_dz;
+  std::vector<int> nearest;
+};
+
+PairArrays pair_arrays(ParticleSet& ps, const SolverSettings& s, Scratch& w) {
+  const bool sps = s.viscosity.model == Viscosity::laminar_sps;
+  const Eigen::Index n = ps.size();
+  const auto size = static_cast<std::size_t>(n), sps_size = sps ? size : 0;
+  w.volume.resize(size);
+  w.inv_rho.resize(size);
+  for (auto* v : {&w.sxx, &w.sxz, &w.szz}) v->resize(sps_size);
+  w.grad.assign(4 * sps_size, 0.0);
+  const bool nearest = sps && (s.viscosity.sps_length_near_walls || s.viscosity.wall_function_shear);
+  w.nearest_r2.assign(nearest ? size : 0, std::numeric_limits<double>::infinity());
+  w.nearest_dx.assign(nearest ? size : 0, 0.0);
+  w.nearest_dz.assign(nearest ? size : 0, 0.0);
+  w.nearest.assign(nearest ? size : 0, -1);
+  // V_j = m_j / rho_j, 1/rho_j and tau_j/rho_j^2 (tau is stored divided by rho), once per particle;
+  // the rates start from zero (the pair loop adds to them).
+#pragma omp parallel for schedule(static) if (use_threads(n))
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double inv = 1.0 / ps.rho[i];
+    w.inv_rho[i] = inv;
+    w.volume[i] = ps.mass[i] * inv;
+    if (sps) {
+      w.sxx[i] = ps.tau_xx[i] * inv;
+      w.sxz[i] = ps.tau_xz[i] * inv;
+      w.szz[i] = ps.tau_zz[i] * inv;
+    }
+    ps.drho[i] = ps.ax[i] = ps.az[i] = 0.0;
+  }
+  PairArrays a;
+  a.hydrostatic = HydrostaticDensity(s.eos.rho0, s.eos.b, s.body_force_z);
+  a.x = ps.x.data(), a.z = ps.z.data(), a.u = ps.u.data(), a.w = ps.w.data(), a.rho = ps.rho.data(), a.p = ps.p.data();
+  a.m = ps.mass.data(), a.volume = w.volume.data(), a.inv_rho = w.inv_rho.data();
+  a.sxx = w.sxx.data(), a.sxz = w.sxz.data(), a.szz = w.szz.data(), a.wall_u = ps.wall_u.data(), a.wall_w = ps.wall_w.data();
+  a.drho = ps.drho.data(), a.ax = ps.ax.data(), a.az = ps.az.data(), a.grad = w.grad.data();
+  a.nearest_r2 = w.nearest_r2.data(), a.nearest_dx = w.nearest_dx.data(), a.nearest_dz = w.nearest_dz.data();
+  a.nearest = w.nearest.data();
+  a.support2 = s.support() * s.support();
+  a.eta2 = s.eta2();
+  a.h = s.h;
+  a.alpha_c0_h = s.viscosity.artificial_alpha * s.eos.c0 * s.h;
+  a.wall_factor = s.viscosity.artificial_wall_factor;
+  a.delta_h_c0 = s.density.diffusion_delta * s.h * s.eos.c0;
+  a.nu0 = s.viscosity.kinematic_viscosity;
+  a.free_slip_walls = sps && s.viscosity.viscous_walls_free_slip;
+  a.nearest_wall_needed = nearest;
+  a.dbc = s.boundary == BoundaryMethod::dbc;
+  return a;
+}
+
+// Pair (i, j) with j at x_j + shift_x: its terms by the kinds of the two particles (pair_terms.hpp).
+template <class K, Viscosity V, DensityDiffusion D>
+inline void pair(const PairArrays& a, const K& kernel, const std::uint8_t* type, int i, int j, double shift_x, double& visc) {
+  const double dx = a.x[i] - (a.x[j] + shift_x), dz = a.z[i] - a.z[j];
+  const double r2 = dx * dx + dz * dz;
+  if (r2 >= a.support2) return;
+  const std::uint8_t ti = type[i], tj = type[j];
+  const bool fi = ti == kFluid, fj = tj == kFluid;
+  if (!fi && !fj && (is_wall_type(ti) == is_wall_type(tj))) return;  // wall-wall, buffer-buffer
+  const double f = kernel.gradient_factor(std::sqrt(r2));
+  if (fi && fj) return detail::fluid_pair<V, D, true>(a, i, j, dx, dz, r2, f, visc);
+  const bool wi = is_wall_type(ti), wj = is_wall_type(tj);
+  if (fi) return wj ? detail::fluid_wall_pair<V>(a, i, j, dx, dz, r2, f, visc) : detail::fluid_pair<V, D, false>(a, i, j, dx, dz, r2, f, visc);
+  if (fj) return wi ? detail::fluid_wall_pair<V>(a, j, i, -dx, -dz, r2, f, visc) : detail::fluid_pair<V, D, false>(a, j, i, -dx, -dz, r2, f, visc);
+  if (wi) return detail::buffer_wall_pair(a, j, i, -dx, -dz, f);
+  detail::buffer_wall_pair(a, i, j, dx, dz, f);
+}
+
+// Every pair of particles closer than the support once: each cell with itself and its forward
+// neighbours, the cells of a colour phase in parallel (cell_pairs.hpp). Returns the max viscous rate.
+template <class K, Viscosity V, DensityDiffusion D>
+double pair_loop(const PairArrays& a, const K& kernel, const ParticleSet& ps, const CellList& cells) {
+  const std::vector<std::vector<int>> phases = colour_phases(cells.grid());
+  const std::uint8_t* type = ps.type.data();
+  double visc = 0.0;
+#pragma omp parallel if (use_threads(ps.size())) reduction(max : visc)
+  for (const std::vector<int>& phase : phases) {
+#pragma omp for schedule(dynamic, 8)
+    for (std::size_t k = 0; k < phase.size(); ++k) {
+      const int c = phase[k];
+      const int first = cells.cell_start(c), last = cells.cell_start(c + 1);
+      if (first == last) continue;
+      CellRun runs[4];
+      const int n_runs = forward_runs(cells, c, runs);
+      // The cell's own later particles and, when it follows them in sorted order (the E neighbour,
+      // or the next row's run when the cells between are empty), the first forward run: one run.
+      const bool first_follows = n_runs > 0 && runs[0].begin == last && runs[0].shift_x == 0.0;
+      const int own_end = first_follows ? runs[0].end : last;
+      for (int i = first; i < last; ++i) {
+        for (int j = i + 1; j < own_end; ++j) pair<K, V, D>(a, kernel, type, i, j, 0.0, visc);
+        for (int r = first_follows ? 1 : 0; r < n_runs; ++r)
+          for (int j = runs[r].begin; j < runs[r].end; ++j) pair<K, V, D>(a, kernel, type, i, j, runs[r].shift_x, visc);
+      }
+    }
+  }
+  return visc;
+}
+
+// The log law's wall shear on the first fluid layer (wall_function.hpp). Wall normal n along the
+// nearest wall particle's ghost offset g - b = 2 (q - b); distance to the wall surface
+// d = (x_i - x_b) . n - |g - b| / 2; velocity relative to the wall particle's own (moving walls).
+WallShearAcceleration wall_function_term(const ParticleSet& ps, const SolverSettings& s, const Scratch& w, int i) {
+  const int b = w.nearest[i];
+  const double g_len = std::hypot(ps.ghost_dx[b], ps.ghost_dz[b]);
+  if (!(g_len > 0.0)) return {};
+  const double nx = ps.ghost_dx[b] / g_len, nz = ps.ghost_dz[b] / g_len;
+  const double d_wall = w.nearest_dx[i] * nx + w.nearest_dz[i] * nz - 0.5 * g_len;
+  return wall_shear_acceleration(ps.u[i] - ps.u[b], ps.w[i] - ps.w[b], nx, nz, d_wall, s.dx, s.viscosity.kinematic_viscosity);
+}
+
+// After the pair loop: a fluid particle's wall shear and body force (returns |a|^2); everything else
+// keeps no acceleration, and a density rate only if it is a DBC wall.
+double finish_particle(ParticleSet& ps, const SolverSettings& s, const Scratch& w, int i) {
+  if (ps.type[i] != kFluid) {
+    if (!(s.boundary == BoundaryMethod::dbc && is_wall_type(ps.type[i]))) ps.drho[i] = 0.0;
+    ps.ax[i] = ps.az[i] = 0.0;
+    return 0.0;
+  }
+  if (s.viscosity.model == Viscosity::laminar_sps && s.viscosity.wall_function_shear && w.nearest[i] >= 0) {
+    const WallShearAcceleration shear = wall_function_term(ps, s, w, i);
+    ps.ax[i] += shear.ax;
+    ps.az[i] += shear.az;
+  }
+  ps.ax[i] += s.body_force_x;
+  ps.az[i] += s.body_force_z;
+  return ps.ax[i] * ps.ax[i] + ps.az[i] * ps.az[i];
+}
+
+// laminar_sps: the SPS stress of every fluid particle from its velocity gradient of this call, for the
+// next interaction (one half step later, as in DualSPHysics, Dominguez et al. 2022, instead of a
+// second pair loop); with a mixing length near walls Prandtl's l = min(l_m, kappa d), d the distance
+// to the nearest wall particle within the support (none: infinity, or the fixed walls' table value
+// with "whole_domain"). Returns max nu_t.
+double update_sps_stress(ParticleSet& ps, const SolverSettings& s, const Scratch& w, const WallDistanceTable* wall_distances) {
+  const Eigen::Index n = ps.size();
+  const bool near_walls = s.viscosity.sps_length_near_walls;
+  double max_nu_t = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : max_nu_t) if (use_threads(n))
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (ps.type[i] != kFluid) {
+      ps.tau_xx[i] = ps.tau_xz[i] = ps.tau_zz[i] = 0.0;
+      continue;
+    }
+    double length = s.viscosity.sps_length;
+    if (near_walls) {
+      const double d = w.nearest[i] < 0 && wall_distances != nullptr ? wall_distances->at(ps.x[i], ps.z[i]) : std::sqrt(w.nearest_r2[i]);
+      length = mixing_length_near_wall(s.viscosity.sps_length, d, s.dx);
+    }
+    const double* gi = w.grad.data() + 4 * static_cast<std::size_t>(i);
+    const SpsStress t = sps_stress(gi[0], gi[1], gi[2], gi[3], length, s.viscosity.blin, s.dx);
+    ps.tau_xx[i] = t.xx;
+    ps.tau_xz[i] = t.xz;
+    ps.tau_zz[i] = t.zz;
+    max_nu_t = std::max(max_nu_t, t.eddy_viscosity);
+  }
+  return max_nu_t;
+}
+
+template <class K, Viscosity V, DensityDiffusion D>
 InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, const SolverSettings& s, const K& kernel,
                                      const WallDistanceTable* wall_distances) {
-  const int n_cells = cells.cell_count();
-  const double* x = ps.x.data();
-  const double* z = ps.z.data();
-  const double* u = ps.u.data();
-  const double* w = ps.w.data();
-  const double* rho = ps.rho.data();
-  const double* p = ps.p.data();
-  const double* m = ps.mass.data();
-  const double* txx = ps.tau_xx.data();
-  const double* txz = ps.tau_xz.data();
-  const double* tzz = ps.tau_zz.data();
-  const double* wall_u = ps.wall_u.data();
-  const double* wall_w = ps.wall_w.data();
-  const std::uint8_t* type = ps.type.data();
-  double* ax = ps.ax.data();
-  double* az = ps.az.data();
-  double* drho = ps.drho.data();
-
-  const double support2 = s.support() * s.support();
-  const double eta2 = s.eta2();
-  const double h = s.h;
-  const double alpha_c0_h = s.viscosity.artificial_alpha * s.eos.c0 * h;
-  const double wall_factor = s.viscosity.artificial_wall_factor;
-  const double delta_h_c0 = s.density.diffusion_delta * h * s.eos.c0;
-  const double rho0 = s.eos.rho0, b = s.eos.b;
-  const double gz = s.body_force_z;
-  const bool artificial = s.viscosity.model == Viscosity::artificial;
-  const bool sps = s.viscosity.model == Viscosity::laminar_sps;
-  const bool diffusion = s.density.diffusion != DensityDiffusion::none && delta_h_c0 > 0.0;
-  const bool fourtakas = s.density.diffusion == DensityDiffusion::fourtakas;
-  const bool dbc = s.boundary == BoundaryMethod::dbc;
-  const double nu0 = s.viscosity.kinematic_viscosity;
-  const bool free_slip_walls = sps && s.viscosity.viscous_walls_free_slip;
-  const bool wall_function = sps && s.viscosity.wall_function_shear;
-
-  // V_j = m_j / rho_j, once per particle instead of once per pair.
+  Scratch w;
+  const PairArrays a = pair_arrays(ps, s, w);
+  const double max_visc = pair_loop<K, V, D>(a, kernel, ps, cells);
   const Eigen::Index n = ps.size();
-  const bool threads = use_threads(n);
-  std::vector<double> volume_store(static_cast<std::size_t>(n));
-  double* volume = volume_store.data();
-#pragma omp parallel for schedule(static) if (threads)
-  for (Eigen::Index i = 0; i < n; ++i) volume[i] = m[i] / rho[i];
-
-  // laminar_sps: the velocity gradient of every fluid particle, accumulated in the pair loop; the SPS
-  // stress made from it after the loop is used by the next interaction (one half step later), as in
-  // DualSPHysics (Dominguez et al. 2022), instead of a second pair loop:
-  //   grad v_i = sum_j V_j (v_j - v_i) (x) grad_i W_ij
-  std::vector<double> grad_store(sps ? 4 * static_cast<std::size_t>(n) : 0, 0.0);
-  double* grad = grad_store.data();
-  // With a mixing length: the distance from each fluid particle to the nearest wall particle within
-  // the kernel support (none: infinity, or the fixed walls' table value with "whole_domain"), for
-  // Prandtl's l = min(l_m, kappa d).
-  const bool wall_distance_needed = sps && s.viscosity.sps_length_near_walls;
-  std::vector<double> wall_distance_store(wall_distance_needed ? static_cast<std::size_t>(n) : 0,
-                                          std::numeric_limits<double>::infinity());
-  double* wall_distance = wall_distance_store.data();
-  // The nearest wall particle of each fluid particle: its distance for the mixing length, its ghost
-  // offset for the wall function.
-  const bool nearest_wall_needed = wall_distance_needed || wall_function;
-
-  double max_acc2 = 0.0, max_visc = 0.0;
-#pragma omp parallel for schedule(dynamic, 16) reduction(max : max_acc2, max_visc) if (threads)
-  for (int c = 0; c < n_cells; ++c) {
-    const int first = cells.cell_start(c), last = cells.cell_start(c + 1);
-    if (first == last) continue;
-    NeighbourRange ranges[9];
-    const int n_ranges = cells.neighbour_ranges(c, ranges);
-    for (int i = first; i < last; ++i) {
-      const double xi = x[i], zi = z[i], ui = u[i], wi = w[i], rhoi = rho[i];
-      if (type[i] != kFluid) {
-        // Boundary particle (DBC, boundary_dbc.hpp): continuity with the fluid (and open-boundary
-        // buffer) neighbours only; it does not move. With mDBC its density comes from the ghost node
-        // instead. Buffer particles get no rates: their buffer imposes their state.
-        double d = 0.0;
-        if (dbc && is_wall_type(type[i])) {
-          for (int k = 0; k < n_ranges; ++k) {
-            const NeighbourRange rg = ranges[k];
-            for (int j = rg.begin; j < rg.end; ++j) {
-              if (is_wall_type(type[j])) continue;
-              const double dx = xi - (x[j] + rg.shift_x), dz = zi - z[j];
-              const double r2 = dx * dx + dz * dz;
-              if (r2 >= support2) continue;
-              // relative to the wall's own velocity (zero unless it is a moving wall)
-              d += dbc_density_rate_pair(m[j], kernel.gradient_factor(std::sqrt(r2)), u[j] - ui, w[j] - wi, dx, dz);
-            }
-          }
-        }
-        drho[i] = d;
-        ax[i] = 0.0;
-        az[i] = 0.0;
-        continue;
-      }
-      const double pi = p[i], inv_rhoi = 1.0 / rhoi;
-      double d = 0.0, fx = 0.0, fz = 0.0, visc_rate = 0.0;
-      double dudx = 0.0, dudz = 0.0, dwdx = 0.0, dwdz = 0.0;
-      // The nearest wall particle within the support and the offset x_i - x_j to it.
-      int nearest_wall = -1;
-      double nearest_r2 = std::numeric_limits<double>::infinity(), nearest_dx = 0.0, nearest_dz = 0.0;
-      for (int k = 0; k < n_ranges; ++k) {
-        const NeighbourRange rg = ranges[k];
-        for (int j = rg.begin; j < rg.end; ++j) {
-          const double dx = xi - (x[j] + rg.shift_x), dz = zi - z[j];
-          const double r2 = dx * dx + dz * dz;
-          if (r2 >= support2 || j == i) continue;
-          const double f = kernel.gradient_factor(std::sqrt(r2));
-          const double gx = f * dx, gzw = f * dz;  // grad_i W_ij
-          const double du = ui - u[j], dw = wi - w[j];
-          const double v_dot_r = du * dx + dw * dz;
-          const double mj = m[j], vj = volume[j];
-          // Continuity: m_j v_ij . grad_i W_ij
-          d += mj * (du * gx + dw * gzw);
-          // Inflow/outflow buffer neighbours act like fluid (their imposed velocity and density).
-          const bool fluid_j = !is_wall_type(type[j]);
-          if (nearest_wall_needed && !fluid_j && r2 < nearest_r2) {
-            nearest_r2 = r2;
-            nearest_wall = j;
-            nearest_dx = dx;
-            nearest_dz = dz;
-          }
-          if (diffusion && fluid_j) {
-            double jump = rho[j] - rhoi;
-            if (fourtakas) jump -= hydrostatic_density_difference(rho0, b, gz, -dz);
-            d += density_diffusion_pair(delta_h_c0, f, jump, vj);
-          }
-          // Pressure: -m_j (p_i + p_j)/(rho_i rho_j) grad_i W_ij
-          double scalar = -vj * (pi + p[j]) * inv_rhoi;
-          if (v_dot_r < 0.0) {
-            // Approaching pair: the viscous time-step condition, and the artificial viscosity.
-            const double dot_rr2 = v_dot_r / (r2 + eta2);
-            visc_rate = std::max(visc_rate, -h * dot_rr2);
-            if (artificial)
-              scalar -= (fluid_j ? 1.0 : wall_factor) * mj *
-                        artificial_viscosity_pair(alpha_c0_h, v_dot_r, r2, eta2, rhoi, rho[j]);
-          }
-          if (!artificial) {
-            // Boundary neighbours enter with their mDBC wall velocity, no-slip or slip (zero with DBC).
-            const double lam = mj * laminar_viscosity_pair(nu0, f, r2, eta2, rhoi, rho[j]);
-            const double du_visc = fluid_j ? du : ui - wall_u[j];
-            const double dw_visc = fluid_j ? dw : wi - wall_w[j];
-            fx += lam * du_visc;
-            fz += lam * dw_visc;
-            if (sps) {
-              // Free slip: wall neighbours enter the gradient with their slip velocity (mDBC), as in
-              // the laminar term, so the wall's shear is not sensed; no slip: with their own (zero
-              // unless moving).
-              const double gu = free_slip_walls ? du_visc : du;
-              const double gw = free_slip_walls ? dw_visc : dw;
-              dudx -= vj * gu * gx;
-              dudz -= vj * gu * gzw;
-              dwdx -= vj * gw * gx;
-              dwdz -= vj * gw * gzw;
-              // m_j (tau_i/rho_i^2 + tau_j/rho_j^2) . grad_i W (tau stored divided by rho)
-              const double inv_rhoj = vj / mj;
-              const double sxx = txx[i] * inv_rhoi + txx[j] * inv_rhoj;
-              const double sxz = txz[i] * inv_rhoi + txz[j] * inv_rhoj;
-              const double szz = tzz[i] * inv_rhoi + tzz[j] * inv_rhoj;
-              fx += mj * (sxx * gx + sxz * gzw);
-              fz += mj * (sxz * gx + szz * gzw);
-            }
-          }
-          fx += scalar * gx;
-          fz += scalar * gzw;
-        }
-      }
-      if (sps) {
-        double* gi = grad + 4 * static_cast<std::size_t>(i);
-        gi[0] = dudx;
-        gi[1] = dudz;
-        gi[2] = dwdx;
-        gi[3] = dwdz;
-        if (wall_distance_needed)
-          wall_distance[i] = nearest_wall < 0 && wall_distances != nullptr ? wall_distances->at(xi, zi) : std::sqrt(nearest_r2);
-      }
-      if (wall_function && nearest_wall >= 0) {
-        // The log law's wall shear on the first fluid layer (wall_function.hpp). Wall normal n along the
-        // nearest wall particle's ghost offset g - b = 2 (q - b); distance to the wall surface
-        // d = (x_i - x_b) . n - |g - b| / 2; velocity relative to the wall particle's own (moving walls).
-        const double g_len = std::hypot(ps.ghost_dx[nearest_wall], ps.ghost_dz[nearest_wall]);
-        if (g_len > 0.0) {
-          const double nx = ps.ghost_dx[nearest_wall] / g_len, nz = ps.ghost_dz[nearest_wall] / g_len;
-          const double d_wall = nearest_dx * nx + nearest_dz * nz - 0.5 * g_len;
-          const WallShearAcceleration a = wall_shear_acceleration(ui - u[nearest_wall], wi - w[nearest_wall], nx, nz, d_wall,
-                                                                  s.dx, nu0);
-          fx += a.ax;
-          fz += a.az;
-        }
-      }
-      drho[i] = d;
-      ax[i] = fx + s.body_force_x;
-      az[i] = fz + s.body_force_z;
-      max_acc2 = std::max(max_acc2, ax[i] * ax[i] + az[i] * az[i]);
-      max_visc = std::max(max_visc, visc_rate);
-    }
-  }
-  double max_nu_t = 0.0;
-  if (sps) {
-#pragma omp parallel for schedule(static) reduction(max : max_nu_t) if (threads)
-    for (Eigen::Index i = 0; i < n; ++i) {
-      if (type[i] != kFluid) {
-        ps.tau_xx[i] = ps.tau_xz[i] = ps.tau_zz[i] = 0.0;
-        continue;
-      }
-      const double* gi = grad + 4 * static_cast<std::size_t>(i);
-      const double length = wall_distance_needed ? mixing_length_near_wall(s.viscosity.sps_length, wall_distance[i], s.dx) : s.viscosity.sps_length;
-      const SpsStress t = sps_stress(gi[0], gi[1], gi[2], gi[3], length, s.viscosity.blin, s.dx);
-      ps.tau_xx[i] = t.xx;
-      ps.tau_xz[i] = t.xz;
-      ps.tau_zz[i] = t.zz;
-      max_nu_t = std::max(max_nu_t, t.eddy_viscosity);
-    }
-  }
+  double max_acc2 = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : max_acc2) if (use_threads(n))
+  for (Eigen::Index i = 0; i < n; ++i) max_acc2 = std::max(max_acc2, finish_particle(ps, s, w, static_cast<int>(i)));
+  const double max_nu_t = V == Viscosity::laminar_sps ? update_sps_stress(ps, s, w, wall_distances) : 0.0;
   return InteractionSummary{std::sqrt(max_acc2), max_visc, max_nu_t};
+}
+
+template <class K, Viscosity V>
+InteractionSummary with_diffusion(ParticleSet& ps, const CellList& cells, const SolverSettings& s, const K& kernel,
+                                  const WallDistanceTable* wall_distances) {
+  const DensityDiffusion d = s.density.diffusion_delta > 0.0 ? s.density.diffusion : DensityDiffusion::none;
+  if (d == DensityDiffusion::molteni) return interactions_with<K, V, DensityDiffusion::molteni>(ps, cells, s, kernel, wall_distances);
+  if (d == DensityDiffusion::fourtakas) return interactions_with<K, V, DensityDiffusion::fourtakas>(ps, cells, s, kernel, wall_distances);
+  return interactions_with<K, V, DensityDiffusion::none>(ps, cells, s, kernel, wall_distances);
+}
+
+template <class K>
+InteractionSummary with_model(ParticleSet& ps, const CellList& cells, const SolverSettings& s, const K& kernel,
+                              const WallDistanceTable* wall_distances) {
+  if (s.viscosity.model == Viscosity::artificial) return with_diffusion<K, Viscosity::artificial>(ps, cells, s, kernel, wall_distances);
+  return with_diffusion<K, Viscosity::laminar_sps>(ps, cells, s, kernel, wall_distances);
 }
 
 }  // namespace
@@ -258,8 +233,8 @@ void compute_pressure(ParticleSet& ps, const SolverSettings& s) {
 
 InteractionSummary compute_interactions(ParticleSet& ps, const CellList& cells, const SolverSettings& s,
                                         const WallDistanceTable* wall_distances) {
-  if (s.kernel == KernelType::wendland_c2) return interactions_with(ps, cells, s, WendlandC2(s.h), wall_distances);
-  return interactions_with(ps, cells, s, CubicSpline(s.h), wall_distances);
+  if (s.kernel == KernelType::wendland_c2) return with_model(ps, cells, s, WendlandC2(s.h), wall_distances);
+  return with_model(ps, cells, s, CubicSpline(s.h), wall_distances);
 }
 
 }  // namespace hydrojump::sph

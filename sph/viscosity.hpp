@@ -54,20 +54,19 @@ namespace hydrojump::sph {
 
 using cases::Viscosity;  // sph.viscosity (cases/options.hpp)
 
-// Pi_ij (m^2/s^2 per kg/m^3 scaled): returns the factor P with  dv_i/dt += -m_j P grad_i W_ij.
-//   P = -alpha c0 mu_ij / rho_ij  for approaching particles.
-inline double artificial_viscosity_pair(double alpha_c0_h, double v_dot_r, double r2, double eta2, double rho_i,
-                                        double rho_j) {
-  if (v_dot_r >= 0.0) return 0.0;
-  const double mu_over_h = v_dot_r / (r2 + eta2);
-  return -alpha_c0_h * mu_over_h * 2.0 / (rho_i + rho_j);
-}
+// The pair loop shares one division a pair among these terms:
+//   approach_ij = v_ij.r_ij / ((r_ij^2 + eta^2)(rho_i + rho_j))  for approaching particles (v.r < 0), else 0,
+//   inv_ij = 1 / ((r_ij^2 + eta^2)(rho_i + rho_j)).
 
-// Laminar factor L with  dv_i/dt += m_j L v_ij:
-//   L = 4 nu0 (r_ij . grad_i W_ij) / ((rho_i + rho_j)(r_ij^2 + eta^2)),  r.gradW = F r^2.
-inline double laminar_viscosity_pair(double nu0, double gradient_factor, double r2, double eta2, double rho_i,
-                                     double rho_j) {
-  return 4.0 * nu0 * gradient_factor * r2 / ((rho_i + rho_j) * (r2 + eta2));
+// Pi_ij (m^2/s^2 per kg/m^3 scaled) with  dv_i/dt += -m_j Pi_ij grad_i W_ij  (and j alike):
+//   Pi_ij = -alpha c0 mu_ij / rho_ij = -2 alpha c0 h approach_ij,  mu_ij = h v.r/(r^2 + eta^2),
+//   rho_ij = (rho_i + rho_j)/2.
+inline double artificial_viscosity_pair(double alpha_c0_h, double approach) { return -2.0 * alpha_c0_h * approach; }
+
+// Laminar factor L with  dv_i/dt += m_j L v_ij  (and dv_j/dt += -m_i L v_ij):
+//   L = 4 nu0 (r_ij . grad_i W_ij) / ((rho_i + rho_j)(r_ij^2 + eta^2)) = 4 nu0 F r^2 inv_ij,  r.gradW = F r^2.
+inline double laminar_viscosity_pair(double nu0, double gradient_factor, double r2, double inv) {
+  return 4.0 * nu0 * gradient_factor * r2 * inv;
 }
 
 // Prandtl's mixing length near a wall: l = min(l_m, kappa d), kappa = 0.41, d the distance from the
