@@ -26,6 +26,7 @@ namespace hydrojump::sph {
 // term, so it carries no branch on the model.
 namespace {
 
+using detail::OwnSums;
 using detail::PairArrays;
 
 constexpr std::uint8_t kFluid = static_cast<std::uint8_t>(ParticleType::fluid);
@@ -69,7 +70,7 @@ PairArrays pair_arrays(ParticleSet& ps, const SolverSettings& s, Scratch& w) {
   a.x = ps.x.data(), a.z = ps.z.data(), a.u = ps.u.data(), a.w = ps.w.data(), a.rho = ps.rho.data(), a.p = ps.p.data();
   a.m = ps.mass.data(), a.volume = w.volume.data(), a.inv_rho = w.inv_rho.data();
   a.sxx = w.sxx.data(), a.sxz = w.sxz.data(), a.szz = w.szz.data(), a.wall_u = ps.wall_u.data(), a.wall_w = ps.wall_w.data();
-  a.drho = ps.drho.data(), a.ax = ps.ax.data(), a.az = ps.az.data(), a.grad = w.grad.data();
+  a.drho = ps.drho.data(), a.ax = ps.ax.data(), a.az = ps.az.data(), a.grad = sps ? w.grad.data() : nullptr;
   a.nearest_r2 = w.nearest_r2.data(), a.nearest_dx = w.nearest_dx.data(), a.nearest_dz = w.nearest_dz.data();
   a.nearest = w.nearest.data();
   a.support2 = s.support() * s.support();
@@ -85,22 +86,41 @@ PairArrays pair_arrays(ParticleSet& ps, const SolverSettings& s, Scratch& w) {
   return a;
 }
 
-// Pair (i, j) with j at x_j + shift_x: its terms by the kinds of the two particles (pair_terms.hpp).
+// A pair that is not fluid-fluid, by the kinds of its particles (pair_terms.hpp); the fluid one's
+// terms go to its arrays at once. Out of line: the fluid-fluid pairs are the loop's work.
 template <class K, Viscosity V, DensityDiffusion D>
-inline void pair(const PairArrays& a, const K& kernel, const std::uint8_t* type, int i, int j, double shift_x, double& visc) {
+[[gnu::noinline]] void mixed_pair(const PairArrays& a, const K& kernel, std::uint8_t ti, std::uint8_t tj, int i, int j, double dx,
+                                  double dz, double r2, double& visc) {
+  const bool wi = is_wall_type(ti), wj = is_wall_type(tj);
+  if (ti != kFluid && tj != kFluid && wi == wj) return;  // wall-wall, buffer-buffer
+  const double f = kernel.gradient_factor(std::sqrt(r2));
+  OwnSums own;
+  if (ti == kFluid) {
+    if (wj) detail::fluid_wall_pair<V>(a, i, j, dx, dz, r2, f, own, visc);
+    else detail::fluid_pair<V, D, false>(a, i, j, dx, dz, r2, f, own, visc);
+    own.add_to(a, i);
+  } else if (tj == kFluid) {
+    if (wi) detail::fluid_wall_pair<V>(a, j, i, -dx, -dz, r2, f, own, visc);
+    else detail::fluid_pair<V, D, false>(a, j, i, -dx, -dz, r2, f, own, visc);
+    own.add_to(a, j);
+  } else if (wi) {
+    detail::buffer_wall_pair(a, j, i, -dx, -dz, f);
+  } else {
+    detail::buffer_wall_pair(a, i, j, dx, dz, f);
+  }
+}
+
+// Pair (i, j) with j at x_j + shift_x: i's terms of a fluid-fluid pair into `own`, j's into the arrays.
+template <class K, Viscosity V, DensityDiffusion D>
+inline void pair(const PairArrays& a, const K& kernel, const std::uint8_t* type, int i, int j, double shift_x, OwnSums& own,
+                 double& visc) {
   const double dx = a.x[i] - (a.x[j] + shift_x), dz = a.z[i] - a.z[j];
   const double r2 = dx * dx + dz * dz;
   if (r2 >= a.support2) return;
-  const std::uint8_t ti = type[i], tj = type[j];
-  const bool fi = ti == kFluid, fj = tj == kFluid;
-  if (!fi && !fj && (is_wall_type(ti) == is_wall_type(tj))) return;  // wall-wall, buffer-buffer
-  const double f = kernel.gradient_factor(std::sqrt(r2));
-  if (fi && fj) return detail::fluid_pair<V, D, true>(a, i, j, dx, dz, r2, f, visc);
-  const bool wi = is_wall_type(ti), wj = is_wall_type(tj);
-  if (fi) return wj ? detail::fluid_wall_pair<V>(a, i, j, dx, dz, r2, f, visc) : detail::fluid_pair<V, D, false>(a, i, j, dx, dz, r2, f, visc);
-  if (fj) return wi ? detail::fluid_wall_pair<V>(a, j, i, -dx, -dz, r2, f, visc) : detail::fluid_pair<V, D, false>(a, j, i, -dx, -dz, r2, f, visc);
-  if (wi) return detail::buffer_wall_pair(a, j, i, -dx, -dz, f);
-  detail::buffer_wall_pair(a, i, j, dx, dz, f);
+  if (type[i] == kFluid && type[j] == kFluid)
+    detail::fluid_pair<V, D, true>(a, i, j, dx, dz, r2, kernel.gradient_factor(std::sqrt(r2)), own, visc);
+  else
+    mixed_pair<K, V, D>(a, kernel, type[i], type[j], i, j, dx, dz, r2, visc);
 }
 
 // Every pair of particles closer than the support once: each cell with itself and its forward
@@ -124,9 +144,11 @@ double pair_loop(const PairArrays& a, const K& kernel, const ParticleSet& ps, co
       const bool first_follows = n_runs > 0 && runs[0].begin == last && runs[0].shift_x == 0.0;
       const int own_end = first_follows ? runs[0].end : last;
       for (int i = first; i < last; ++i) {
-        for (int j = i + 1; j < own_end; ++j) pair<K, V, D>(a, kernel, type, i, j, 0.0, visc);
+        OwnSums own;
+        for (int j = i + 1; j < own_end; ++j) pair<K, V, D>(a, kernel, type, i, j, 0.0, own, visc);
         for (int r = first_follows ? 1 : 0; r < n_runs; ++r)
-          for (int j = runs[r].begin; j < runs[r].end; ++j) pair<K, V, D>(a, kernel, type, i, j, runs[r].shift_x, visc);
+          for (int j = runs[r].begin; j < runs[r].end; ++j) pair<K, V, D>(a, kernel, type, i, j, runs[r].shift_x, own, visc);
+        own.add_to(a, i);
       }
     }
   }

@@ -35,7 +35,7 @@ struct PairArrays {
   const double *volume = nullptr, *inv_rho = nullptr, *sxx = nullptr, *sxz = nullptr, *szz = nullptr;
   const double *wall_u = nullptr, *wall_w = nullptr;
   double *drho = nullptr, *ax = nullptr, *az = nullptr;
-  double* grad = nullptr;  // 4 per particle (du/dx, du/dz, dw/dx, dw/dz)
+  double* grad = nullptr;  // laminar_sps: 4 per particle (du/dx, du/dz, dw/dx, dw/dz); else none
   double *nearest_r2 = nullptr, *nearest_dx = nullptr, *nearest_dz = nullptr;
   int* nearest = nullptr;
   double support2 = 0.0, eta2 = 0.0, h = 0.0, alpha_c0_h = 0.0, wall_factor = 0.0, delta_h_c0 = 0.0, nu0 = 0.0;
@@ -43,10 +43,23 @@ struct PairArrays {
   bool free_slip_walls = false, nearest_wall_needed = false, dbc = false;
 };
 
+// What particle i gathers over the pairs the loop meets from it, added to its arrays once after them
+// (add_to); j's terms go to the arrays at once.
+struct OwnSums {
+  double d = 0.0, ax = 0.0, az = 0.0, grad[4] = {0.0, 0.0, 0.0, 0.0};
+  void add_to(const PairArrays& a, int i) const {
+    a.drho[i] += d;
+    a.ax[i] += ax;
+    a.az[i] += az;
+    if (a.grad != nullptr)
+      for (int k = 0; k < 4; ++k) a.grad[4 * static_cast<std::size_t>(i) + k] += grad[k];
+  }
+};
+
 // Fluid particle i and fluid-side particle j (fluid or, with Both = false, a buffer particle that
 // receives nothing) at offset (dx, dz) = r_i - r_j, r2 < support^2, F = f.
 template <Viscosity V, DensityDiffusion D, bool Both>
-inline void fluid_pair(const PairArrays& a, int i, int j, double dx, double dz, double r2, double f, double& visc) {
+inline void fluid_pair(const PairArrays& a, int i, int j, double dx, double dz, double r2, double f, OwnSums& own, double& visc) {
   const double gx = f * dx, gz = f * dz;
   const double du = a.u[i] - a.u[j], dw = a.w[i] - a.w[j];
   const double v_dot_r = du * dx + dw * dz;
@@ -83,11 +96,10 @@ inline void fluid_pair(const PairArrays& a, int i, int j, double dx, double dz, 
     azi += mj * (lam * dw + tz);
     axj -= mi * (lam * du + tx);
     azj -= mi * (lam * dw + tz);
-    double* gi = a.grad + 4 * static_cast<std::size_t>(i);
-    gi[0] -= vj * du * gx;
-    gi[1] -= vj * du * gz;
-    gi[2] -= vj * dw * gx;
-    gi[3] -= vj * dw * gz;
+    own.grad[0] -= vj * du * gx;
+    own.grad[1] -= vj * du * gz;
+    own.grad[2] -= vj * dw * gx;
+    own.grad[3] -= vj * dw * gz;
     if constexpr (Both) {
       double* gj = a.grad + 4 * static_cast<std::size_t>(j);
       gj[0] -= vi * du * gx;
@@ -96,9 +108,9 @@ inline void fluid_pair(const PairArrays& a, int i, int j, double dx, double dz, 
       gj[3] -= vi * dw * gz;
     }
   }
-  a.drho[i] += rate_i;
-  a.ax[i] += axi;
-  a.az[i] += azi;
+  own.d += rate_i;
+  own.ax += axi;
+  own.az += azi;
   if constexpr (Both) {
     a.drho[j] += rate_j;
     a.ax[j] += axj;
@@ -108,7 +120,7 @@ inline void fluid_pair(const PairArrays& a, int i, int j, double dx, double dz, 
 
 // Fluid particle i and wall particle b at offset (dx, dz) = r_i - r_b, r2 < support^2, F = f.
 template <Viscosity V>
-inline void fluid_wall_pair(const PairArrays& a, int i, int b, double dx, double dz, double r2, double f, double& visc) {
+inline void fluid_wall_pair(const PairArrays& a, int i, int b, double dx, double dz, double r2, double f, OwnSums& own, double& visc) {
   if (a.nearest_wall_needed && r2 < a.nearest_r2[i]) {
     a.nearest_r2[i] = r2;
     a.nearest[i] = b;
@@ -120,7 +132,7 @@ inline void fluid_wall_pair(const PairArrays& a, int i, int b, double dx, double
   const double v_dot_r = du * dx + dw * dz;
   const double mb = a.m[b], rho_sum = a.rho[i] + a.rho[b];
   const double dot = du * gx + dw * gz;
-  a.drho[i] += mb * dot;
+  own.d += mb * dot;
   if (a.dbc) a.drho[b] += dbc_density_rate_pair(a.m[i], f, du, dw, -dx, -dz);
   const double inv = 1.0 / ((r2 + a.eta2) * rho_sum);
   const double approach = v_dot_r < 0.0 ? v_dot_r * inv : 0.0;
@@ -138,14 +150,13 @@ inline void fluid_wall_pair(const PairArrays& a, int i, int b, double dx, double
     // wall's own velocity (zero unless moving).
     const double gu = a.free_slip_walls ? du_v : du, gw = a.free_slip_walls ? dw_v : dw;
     const double vb = a.volume[b];
-    double* gi = a.grad + 4 * static_cast<std::size_t>(i);
-    gi[0] -= vb * gu * gx;
-    gi[1] -= vb * gu * gz;
-    gi[2] -= vb * gw * gx;
-    gi[3] -= vb * gw * gz;
+    own.grad[0] -= vb * gu * gx;
+    own.grad[1] -= vb * gu * gz;
+    own.grad[2] -= vb * gw * gx;
+    own.grad[3] -= vb * gw * gz;
   }
-  a.ax[i] += axi;
-  a.az[i] += azi;
+  own.ax += axi;
+  own.az += azi;
 }
 
 // DBC wall b and buffer particle j at offset (dx, dz) = r_j - r_b: the wall's continuity only.
