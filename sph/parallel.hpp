@@ -1,7 +1,8 @@
 // When the particle loops use OpenMP threads. Below this many particles a time step takes well
 // under a millisecond and the fork/join of a parallel region costs more than it saves (on a loaded
 // machine much more: a descheduled thread stalls every barrier), so small runs stay on one thread.
-// Results do not depend on this choice: every loop gathers per particle.
+// Results do not depend on this choice: every loop adds to a particle in a fixed order (the pair
+// loop runs its cells in colour phases, cell_pairs.hpp).
 #pragma once
 
 #include <Eigen/Core>

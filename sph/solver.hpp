@@ -17,7 +17,8 @@
 // positions), then the fluid particles' displacement down it after the corrector.
 //
 // interactions() sorts the particles by cell (the order of the neighbour search), computes the
-// boundary densities (mDBC), pressures, SPS stresses and the rates. All loops gather per particle,
+// boundary densities (mDBC), pressures, SPS stresses and the rates. Every loop adds to a particle in a
+// fixed order (the pair loop: each pair once, cells in colour phases, cell_pairs.hpp),
 // so a step gives the same result with any number of OpenMP threads.
 #pragma once
 

@@ -428,7 +428,7 @@ TEST_CASE("results do not depend on the number of threads", "[sph][threads]") {
     results.push_back(positions_by_id(solver.particles()));
   }
   omp_set_num_threads(threads_before);
-  // Every particle gathers its own sums in a fixed neighbour order: bit-identical results.
+  // Every particle receives its pair terms in a fixed order (colour phases): bit-identical results.
   CHECK(results[0] == results[1]);
   CHECK(results[0] == results[2]);
 }
