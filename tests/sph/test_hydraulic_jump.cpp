@@ -87,7 +87,9 @@ TEST_CASE("SPH smooth-bed jump A_smooth holds in the basin at Belanger's ratio",
   CHECK(std::abs(mass_error) < 1e-9);
   CHECK(toe_missing == 0.0);
   CHECK(json.find("\"jump_state\": \"in_basin\"") != std::string::npos);
-  CHECK(toe_mean > basin->upstream_length_m);
+  // The held toe's time mean at the basin start within 2 y1 (the smooth bed's steadiness tolerance):
+  // the control holds it there, so it lies on either side by its fluctuation (sd ~1.6 y1 here).
+  CHECK(std::abs(toe_mean - basin->upstream_length_m) < 2.0 * basin->inflow_depth_m);
   CHECK(toe_mean < downstream_x);
   CHECK(toe_std_y1 < 2.0);
   CHECK(std::abs(ratio_error) < 0.05);
