@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "neighbour_sets.hpp"
 #include "sph/cell_pairs.hpp"
 
 using hydrojump::sph::CellGrid;
@@ -19,18 +20,14 @@ using hydrojump::sph::CellRun;
 
 namespace {
 
-using PairSet = std::set<std::pair<int, int>>;  // (lower index, higher index)
+using PairSet = neighbour_test::PairSet;  // here (lower index, higher index)
 
-PairSet brute_force(const Eigen::VectorXd& x, const Eigen::VectorXd& z, double radius, double period) {
-  PairSet pairs;
-  for (int i = 0; i < x.size(); ++i)
-    for (int j = i + 1; j < x.size(); ++j) {
-      double dx = x[i] - x[j];
-      if (period > 0.0) dx -= period * std::round(dx / period);  // minimum image
-      const double dz = z[i] - z[j];
-      if (dx * dx + dz * dz < radius * radius) pairs.insert({i, j});
-    }
-  return pairs;
+// The pairs i < j closer than `radius` (minimum image with period > 0), by brute force.
+PairSet brute_force_once(const Eigen::VectorXd& x, const Eigen::VectorXd& z, double radius, double period) {
+  PairSet once;
+  for (const auto& [i, j] : neighbour_test::brute_force(x, z, radius, period))
+    if (i < j) once.insert({i, j});
+  return once;
 }
 
 // The pairs the half stencil meets (original indices), each required to be met once, and for each
@@ -76,35 +73,18 @@ void require_phases_disjoint(const CellList& cells, const std::vector<std::set<i
   for (int n : seen) REQUIRE(n == 1);  // every cell in exactly one phase
 }
 
-std::pair<Eigen::VectorXd, Eigen::VectorXd> random_set(int n, double lx, double lz, unsigned seed, bool clustered) {
-  std::mt19937 gen(seed);
-  std::uniform_real_distribution<double> ux(0.0, lx), uz(0.0, lz);
-  std::normal_distribution<double> spread(0.0, 0.02);
-  Eigen::VectorXd x(n), z(n);
-  for (int i = 0; i < n; ++i) {
-    if (clustered && i % 3 != 0) {
-      x[i] = std::clamp((i % 2 == 0 ? 0.002 : lx - 0.002) + spread(gen), 0.0, std::nextafter(lx, 0.0));
-      z[i] = std::clamp(0.5 * lz + spread(gen), 0.0, lz);
-    } else {
-      x[i] = ux(gen);
-      z[i] = uz(gen);
-    }
-  }
-  return {x, z};
-}
-
 }  // namespace
 
 TEST_CASE("the half stencil meets every pair once and colour phases never share a particle", "[sph][neighbours]") {
   const double radius = 0.05;
   for (const bool clustered : {false, true}) {
-    auto [x, z] = random_set(1200, 1.0, 0.4, 5u, clustered);
+    auto [x, z] = neighbour_test::random_set(1200, 1.0, 0.4, 5u, clustered);
     CellList cells;
     cells.build(x, z, CellGrid::enclosing(x, z, radius));
     std::vector<std::set<int>> written;
     const PairSet found = half_stencil_pairs(x, z, radius, cells, written);
     INFO("clustered " << clustered);
-    CHECK(found == brute_force(x, z, radius, 0.0));
+    CHECK(found == brute_force_once(x, z, radius, 0.0));
     require_phases_disjoint(cells, written);
   }
 }
@@ -114,13 +94,13 @@ TEST_CASE("the half stencil and its phases with periodic wrap in x", "[sph][neig
   // 20 columns, 3 (the fewest), 4 and 5 (one or two columns left over from a multiple of 3).
   for (const double length : {1.0, 0.16, 0.21, 0.26}) {
     for (const bool clustered : {false, true}) {
-      auto [x, z] = random_set(900, length, 0.3, 9u, clustered);
+      auto [x, z] = neighbour_test::random_set(900, length, 0.3, 9u, clustered);
       CellList cells;
       cells.build(x, z, CellGrid::periodic_x(0.0, length, z, radius));
       std::vector<std::set<int>> written;
       const PairSet found = half_stencil_pairs(x, z, radius, cells, written);
       INFO("length " << length << " (" << cells.grid().nx << " columns) clustered " << clustered);
-      const PairSet expected = brute_force(x, z, radius, length);
+      const PairSet expected = brute_force_once(x, z, radius, length);
       CHECK(found == expected);
       require_phases_disjoint(cells, written);
       int across = 0;  // some pairs really do cross the seam
