@@ -7,13 +7,13 @@
 #include <memory>
 #include <optional>
 
+#include "app/study.hpp"
 #include "util/atomic_file.hpp"
 #include "util/cli_checks.hpp"
 #include "util/fingerprint.hpp"
 #include "cases/spec_reader.hpp"
 #include "compare/record.hpp"
 #include "compare/validation_doc.hpp"
-#include "sph/cli.hpp"
 #include "hydrojump/version.hpp"
 
 namespace fs = std::filesystem;
@@ -88,7 +88,7 @@ void mark_stale(std::vector<compare::ValidationRecord>& records, const cases::St
     if (r.study != study.name) continue;
     for (const auto& c : study.cases)
       if (c.id == r.case_id && c.resolutions.count(r.resolution))
-        r.stale = sph::run_fingerprint(cases::resolved_case_text(study, c, r.resolution)) != r.run_key;
+        r.stale = method_run_key(study, c, r.resolution, r.method) != r.run_key;
   }
 }
 

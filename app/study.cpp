@@ -84,9 +84,9 @@ std::string duration_text(double seconds) {
 }
 
 // The fingerprint of case `c` at `resolution`: its resolved settings and a fingerprint of this
-// program's code. The generate, sph and vof stamps hold it with `solver_fingerprint` (the code that
-// writes and runs the solvers), the compare stamp with `source_fingerprint` (all of it), so a change
-// to the comparator re-runs only the comparisons.
+// program's code. The generate stamp holds it with `solver_fingerprint` (the code that writes and
+// runs the solvers), the compare stamp with `source_fingerprint` (all of it), so a change to the
+// comparator re-runs only the comparisons. The sph and vof stamps hold method_run_key.
 std::string case_fingerprint(const cases::Study& study, const cases::Case& c, const std::string& resolution,
                              const char* code) {
   std::string text = cases::resolved_case_text(study, c, resolution);
@@ -96,11 +96,23 @@ std::string case_fingerprint(const cases::Study& study, const cases::Case& c, co
 
 // The fingerprint of the run that case `c` at `resolution` makes: the one its SPH checkpoint carries
 // (sph::run_fingerprint: setting lines only, no comments, descriptive texts or run-control settings,
-// and the solvers' code). The sph and vof stamps hold it, so a reworded description or a relaxed
+// and the solvers' code). The settings stamp holds it, so a reworded description or a relaxed
 // stability limit keeps the solver results (and resumes an interrupted run).
 std::string run_fingerprint_of(const cases::Study& study, const cases::Case& c, const std::string& resolution) {
   return sph::run_fingerprint(cases::resolved_case_text(study, c, resolution));
 }
+
+}  // namespace
+
+std::string method_run_key(const cases::Study& study, const cases::Case& c, const std::string& resolution,
+                           const std::string& method) {
+  std::string kept;
+  for (const std::string& line : cases::method_setting_lines(cases::resolved_case_text(study, c, resolution), method))
+    kept += line + '\n';
+  return util::fingerprint(kept + "\ncode " + (method == "sph" ? sph_fingerprint : vof_fingerprint));
+}
+
+namespace {
 
 // Locks the sph and vof directories under each of `tops` that exist, so that no run started by hand
 // writes in them while the study rewrites or moves them (a run holding one makes this throw).
@@ -162,7 +174,7 @@ class StudyRunner {
     // Records of this case and code (--records) stand in for a run, unless this directory's own
     // comparison is current.
     if (util::read_text_file(dir / "compare.stamp") != compare_fingerprint)
-      if (auto imported = import_records(c, dir, run_fingerprint)) return *imported;
+      if (auto imported = import_records(c, dir)) return *imported;
     // Regenerate the case directories only when the case changed (keeps finished results).
     const auto generated_stamp = dir / "generate.stamp";
     const auto run_stamp = dir / "settings.stamp";
@@ -228,7 +240,7 @@ class StudyRunner {
       else if (std::filesystem::exists(started) && method == "sph") args.push_back("--restart");
       // A run that starts from the beginning has no earlier legs.
       if (args.back() != "--resume") std::filesystem::remove(dir / (method + ".legs"));
-      const auto stage = run_stage(c.id, method, args, dir, run_fingerprint, started);
+      const auto stage = run_stage(c.id, method, args, dir, method_run_key(study_, c, options_.resolution, method), started);
       any_solver_ok = any_solver_ok || stage.state == "done" || stage.state == "cached";
       // A stopped run wrote new outputs too: the comparison is stale.
       any_solver_ran = any_solver_ran || stage.state == "done" || stage.state == "failed" || stage.state == "stopped";
@@ -246,19 +258,20 @@ class StudyRunner {
   }
 
   // The case from its validation records (--records) when every method asked for has one whose key is
-  // this case's run fingerprint: the study report reads them instead of a run. A record with another key
-  // is stale (other settings or other solver code) and is said so; the case then runs.
-  std::optional<CaseResult> import_records(const cases::Case& c, const std::filesystem::path& dir,
-                                           const std::string& run_fingerprint) {
+  // this case's key for that method (method_run_key): the study report reads them instead of a run. A
+  // record with another key is stale (other settings or other solver code) and is said so; the case
+  // then runs.
+  std::optional<CaseResult> import_records(const cases::Case& c, const std::filesystem::path& dir) {
     if (options_.records.empty() || options_.force) return std::nullopt;
     std::vector<compare::ValidationRecord> found;
     for (const auto& method : options_.methods) {
       const auto file = compare::record_file(options_.records, study_.name, c.id, method, options_.resolution);
       const auto record = compare::read_record_if_present(file);
       if (!record) return std::nullopt;
-      if (record->run_key != run_fingerprint) {
+      const std::string key = method_run_key(study_, c, options_.resolution, method);
+      if (record->run_key != key) {
         say(c.id + ": record " + file.string() + " is stale (made with run key " + record->run_key +
-            "; this case and code give " + run_fingerprint + "): running instead");
+            "; this case and code give " + key + "): running instead");
         return std::nullopt;
       }
       found.push_back(*record);

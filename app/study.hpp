@@ -21,6 +21,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cases/spec.hpp"
+
 namespace hydrojump::app {
 
 struct StudyOptions {
@@ -43,6 +45,15 @@ struct StudyOptions {
 // out among them (at least one each), so that two cases side by side do not put four spinning threads
 // on two cores; else 0 (the solver's own default: OMP_NUM_THREADS or all cores).
 int sph_threads_per_job(int requested, int jobs, int cores);
+
+// The key of one method's results of case `c` at `resolution` ("sph" or "vof"): a hash of the case's
+// setting lines for that method (cases::method_setting_lines: no comments, descriptive texts,
+// run-control settings or the other method's model table) and that solver's code (sph_fingerprint or
+// vof_fingerprint, cmake/write_version.cmake). The study's sph and vof stamps hold it and validation
+// records carry it as their run key, so a change to one solver, or to its [sph] or [vof] settings,
+// leaves the other method's results and records current.
+std::string method_run_key(const cases::Study& study, const cases::Case& c, const std::string& resolution,
+                           const std::string& method);
 
 // Runs the study; returns the number of cases with a failed stage (0: all good; at most 127), or 128 + the signal
 // number when a stop request (SIGINT, SIGTERM, SIGHUP) stopped it: the running stages are stopped

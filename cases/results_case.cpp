@@ -82,6 +82,23 @@ std::vector<std::string> setting_lines(std::string_view case_text) {
   return lines;
 }
 
+std::vector<std::string> method_setting_lines(std::string_view case_text, std::string_view method) {
+  if (method != "sph" && method != "vof")
+    throw std::invalid_argument("method_setting_lines: unknown method \"" + std::string(method) + "\" (sph, vof)");
+  const std::string other = method == "sph" ? "[vof]" : "[sph]";
+  std::vector<std::string> kept;
+  bool in_other = false;  // inside the other method's table
+  for (std::string& line : setting_lines(case_text)) {
+    const auto start = line.find_first_not_of(" \t");
+    if (start != std::string::npos && line[start] == '[') {
+      const auto end = line.find_last_not_of(" \t\r");
+      in_other = line.substr(start, end + 1 - start) == other;
+    }
+    if (!in_other) kept.push_back(std::move(line));
+  }
+  return kept;
+}
+
 SettingDifference first_setting_difference(std::string_view case_text_a, std::string_view case_text_b) {
   const auto la = setting_lines(case_text_a), lb = setting_lines(case_text_b);
   for (std::size_t k = 0; k < std::max(la.size(), lb.size()); ++k) {

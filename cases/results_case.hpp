@@ -41,6 +41,11 @@ bool is_laboratory_comparison_line(std::string_view line);
 // the laboratory comparison values of [case.measured] and run-control settings.
 std::vector<std::string> setting_lines(std::string_view case_text);
 
+// The setting lines one method's results depend on ("sph" or "vof"): setting_lines less the other
+// method's model table ([vof] for "sph", [sph] for "vof"). Throws std::invalid_argument for another
+// method.
+std::vector<std::string> method_setting_lines(std::string_view case_text, std::string_view method);
+
 // The first setting line where two case texts differ, as {line of a, line of b} ("(end)" past the
 // last line); both empty when their settings agree.
 struct SettingDifference {

@@ -10,7 +10,10 @@
 #                       above but compare/ and app/, except app/generate.*, which writes the case
 #                       directories): the study's generate, sph and vof stages and
 #                       `hydrojump sph --resume` key on it, so a change to the comparator re-runs the
-#                       comparison but keeps hours of solver results.
+#                       comparison but keeps hours of solver results;
+#   sph_fingerprint,    the same over one solver's code: the solver fingerprint's files less reference/
+#   vof_fingerprint     (SPH) or less sph/ (VOF). Validation records are keyed on their method's, so a
+#                       change to one solver leaves the other's records current.
 # Results of other code are never reused, while a commit that touches only documentation, spec files,
 # data, tests or scripts keeps them. Without git both fingerprints are the VERSION.
 # Run at every build; the header is rewritten only when its content changes.
@@ -18,6 +21,8 @@ cmake_policy(SET CMP0007 NEW)  # script mode: list() keeps empty elements
 set(source_id "")
 set(fingerprint "${VERSION}")
 set(solver_fingerprint "${VERSION}")
+set(sph_fingerprint "${VERSION}")
+set(vof_fingerprint "${VERSION}")
 if(EXISTS "${SRC}/.git")
   execute_process(COMMAND git -C "${SRC}" describe --always --dirty --abbrev=12
                   OUTPUT_VARIABLE source_id OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET
@@ -57,6 +62,8 @@ if(EXISTS "${SRC}/.git")
   if(list_status EQUAL 0 AND files)
     set(manifest "${VERSION}\n")
     set(solver_manifest "${VERSION}\n")
+    set(sph_manifest "${VERSION}\n")
+    set(vof_manifest "${VERSION}\n")
     foreach(f IN LISTS files)
       if(EXISTS "${SRC}/${f}")
         file(SHA1 "${SRC}/${f}" h)
@@ -66,6 +73,12 @@ if(EXISTS "${SRC}/.git")
       string(APPEND manifest "${f} ${h}\n")
       if(NOT f MATCHES "^(compare|app)/" OR f MATCHES "^app/generate\\.(cpp|hpp)$")
         string(APPEND solver_manifest "${f} ${h}\n")
+        if(NOT f MATCHES "^reference/")
+          string(APPEND sph_manifest "${f} ${h}\n")
+        endif()
+        if(NOT f MATCHES "^sph/")
+          string(APPEND vof_manifest "${f} ${h}\n")
+        endif()
       endif()
     endforeach()
     string(SHA1 digest "${manifest}")
@@ -74,6 +87,12 @@ if(EXISTS "${SRC}/.git")
     string(SHA1 digest "${solver_manifest}")
     string(SUBSTRING "${digest}" 0 16 digest)
     set(solver_fingerprint "${VERSION}+code.${digest}")
+    string(SHA1 digest "${sph_manifest}")
+    string(SUBSTRING "${digest}" 0 16 digest)
+    set(sph_fingerprint "${VERSION}+code.${digest}")
+    string(SHA1 digest "${vof_manifest}")
+    string(SUBSTRING "${digest}" 0 16 digest)
+    set(vof_fingerprint "${VERSION}+code.${digest}")
   else()
     # A git failure leaves both unique to this configure time, so that no cache can match by accident.
     string(TIMESTAMP now "%Y%m%d%H%M%S")
@@ -81,6 +100,8 @@ if(EXISTS "${SRC}/.git")
                     "the code fingerprints are unique to this build, so no run cache will match them")
     set(fingerprint "${VERSION}+unhashed.${now}")
     set(solver_fingerprint "${VERSION}+unhashed.${now}")
+    set(sph_fingerprint "${VERSION}+unhashed.${now}")
+    set(vof_fingerprint "${VERSION}+unhashed.${now}")
   endif()
 endif()
 if(source_id)
@@ -96,6 +117,8 @@ file(WRITE "${OUT}.tmp"
   "inline constexpr const char* version_string = \"${full_version}\";\n"
   "inline constexpr const char* source_fingerprint = \"${fingerprint}\";\n"
   "inline constexpr const char* solver_fingerprint = \"${solver_fingerprint}\";\n"
+  "inline constexpr const char* sph_fingerprint = \"${sph_fingerprint}\";\n"
+  "inline constexpr const char* vof_fingerprint = \"${vof_fingerprint}\";\n"
   "}\n")
 execute_process(COMMAND "${CMAKE_COMMAND}" -E copy_if_different "${OUT}.tmp" "${OUT}")
 file(REMOVE "${OUT}.tmp")

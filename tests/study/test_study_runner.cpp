@@ -586,6 +586,28 @@ TEST_CASE("Study runner: a case whose records match is imported instead of run a
   CHECK(std::count_if(ran.begin(), ran.end(), [](const std::string& l) { return l.find("/B") != std::string::npos; }) == 0);
 }
 
+TEST_CASE("Study runner: a record's key is its own method's: the other solver's settings leave it current", "[study]") {
+  using hydrojump::app::method_run_key;
+  using hydrojump::cases::parse_study;
+  const auto key = [](const std::string& text, const char* method) {
+    const auto s = parse_study(text, "mini.toml", ".");
+    return method_run_key(s, s.cases.at(0), "quick", method);
+  };
+  const std::string base = with_tailwater("0.11");
+  const std::string vof_changed = "[vof]\nmax_courant = 0.5\n" + base;
+  const std::string sph_changed = "[sph]\ncfl_number = 0.15\n" + base;
+  const std::string case_changed = with_tailwater("0.12");
+  CHECK(key(vof_changed, "sph") == key(base, "sph"));
+  CHECK(key(vof_changed, "vof") != key(base, "vof"));
+  CHECK(key(sph_changed, "vof") == key(base, "vof"));
+  CHECK(key(sph_changed, "sph") != key(base, "sph"));
+  CHECK(key(case_changed, "sph") != key(base, "sph"));
+  CHECK(key(case_changed, "vof") != key(base, "vof"));
+  CHECK(key(base, "sph") != key(base, "vof"));
+  const auto s = parse_study(base, "mini.toml", ".");
+  CHECK_THROWS_AS(method_run_key(s, s.cases.at(0), "quick", "lbm"), std::invalid_argument);
+}
+
 namespace {
 
 // Every file under `top` whose name marks a temporary of an atomic write (util/atomic_file.hpp).
