@@ -50,6 +50,30 @@ WallPolyline segment_wall(std::string name, Vec2 from, Vec2 to) {
   return WallPolyline{std::move(name), {from, to}};
 }
 
+// The initial surface of a stilling basin: y1 up to the toe x0, then a classical jump's roller
+// (Hager 1992, cases/hydraulics.hpp) up to the tailwater level y2 at x_end:
+//   z(x) = y1 + (y2 - y1) min(1, tanh(1.5 X) / tanh(4.5)),   X = (x - x0) / Lr
+// with Lr Hager's roller length at Fr1 (taken within [2.5, 20]), sampled every Lr / 16: the curve
+// scaled by 1.0002 so that it meets the tailwater level at X = 3. Inputs only: the measured jump
+// length, a result, does not shape it.
+void initial_jump_surface(InitialWater& w, double x0, double x_end, double y1, double y2, double froude1) {
+  const double roller = hager_roller_length(y1, std::clamp(froude1, 2.5, 20.0));
+  const auto rise = [&](double x_over_lr) {
+    return y1 + (y2 - y1) * std::min(1.0, roller_surface_fraction(x_over_lr) / std::tanh(4.5));
+  };
+  w.surface_x_m = {0.0};
+  w.surface_z_m = {y1};
+  constexpr int samples = 48;  // 16 per roller length, over 3
+  for (int k = 0; k <= samples && x0 + k * roller / 16.0 < x_end; ++k) {
+    const double x = x0 + k * roller / 16.0;
+    if (x <= w.surface_x_m.back()) continue;  // a toe at x = 0
+    w.surface_x_m.push_back(x);
+    w.surface_z_m.push_back(rise(k / 16.0));
+  }
+  w.surface_x_m.push_back(x_end);
+  w.surface_z_m.push_back(rise((x_end - x0) / roller));
+}
+
 CaseGeometry stilling_basin_geometry(const StillingBasinCase& b, double g) {
   CaseGeometry geo;
   const double y1 = b.inflow_depth_m, y2 = b.tailwater_depth_m;
@@ -76,19 +100,14 @@ CaseGeometry stilling_basin_geometry(const StillingBasinCase& b, double g) {
   geo.outflows.push_back({x_end, y2});
 
   // Initial water: the supercritical layer y1 up to the expected toe (the spec's initial_toe_x_m, else
-  // the basin start), a ramp to y2 over the expected jump length, then the tailwater level (so the
-  // initial volume is close to the final one).
-  const double jump_length = b.measured.jump_length_m.value_or(6.0 * y2);
-  const double x_initial_toe = b.initial_toe_x_m.value_or(x_toe);
+  // the basin start), then a classical jump's roller surface (initial_jump_surface), then the
+  // tailwater level: the initial volume is close to a standing jump's, and the roller's water behind
+  // the toe holds the start-up jet where a long ramp lets it push the toe downstream.
   auto& w = geo.initial_water;
   w.x_begin_m = 0.0;
   w.x_end_m = x_end;
-  w.surface_x_m = {0.0, x_initial_toe, std::min(x_initial_toe + jump_length, x_end), x_end};
-  w.surface_z_m = {y1, y1, y2, y2};
-  if (w.surface_x_m[2] >= w.surface_x_m[3]) {
-    w.surface_x_m.pop_back();
-    w.surface_z_m.pop_back();
-  }
+  initial_jump_surface(w, b.initial_toe_x_m.value_or(x_toe), x_end, y1, y2,
+                       froude_number(y1, b.inflow_velocity_m_s, g));
   w.discharge_m2_s = unit_discharge(y1, b.inflow_velocity_m_s);
 
   geo.body_force_m_s2 = Vec2(0.0, -g);

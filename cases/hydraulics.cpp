@@ -1,6 +1,7 @@
 #include "cases/hydraulics.hpp"
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -26,6 +27,18 @@ double specific_energy(double depth_m, double discharge_m2_s, double gravity_m_s
 
 // eta = (E1 - E2) / E1
 double energy_dissipation_rate(double e1_m, double e2_m) { return (e1_m - e2_m) / e1_m; }
+
+// Lr / y1 = -12 + 160 tanh(Fr1 / 20)
+double hager_roller_length(double inflow_depth_m, double froude_number) {
+  if (!(inflow_depth_m > 0.0) || !(froude_number >= 2.5 && froude_number <= 20.0))
+    return std::numeric_limits<double>::quiet_NaN();
+  return inflow_depth_m * (-12.0 + 160.0 * std::tanh(froude_number / 20.0));
+}
+
+// Y = tanh(1.5 X), 0 upstream of the toe
+double roller_surface_fraction(double x_over_roller_length) {
+  return x_over_roller_length > 0.0 ? std::tanh(1.5 * x_over_roller_length) : 0.0;
+}
 
 JumpHydraulics jump_hydraulics(double y1_m, double u1_m_s, double tailwater_m, double gravity_m_s2) {
   JumpHydraulics j;

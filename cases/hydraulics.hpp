@@ -22,6 +22,18 @@ double froude_number(double depth_m, double velocity_m_s, double gravity_m_s2);
 // Belanger: y2* / y1 = (sqrt(1 + 8 Fr1^2) - 1) / 2   (horizontal smooth bed)
 double belanger_sequent_depth(double y1_m, double froude1);
 
+// Roller length of a classical jump (Hager, Bremen & Kawagoshi 1990, Classical hydraulic jump: length
+// of roller, J. Hydraul. Res. 28(5):591-608), wide rectangular channel, toe to the end of the reverse
+// surface flow:
+//   Lr / y1 = -12 + 160 tanh(Fr1 / 20)          (2.5 <= Fr1 <= 20; NaN outside, or for y1 <= 0)
+double hager_roller_length(double inflow_depth_m, double froude_number);
+
+// The mean free surface of a classical jump's roller (Hager 1992, Energy Dissipators and Hydraulic
+// Jump, Kluwer, ch. 2), from the toe (X = 0) on, as the fraction of the rise y2 - y1:
+//   Y = (y - y1) / (y2 - y1) = tanh(1.5 X),   X = (x - x_toe) / Lr
+// (0 for X <= 0; 0.905 at the roller's end X = 1).
+double roller_surface_fraction(double x_over_roller_length);
+
 // Specific energy above the local bed: E = y + q^2 / (2 g y^2)
 double specific_energy(double depth_m, double discharge_m2_s, double gravity_m_s2);
 

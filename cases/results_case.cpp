@@ -59,7 +59,7 @@ bool is_descriptive_line(std::string_view line) {
 
 bool is_laboratory_comparison_line(std::string_view line) {
   return assigns_one_of(line, {"eta_percent", "eta_smooth_percent", "published_sph_eta_percent", "roller_length_m",
-                               "front_file"});
+                               "jump_length_m", "front_file"});
 }
 
 std::vector<std::string> setting_lines(std::string_view case_text) {
@@ -73,8 +73,8 @@ std::vector<std::string> setting_lines(std::string_view case_text) {
       const auto end = line.find_last_not_of(" \t\r");
       in_measurements = line.substr(start, end + 1 - start) == "[case.measured]";
     }
-    // The measurements the results are only compared with; jump_length_m (which shapes the initial
-    // water) and sequent_depth_m (which the SPH run monitor reports against) stay settings.
+    // The measurements the results are only compared with; sequent_depth_m (which the SPH run monitor
+    // reports against) stays a setting.
     if (in_measurements && is_laboratory_comparison_line(line)) continue;
     if (is_run_control_line(line) || is_descriptive_line(line)) continue;
     lines.push_back(line);

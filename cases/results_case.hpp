@@ -7,10 +7,10 @@
 // file however it was spelt), the descriptive texts (`description`, `citations`, `source`: readers
 // take them from the case.toml beside the results, never from the record), the laboratory values the
 // results are only compared with ([case.measured] eta_percent, eta_smooth_percent,
-// published_sph_eta_percent, roller_length_m, front_file: a corrected one re-runs the comparison
-// only; jump_length_m shapes the initial water and sequent_depth_m is in the SPH run's summary, so
-// they stay settings) and the run-control settings a resumed run may change
-// (sph.max_density_variation, sph.checkpoint_interval_wall_s) are left out.
+// published_sph_eta_percent, roller_length_m, jump_length_m, front_file: a corrected one re-runs the
+// comparison only; sequent_depth_m is in the SPH run's summary, so it stays a setting) and the
+// run-control settings a resumed run may change (sph.max_density_variation,
+// sph.checkpoint_interval_wall_s) are left out.
 #pragma once
 
 #include <filesystem>
@@ -34,7 +34,7 @@ bool is_descriptive_line(std::string_view line);
 
 // Whether `line` assigns one of the laboratory values a run is only compared with (within
 // [case.measured]: eta_percent, eta_smooth_percent, published_sph_eta_percent, roller_length_m,
-// front_file).
+// jump_length_m, front_file).
 bool is_laboratory_comparison_line(std::string_view line);
 
 // The lines of a resolved case text that define its run: every line but comments, descriptive texts,

@@ -216,7 +216,7 @@ struct StillingBasinCase {
   double basin_length_m = 0.0;
   double downstream_length_m = 0.0;     // basin end to outlet
   double air_height_m = 0.0;            // above the highest water level
-  // Where the initial state's supercritical layer ends and its ramp up to the tailwater begins
+  // Where the initial state's supercritical layer ends and its roller up to the tailwater begins
   // (`[case.domain] initial_toe_x_m`); unset: the basin start. Only the start-up depends on it.
   std::optional<double> initial_toe_x_m;
   MeasuredValues measured;

@@ -4,12 +4,6 @@
 
 namespace hydrojump::compare {
 
-// Lr / y1 = -12 + 160 tanh(Fr1 / 20)
-double hager_roller_length(double inflow_depth_m, double froude_number) {
-  if (!(inflow_depth_m > 0.0) || !(froude_number >= 2.5 && froude_number <= 20.0)) return not_a_number;
-  return inflow_depth_m * (-12.0 + 160.0 * std::tanh(froude_number / 20.0));
-}
-
 // Lj = 6 y2*
 double usbr_jump_length(double belanger_sequent_depth_m, double froude_number) {
   if (!(belanger_sequent_depth_m > 0.0) || !(froude_number >= 4.0 && froude_number <= 20.0)) return not_a_number;

@@ -27,12 +27,14 @@
 // jump of the study (Lr is 20-45 y1, the section ~10-20 y1 from the toe).
 #pragma once
 
+#include "cases/hydraulics.hpp"
 #include "compare/time_statistics.hpp"
 
 namespace hydrojump::compare {
 
-// Lr of a classical jump (Hager et al. 1990), m; NaN outside 2.5 <= Fr1 <= 20 or for y1 <= 0.
-double hager_roller_length(double inflow_depth_m, double froude_number);
+// Lr of a classical jump (Hager et al. 1990), m; NaN outside 2.5 <= Fr1 <= 20 or for y1 <= 0
+// (cases/hydraulics.hpp: the initial water's roller follows it too).
+using cases::hager_roller_length;
 
 // Lj = 6 y2* of a classical jump (USBR), m; NaN outside 4 <= Fr1 <= 20.
 double usbr_jump_length(double belanger_sequent_depth_m, double froude_number);

@@ -77,3 +77,13 @@ TEST_CASE("Rehbock's sharp-crested weir: hand value, inverse and tailgate height
   CHECK_THROWS_AS(rehbock_weir_head(0.05, 0.0, 9.81), std::invalid_argument);
   CHECK_THROWS_AS(tailgate_height_for_depth(0.05, -1.0, 9.81), std::invalid_argument);
 }
+
+TEST_CASE("A classical jump's roller surface: tanh(1.5 X) from the toe", "[cases][hydraulics]") {
+  CHECK(roller_surface_fraction(-0.5) == 0.0);
+  CHECK(roller_surface_fraction(0.0) == 0.0);
+  CHECK(roller_surface_fraction(1.0) == Approx(0.90515).epsilon(1e-4));  // tanh 1.5
+  CHECK(roller_surface_fraction(3.0) == Approx(1.0).epsilon(3e-4));
+  // Hager's roller length by hand: y1 = 0.0254 m, Fr1 = 4: 0.0254 (-12 + 160 tanh 0.2) = 0.4973 m.
+  CHECK(hager_roller_length(0.0254, 4.0) == Approx(0.4973).epsilon(1e-3));
+  CHECK(std::isnan(hager_roller_length(0.0254, 2.0)));
+}

@@ -4,6 +4,7 @@
 
 #include <sys/stat.h>
 
+#include <cmath>
 #include <filesystem>
 #include <regex>
 #include <string>
@@ -534,15 +535,20 @@ TEST_CASE("The initial toe moves the start of the initial ramp and survives a re
   const auto* b = s.cases[0].stilling_basin();
   REQUIRE(b->initial_toe_x_m);
   CHECK(*b->initial_toe_x_m == 0.6);
-  // Without jump_length_m in [case.measured] the ramp is 6 y2 = 0.624 m long: y1 up to 0.6 m, y2 from 1.224 m.
+  // y1 up to 0.6 m, then the roller y1 + (y2 - y1) tanh(1.5 (x - 0.6) / Lr), Lr = y1 (-12 + 160 tanh(Fr1/20))
+  // (Hager et al. 1990) = 0.498 m at Fr1 = 2 / sqrt(9.81 * 0.0254) = 4.007 (within 0.03 %: the curve is
+  // scaled to meet y2 at 3 Lr).
+  const double y1 = 0.0254, y2 = 0.104, lr = y1 * (-12.0 + 160.0 * std::tanh(2.0 / std::sqrt(9.81 * y1) / 20.0));
   const auto geo = make_geometry(s.cases[0], s.fluid);
-  CHECK(geo.initial_water.surface_at(0.59) == Approx(0.0254));
-  CHECK(geo.initial_water.surface_at(0.6 + 0.312) == Approx(0.5 * (0.0254 + 0.104)));
-  CHECK(geo.initial_water.surface_at(1.3) == Approx(0.104));
+  CHECK(geo.initial_water.surface_at(0.59) == Approx(y1));
+  CHECK(geo.initial_water.surface_at(0.6 + 0.5 * lr) == Approx(y1 + std::tanh(0.75) * (y2 - y1)).epsilon(3e-4));
+  CHECK(geo.initial_water.surface_at(0.6 + lr) == Approx(y1 + std::tanh(1.5) * (y2 - y1)).epsilon(3e-4));
+  CHECK(geo.initial_water.surface_at(1.7) == Approx(y2).epsilon(3e-3));  // X = 2.2: 99.7 % of the rise
   // Only the initial water moves: the sections, the reach and the outflow stay where they were.
   const Study plain = parse_study(valid_spec, "spec.toml", ".");
   const auto plain_geo = make_geometry(plain.cases[0], plain.fluid);
-  CHECK(plain_geo.initial_water.surface_at(0.3) == Approx(0.0254 + (0.1 / 0.624) * (0.104 - 0.0254)));
+  // Between the samples (every Lr / 16) the polyline is within 1 % of the curve.
+  CHECK(plain_geo.initial_water.surface_at(0.3) == Approx(y1 + std::tanh(1.5 * 0.1 / lr) * (y2 - y1)).epsilon(0.01));
   REQUIRE(geo.sections.size() == plain_geo.sections.size());
   for (std::size_t i = 0; i < geo.sections.size(); ++i) CHECK(geo.sections[i].x_m == plain_geo.sections[i].x_m);
   const auto bed = geo.bed.polyline(0.0, 1.76, 1e-3), plain_bed = plain_geo.bed.polyline(0.0, 1.76, 1e-3);
