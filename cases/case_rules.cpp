@@ -36,4 +36,9 @@ RunSettings run_from_sloshing_periods(const RunRule& rule, const StillingBasinCa
   return run;
 }
 
+double toe_hold_time_from_sloshing_periods(double periods, const StillingBasinCase& basin, double gravity_m_s2) {
+  const double length = basin.upstream_length_m + basin.basin_length_m + basin.downstream_length_m;
+  return periods * sloshing_period_s(length, belanger_of(basin, gravity_m_s2), gravity_m_s2);
+}
+
 }  // namespace hydrojump::cases

@@ -8,6 +8,8 @@
 //   | mixing length from the sequent depth  | [sph] sps_mixing_length_per_sequent_depth| l_m = c_l y2*            |
 //   | run length from the sloshing period   | [run] start_up_sloshing_periods,         | the averaging window and |
 //   |                                       |       window_sloshing_periods            | the end time             |
+//   | toe control time from the sloshing    | [run] toe_hold_sloshing_periods          | [case.tailwater]         |
+//   | period                                |                                          | toe_hold_time_s          |
 //
 // y2* is Belanger's sequent depth of the inflow (y1, Fr1): an input-only length, never the measured y2.
 #pragma once
@@ -34,5 +36,15 @@ double sloshing_period_s(double length_m, double depth_m, double gravity_m_s2);
 //   average_start = N_s T_s,  average_end = end_time = average_start + N_w T_s
 // each rounded up to a whole number of output intervals.
 RunSettings run_from_sloshing_periods(const RunRule& rule, const StillingBasinCase& basin, double gravity_m_s2);
+
+// The toe-holding control's time (sph/toe_hold_control.hpp, reference/tailwater_control.hpp) from the
+// basin's sloshing period (L the whole domain, y = y2*):
+//   T_x = c_x T_s
+// The outlet reaches the jump through the basin's water, a shallow-water wave taking about T_s / 2; a
+// control faster than that delay overshoots, and one much slower leaves the toe where the start-up
+// surge put it. c_x = 0.65 (T_x = 2.0 s for run A) brought the VOF toe of run A from the start-up
+// surge's 0.55 m to within 0.03 m of the basin start in its window, where a fixed T_x = 5 s left it
+// 0.12 m downstream (the toe is the protocol's set-point, not a laboratory result).
+double toe_hold_time_from_sloshing_periods(double periods, const StillingBasinCase& basin, double gravity_m_s2);
 
 }  // namespace hydrojump::cases

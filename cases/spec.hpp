@@ -136,6 +136,9 @@ struct RunRule {
   double output_interval_s = 0.1;
   double start_up_sloshing_periods = 2.0;
   double window_sloshing_periods = 1.0;
+  // The toe-holding control's time T_x of a stilling basin without its own [case.tailwater]
+  // toe_hold_time_s, in sloshing periods (cases/case_rules.hpp); unset: that key's default.
+  std::optional<double> toe_hold_sloshing_periods;
 };
 
 // [[case.sections]]: a named x position where both results are compared (a vertical line from the

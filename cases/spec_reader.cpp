@@ -115,6 +115,8 @@ RunRule read_run_rule(TableReader& t) {
                                             Range{0.5, 100.0, false, false, "sloshing periods 2 L / sqrt(g y2*)"});
   r.window_sloshing_periods = t.number_or("window_sloshing_periods", r.window_sloshing_periods,
                                           Range{0.0, 100.0, true, false, "sloshing periods 2 L / sqrt(g y2*)"});
+  r.toe_hold_sloshing_periods = t.optional_number("toe_hold_sloshing_periods",
+                                                  Range{0.05, 100.0, true, true, "sloshing periods 2 L / sqrt(g y2*)"});
   t.reject_unknown_keys();
   return r;
 }
@@ -245,6 +247,16 @@ void check_resolution(const Case& c, const Resolution& r, double gravity_m_s2, c
       fail("channel.length_m = " + util::number_text(p->channel_length_m) + " is out of range: the periodic channel must be at least 3 kernel supports long at particle_spacing_m = " + util::number_text(dx) + ", i.e. >= " + util::number_text(3.0 * support) + " m");
     }
   }
+}
+
+// T_x = c_x T_s of a stilling basin that holds its toe and sets no toe_hold_time_s of its own, from the
+// study's [run] toe_hold_sloshing_periods (cases/case_rules.hpp).
+void resolve_toe_hold_rule(TableReader& c, const Study& study, Case& result) {
+  auto* b = std::get_if<StillingBasinCase>(&result.data);
+  if (!b || !b->control.holds_toe() || !study.run_rule || !study.run_rule->toe_hold_sloshing_periods) return;
+  if (auto tail = c.table("tailwater"); tail && tail->has("toe_hold_time_s")) return;
+  b->control.toe_hold_time_s =
+      toe_hold_time_from_sloshing_periods(*study.run_rule->toe_hold_sloshing_periods, *b, study.fluid.gravity_m_s2);
 }
 
 // [case.tailwater] control = "hold_toe" against the rest of the case (merged settings; a key is named
@@ -387,6 +399,7 @@ Case read_case(TableReader& c, const Study& study, const SphSettings& sph,
   check_scaled_resolutions(c, study, result);
   read_case_run(c, study, result);
   resolve_mixing_length_rule(c, study, result);
+  resolve_toe_hold_rule(c, study, result);
   // Sections need the domain, which make_geometry derives; use it (sections are not read yet).
   const CaseGeometry geo = make_geometry(result, study.fluid);
   if (const toml::array* array = c.array_of_tables("sections")) {

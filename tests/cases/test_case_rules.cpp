@@ -101,6 +101,23 @@ TEST_CASE("A study-level run rule sets the run of every basin without its own ru
   CHECK_THAT(rejection(basin_study("[run]\nend_time_s = 10\n", "")), Catch::Contains("run.end_time_s"));
 }
 
+// T_s = 2 (1.76 m) / sqrt(9.81 * 0.13178) = 3.0959 s, T_x = 0.65 T_s = 2.0123 s (by hand).
+TEST_CASE("The toe-control rule gives T_x = c_x T_s per basin and a case's own toe_hold_time_s wins", "[cases][rules]") {
+  CHECK(toe_hold_time_from_sloshing_periods(0.65, run_a_basin(), 9.81) == Approx(2.0123).epsilon(1e-4));
+  const Study s = parse_study(basin_study("[run]\ntoe_hold_sloshing_periods = 0.65\n", ""), "rules.toml", ".");
+  CHECK(s.cases[0].stilling_basin()->control.toe_hold_time_s == Approx(2.0123).epsilon(1e-4));
+  // The resolved case carries the number, and reads back the same (the rule no longer applies to it).
+  const Study again = parse_study(resolved_case_text(s, s.cases[0], "quick"), "case.toml", ".");
+  CHECK(again.cases[0].stilling_basin()->control.toe_hold_time_s == Approx(2.0123).epsilon(1e-4));
+  std::string own_text = basin_study("[run]\ntoe_hold_sloshing_periods = 0.65\n", "");
+  own_text.replace(own_text.find("depth_m = 0.104"), 15, "depth_m = 0.104\ntoe_hold_time_s = 4.0");
+  CHECK(parse_study(own_text, "rules.toml", ".").cases[0].stilling_basin()->control.toe_hold_time_s == 4.0);
+  // Without the rule: the key's default.
+  CHECK(parse_study(basin_study("[run]\n", ""), "rules.toml", ".").cases[0].stilling_basin()->control.toe_hold_time_s == 5.0);
+  CHECK_THAT(rejection(basin_study("[run]\ntoe_hold_sloshing_periods = 0\n", "")),
+             Catch::Contains("run.toe_hold_sloshing_periods = 0 is out of range"));
+}
+
 TEST_CASE("The run rule is refused for a case that has no sloshing period", "[cases][rules]") {
   const std::string spec = "[study]\nname = \"rules\"\n[run]\n"
                            "[resolution.quick]\nparticle_spacing_m = 0.001\nvof_cell_size_bed_m = 0.001\nvof_cell_size_bulk_m = 0.001\n"
