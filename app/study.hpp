@@ -51,7 +51,8 @@ int sph_threads_per_job(int requested, int jobs, int cores);
 // run-control settings or the other method's model table) and that solver's code (sph_fingerprint or
 // vof_fingerprint, cmake/write_version.cmake). The study's sph and vof stamps hold it and validation
 // records carry it as their run key, so a change to one solver, or to its [sph] or [vof] settings,
-// leaves the other method's results and records current.
+// leaves the other method's records current. (A study directory's generate and settings stamps hold
+// both solvers' code: there such a change still re-runs both methods.)
 std::string method_run_key(const cases::Study& study, const cases::Case& c, const std::string& resolution,
                            const std::string& method);
 

@@ -53,7 +53,7 @@ struct ValidationRecord {
   static constexpr int current_format = 1;
   int format = current_format;
   std::string study, case_id, description, method, resolution;
-  std::string run_key;             // the stage stamp's run fingerprint (settings + solver code)
+  std::string run_key;             // the method's stage stamp (app::method_run_key: its settings + its solver's code)
   bool stale = false;              // not in the file: set where the current key is known and differs
   std::string hydrojump_version;   // of the program that compared the results
   std::string recorded_on;         // YYYY-MM-DD

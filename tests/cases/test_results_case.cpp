@@ -3,6 +3,9 @@
 #include <catch2/catch.hpp>
 
 #include <fstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "util/fingerprint.hpp"
 #include "cases/results_case.hpp"
@@ -154,4 +157,16 @@ TEST_CASE("results_case: an OpenFOAM run without its log is known by its time di
   fs::create_directories(vof / "2e");
   fs::create_directories(vof / "-1");
   CHECK_FALSE(holds_results(vof));
+}
+
+TEST_CASE("results_case: one method's setting lines leave out the other method's model table only", "[cases][results_case]") {
+  const std::string text = "# comment\n[sph]\ncfl_number = 0.2\n[vof]\nmax_courant = 0.8\n[resolution.quick]\n"
+                           "particle_spacing_m = 0.005\n[[case]]\nid = \"A\"\n[[case.sections]]\nx_m = 0.3\n";
+  const std::vector<std::string> sph = {"[sph]", "cfl_number = 0.2", "[resolution.quick]", "particle_spacing_m = 0.005",
+                                        "[[case]]", "id = \"A\"", "[[case.sections]]", "x_m = 0.3"};
+  const std::vector<std::string> vof = {"[vof]", "max_courant = 0.8", "[resolution.quick]", "particle_spacing_m = 0.005",
+                                        "[[case]]", "id = \"A\"", "[[case.sections]]", "x_m = 0.3"};
+  CHECK(method_setting_lines(text, "sph") == sph);
+  CHECK(method_setting_lines(text, "vof") == vof);
+  CHECK_THROWS_AS(method_setting_lines(text, "lbm"), std::invalid_argument);
 }
