@@ -41,10 +41,12 @@ RunSettings run_from_sloshing_periods(const RunRule& rule, const StillingBasinCa
 // basin's sloshing period (L the whole domain, y = y2*):
 //   T_x = c_x T_s
 // The outlet reaches the jump through the basin's water, a shallow-water wave taking about T_s / 2; a
-// control faster than that delay overshoots, and one much slower leaves the toe where the start-up
-// surge put it. c_x = 0.65 (T_x = 2.0 s for run A) brought the VOF toe of run A from the start-up
-// surge's 0.55 m to within 0.03 m of the basin start in its window, where a fixed T_x = 5 s left it
-// 0.12 m downstream (the toe is the protocol's set-point, not a laboratory result).
+// control much faster than that overshoots, and one much slower leaves the toe where the start-up
+// surge put it. Tried on runs A and A_smooth at quick (the toe is the protocol's set-point, not a
+// laboratory result): VOF A with T_x = 5 s still stood 0.1 m downstream of the basin start at 9 s;
+// c_x = 0.65 (2.0 s) held VOF A but swung VOF A_smooth's toe by +-0.1 m and drowned SPH A_smooth's
+// jump at the inflow by 6.4 s; c_x = 1 (3.1 s) with 3 sloshing periods of start-up held both VOF
+// toes within 0.02 m (A) and 0.1 m (A_smooth) over the window.
 double toe_hold_time_from_sloshing_periods(double periods, const StillingBasinCase& basin, double gravity_m_s2);
 
 }  // namespace hydrojump::cases
