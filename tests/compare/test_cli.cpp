@@ -339,9 +339,9 @@ TEST_CASE("hydrojump check prints run A's derived hydraulics", "[compare][integr
   CHECK(f[12] == "48.43");  // the experiment's, from the spec
   CHECK(f[13] == "hold_toe");  // the flume's protocol, the default: y2 is predicted, 0.104 m the initial level
   // The rules by hand: l = 0.1 y2* = 0.0132 m; T_s = 2 (0.2 + 1.36 + 0.2) / sqrt(9.81 * 0.13178) = 3.096 s,
-  // the window from 2 T_s = 6.19 s (up to the next 0.1 s output: 6.2) over one more T_s (3.1 s): 6.2 - 9.3 s.
+  // the window from 3 T_s = 9.29 s (up to the next 0.1 s output: 9.3) over one more T_s (3.1 s): 9.3 - 12.4 s.
   CHECK_THAT(models_a, Catch::Contains("SPS l 0.0132 m free_slip") && Catch::Contains("kEpsilon + nut_limiter") &&
-                           Catch::Contains("6.2 - 9.3 (run 9.3)"));
+                           Catch::Contains("9.3 - 12.4 (run 12.4)"));
 }
 
 // Exit statuses: 0 for --help and --version, 2 for a command-line mistake (as for an invalid spec),
