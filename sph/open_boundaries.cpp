@@ -148,20 +148,30 @@ OutflowBuffer::OutflowBuffer(const cases::OutflowBoundary& outflow, double bed_z
   if (!(outflow.tailwater_depth_m > 0.0)) throw std::invalid_argument("outflow buffer: tailwater depth must be positive");
   absorbing_ = params.outflow == OutflowCondition::absorbing;
   discharge_ = discharge_m2_s;
-  target_velocity_ = discharge_m2_s / outflow.tailwater_depth_m;
 }
 
-// y_t = depth, U_t = q / y_t
+// y_t = depth (and so U_t = q / y_t)
 void OutflowBuffer::set_target_depth(double depth_m) {
   if (!(depth_m > 0.0)) throw std::invalid_argument("outflow buffer: the target depth must be positive");
   level_z_ = bed_z_ + depth_m;
-  target_velocity_ = discharge_ / depth_m;
+}
+
+// The outlet state of the absorbing condition from the strip's depth h and mean velocity u:
+//   R+ = u + 2 sqrt(g h)   (leaving the basin),   R- = U_t - 2 sqrt(g y_t)   (imposed),
+//   sqrt(g h_B) = (R+ - R-) / 4,   u_B = (R+ + R-) / 2,   both >= 0.
+OutflowBuffer::CharacteristicOutlet OutflowBuffer::characteristic_outlet(double strip_depth_m, double strip_velocity_m_s,
+                                                                         double target_depth_m) const {
+  const double leaving = strip_velocity_m_s + 2.0 * std::sqrt(gravity_ * std::max(0.0, strip_depth_m));
+  const double imposed = discharge_ / target_depth_m - 2.0 * std::sqrt(gravity_ * target_depth_m);
+  const double celerity = std::max(0.0, 0.25 * (leaving - imposed));
+  return {celerity * celerity / gravity_, std::max(0.0, 0.5 * (leaving + imposed))};
 }
 
 // Fluid past x_out joins the buffer; the buffer moves at u_b (hydrostatic_level: the depth-averaged u
-// upstream, >= 0; absorbing: u_b = U_t + 2 (sqrt(g h) - sqrt(g y_t)) >= 0) with the hydrostatic density
-// of its level; particles layers dx past x_out, or above the level (spray), are removed. Returns the
-// mass removed.
+// upstream, >= 0; absorbing: u_B of the characteristic outlet) with the hydrostatic density of its
+// level (hydrostatic_level: y_t; absorbing: h_B); particles layers dx past x_out, or entering above the
+// level (hydrostatic_level: y_t + dx/2; absorbing, spray only: max(h, h_B) + 2 dx), are removed.
+// Returns the mass removed.
 double OutflowBuffer::advance(ParticleSet& particles, double dt) {
   const Eigen::Index n = particles.size();
   const double x_end = x_out_ + layers_ * dx_;
@@ -176,16 +186,15 @@ double OutflowBuffer::advance(ParticleSet& particles, double dt) {
       volume += particles.mass[i] / particles.rho[i];
     }
   }
-  double u_out = mass > 0.0 ? std::max(0.0, momentum / mass) : 0.0;
-  double level_z = level_z_;  // the level the buffer's pressure and spill refer to
-  double spill_margin = 0.5 * dx_;
-  if (absorbing_) {
-    // h = water volume of the strip / strip length;  u_b = U_t + 2 (sqrt(g h) - sqrt(g y_t))
-    const double h = volume / strip;
-    const double y_t = level_z_ - bed_z_;
-    u_out = std::max(0.0, target_velocity_ + 2.0 * (std::sqrt(gravity_ * h) - std::sqrt(gravity_ * y_t)));
-    if (h > 0.0) level_z = bed_z_ + h;
-    spill_margin = 2.0 * dx_;
+  const double u_strip = mass > 0.0 ? momentum / mass : 0.0;
+  double u_out = std::max(0.0, u_strip);
+  double level_z = level_z_;  // the level the buffer's pressure refers to
+  double spill_z = level_z_ + 0.5 * dx_;
+  if (absorbing_ && mass > 0.0) {
+    const CharacteristicOutlet b = characteristic_outlet(volume / strip, u_strip, level_z_ - bed_z_);
+    u_out = b.velocity_m_s;
+    level_z = bed_z_ + b.depth_m;
+    spill_z = bed_z_ + std::max(b.depth_m, volume / strip) + 2.0 * dx_;
   }
 
   std::vector<char> remove(static_cast<std::size_t>(n), 0);
@@ -196,7 +205,7 @@ double OutflowBuffer::advance(ParticleSet& particles, double dt) {
     if (t == fluid_code && particles.x[i] >= x_out_) {
       particles.type[i] = outflow_code;
       // Water arriving above the tailwater level spills: removed at once (level control).
-      if (particles.z[i] > level_z + spill_margin) {
+      if (particles.z[i] > spill_z) {
         remove[static_cast<std::size_t>(i)] = 1;
         ++removed;
         removed_mass += particles.mass[i];

@@ -25,19 +25,26 @@
 // sph.outflow_condition = "hydrostatic_level" (the default). It holds the level firmly but reflects
 // the long waves of the start-up, so the basin sloshes.
 //
-// sph.outflow_condition = "absorbing": the buffer continues the flow as a long-wave outlet. With h the
-// water depth of the fluid strip just upstream of x_out (volume / strip length) and U_t = q / y_t the
-// tailwater velocity, buffer particles move at the velocity that fixes the incoming Riemann invariant
-// of the shallow-water equations to its tailwater value,
+// sph.outflow_condition = "absorbing": the buffer is a characteristic (non-reflecting) outlet of the
+// shallow-water equations. With h and u the water depth and mean velocity of the fluid strip just
+// upstream of x_out (volume / strip length, mass-weighted u) and U_t = q / y_t the tailwater velocity,
+// the outlet state (h_B, u_B) takes the invariant leaving the basin from the strip and the one
+// entering it from the tailwater:
 //
-//   u_b - 2 sqrt(g h) = U_t - 2 sqrt(g y_t)   =>   u_b = U_t + 2 (sqrt(g h) - sqrt(g y_t)),  u_b >= 0,
+//   u_B + 2 sqrt(g h_B) = u + 2 sqrt(g h)          (R+, carried out of the basin)
+//   u_B - 2 sqrt(g h_B) = U_t - 2 sqrt(g y_t)      (R-, imposed)
+//   =>  sqrt(g h_B) = (R+ - R-) / 4,   u_B = (R+ + R-) / 2   (both >= 0).
 //
-// so waves arriving from the basin leave instead of reflecting, and the level relaxes to y_t (h > y_t
-// drains faster than q, h < y_t slower). They carry the hydrostatic density of the measured level
-// z_b + h; only particles thrown more than 2 dx above it are removed at once (spray).
+// Buffer particles move at u_B and carry the hydrostatic density of the level z_b + h_B, so waves
+// arriving from the basin leave instead of reflecting, and the level relaxes to y_t: a basin above the
+// tailwater sees an outlet level below its own and drains. Only particles entering more than 2 dx above
+// max(h, h_B) are removed at once (spray). At h = y_t, u = U_t the outlet is the tailwater state itself;
+// a target lowered by delta lets out (c_t^2 - U_t^2) delta / (2 c_t) more (c_t = sqrt(g y_t), to first
+// order), which the toe-holding control's volume law uses (toe_hold_control.hpp).
 //
-// The absorbing outlet's Riemann invariant is that of the 1D shallow-water equations (e.g. Stoker
-// 1957, Water Waves, ch. 10); the level-holding outlet follows DualSPHysics' outlet with an imposed
+// The absorbing outlet's Riemann invariants are those of the 1D shallow-water equations (e.g. Stoker
+// 1957, Water Waves, ch. 10), imposed as characteristic boundary conditions (Thompson 1987, J. Comput.
+// Phys. 68:1-24); the level-holding outlet follows DualSPHysics' outlet with an imposed
 // hydrostatic pressure (Tafuni et al. 2018).
 //
 // Usage
@@ -136,15 +143,22 @@ class OutflowBuffer {
   int layers() const { return layers_; }
   double section_x() const { return x_out_; }
   double level_z() const { return level_z_; }
-  // The target depth y_t (m); set_target_depth moves it (and U_t = q / y_t) for the level control.
+  // The target depth y_t (m); set_target_depth moves it (and so U_t = q / y_t) for the level controls.
   double target_depth() const { return level_z_ - bed_z_; }
   void set_target_depth(double depth_m);
   const OpenBoundaryTotals& totals() const { return totals_; }
 
+  // The absorbing condition's outlet state (h_B, u_B) from the strip's depth h and mean velocity u
+  // and the target depth y_t (the formula above).
+  struct CharacteristicOutlet {
+    double depth_m = 0.0;       // h_B
+    double velocity_m_s = 0.0;  // u_B
+  };
+  CharacteristicOutlet characteristic_outlet(double strip_depth_m, double strip_velocity_m_s, double target_depth_m) const;
+
  private:
   double x_out_, bed_z_, dx_, level_z_, gravity_;
-  double discharge_ = 0.0;         // q (m^2/s)
-  double target_velocity_ = 0.0;   // U_t = q / y_t (absorbing condition)
+  double discharge_ = 0.0;         // q (m^2/s): U_t = q / y_t (absorbing condition)
   bool absorbing_ = false;
   int layers_;
   TaitEquationOfState eos_;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include "cases/hydraulics.hpp"
 
@@ -20,8 +21,10 @@ ToeHoldLaw ToeHoldLaw::from_case(const cases::Case& c, const cases::CaseGeometry
   law.target_toe_x_m = geometry.expected_toe_x_m;
   law.outlet_x_m = geometry.x_max_m;
   const cases::InflowBoundary& in = geometry.inflows.front();
-  law.outlet_speeds_m_s = cases::unit_discharge(in.depth_m, in.velocity_m_s) / law.tailwater_depth_m +
-                          std::sqrt(gravity_m_s2 * law.tailwater_depth_m);
+  // S = (c_t^2 - U_t^2) / (2 c_t)
+  const double u_t = cases::unit_discharge(in.depth_m, in.velocity_m_s) / law.tailwater_depth_m;
+  const double c_t = std::sqrt(gravity_m_s2 * law.tailwater_depth_m);
+  law.outlet_gain_m_s = (c_t * c_t - u_t * u_t) / (2.0 * c_t);
   law.interval_s = c.run.output_interval_s;
   law.volume_hold_time_s = b.control.volume_hold_time_s;
   law.toe_hold_time_s = b.control.toe_hold_time_s;
@@ -29,6 +32,9 @@ ToeHoldLaw ToeHoldLaw::from_case(const cases::Case& c, const cases::CaseGeometry
   if (!(law.outlet_x_m > law.target_toe_x_m) || !(law.tailwater_depth_m > law.inflow_depth_m))
     throw std::invalid_argument("case \"" + c.id + "\": the toe-holding control needs the basin start upstream of the "
                                 "outlet and a tailwater deeper than the inflow");
+  if (!(law.outlet_gain_m_s > 0.0))
+    throw std::invalid_argument("case \"" + c.id + "\": the toe-holding control needs a subcritical tailwater (U_t = " +
+                                std::to_string(u_t) + " m/s against sqrt(g y2*) = " + std::to_string(c_t) + " m/s)");
   return law;
 }
 
@@ -42,8 +48,8 @@ ToeHoldState toe_hold_step(const ToeHoldLaw& law, double volume_target_m2, doubl
   // V*(n) = V*(n-1) + (y2* - y1) / T_x * (x_toe - x_target) * dt
   next.volume_target_m2 = volume_target_m2 +
                           (y2 - law.inflow_depth_m) / law.toe_hold_time_s * (toe - law.target_toe_x_m) * law.interval_s;
-  // y_t(n) = y2* - (V - V*) / (T_V (U_t + c_t)), within [y2*/2, 3 y2*/2]
-  const double depth = y2 - (volume - next.volume_target_m2) / (law.volume_hold_time_s * law.outlet_speeds_m_s);
+  // y_t(n) = y2* - (V - V*) / (T_V S), within [y2*/2, 3 y2*/2]
+  const double depth = y2 - (volume - next.volume_target_m2) / (law.volume_hold_time_s * law.outlet_gain_m_s);
   next.outlet_depth_m = std::clamp(depth, 0.5 * y2, 1.5 * y2);
   return next;
 }

@@ -14,15 +14,17 @@
 //
 //   V*(n)  = V*(n-1) + (y2* - y1) / T_x * (x_toe(n) - x_target) * dt          (more water when the toe
 //                                                                             lies downstream)
-//   y_t(n) = clamp( y2* - (V(n) - V*(n)) / (T_V (U_t + c_t)),  y2*/2,  3 y2*/2 )   (volume)
+//   y_t(n) = clamp( y2* - (V(n) - V*(n)) / (T_V S),  y2*/2,  3 y2*/2 )             (volume)
 //
 // V(n) the water in the domain per unit width (m^2: the fluid and outflow-buffer mass over rho0, the
 // run monitor's fluid_mass), x_toe(n) the run monitor's toe at t_n (cases/jump_toe.hpp; no toe counts
 // as a toe at the outlet: the jump has left the basin), x_target the basin start, y2* the case's
-// tailwater depth (the initial level), U_t = q / y2* and c_t = sqrt(g y2*). Why U_t + c_t: the
-// absorbing outlet lets out h u_b with u_b = q/y_t + 2 (sqrt(g h) - sqrt(g y_t)), so at h = y_t a target
-// lowered by delta lets out (U_t + c_t) delta more: the law drains a volume error V - V* at the rate
-// (V - V*) / T_V, as the VOF tailgate's Umean = (q + (V - V*)/T_V) / y2* does. The toe term moves the
+// tailwater depth (the initial level) and S = (c_t^2 - U_t^2) / (2 c_t) the outlet's gain, with
+// U_t = q / y2* and c_t = sqrt(g y2*): the absorbing (characteristic) outlet, at the tailwater state,
+// lets out S delta more for a target lowered by delta (open_boundaries.hpp), so the law drains a volume
+// error V - V* at the rate (V - V*) / T_V, as the VOF tailgate's Umean = (q + (V - V*)/T_V) / y2* does.
+// (A hydrostatic_level outlet holds its level firmly: its gain is larger, and the volume settles
+// faster than T_V.) The toe term moves the
 // toe to the target over about T_x. V*(0) = V(0) at the first output. At steady state the toe stands
 // at x_target and the outlet lets out q: the tailwater then is the depth the jump needs, a prediction
 // the comparator sets beside Bélanger's and the laboratory's.
@@ -58,7 +60,7 @@ struct ToeHoldLaw {
   double tailwater_depth_m = 0.0;    // y2*, the initial level
   double target_toe_x_m = 0.0;       // x_target, the basin start
   double outlet_x_m = 0.0;           // the toe of an output without one
-  double outlet_speeds_m_s = 0.0;    // U_t + c_t = q / y2* + sqrt(g y2*)
+  double outlet_gain_m_s = 0.0;      // S = (c_t^2 - U_t^2) / (2 c_t), U_t = q / y2*, c_t = sqrt(g y2*)
   double interval_s = 0.0;           // dt, the output interval
   double volume_hold_time_s = 1.0;   // T_V
   double toe_hold_time_s = 5.0;      // T_x

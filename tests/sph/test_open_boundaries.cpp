@@ -128,7 +128,32 @@ TEST_CASE("Outflow buffer removes what leaves and holds the level", "[sph][open_
   CHECK(in_buffer >= static_cast<Eigen::Index>(std::floor(tailwater / dx)));
 }
 
-TEST_CASE("Absorbing outflow moves its buffer at the tailwater's Riemann invariant", "[sph][open_boundary]") {
+TEST_CASE("Absorbing outflow: the characteristic outlet state from the basin's and the tailwater's invariants",
+          "[sph][open_boundary]") {
+  const double dx = 0.01, x_out = 1.0, tailwater = 0.1, q = 0.05, g = 9.81;
+  BufferParameters params = parameters(dx);
+  params.outflow = OutflowCondition::absorbing;
+  OutflowBuffer outflow({x_out, tailwater}, 0.0, params, q);
+  // The tailwater state itself passes unchanged: h = y_t, u = U_t = 0.5 m/s.
+  const auto same = outflow.characteristic_outlet(tailwater, q / tailwater, tailwater);
+  CHECK(same.depth_m == Approx(tailwater).epsilon(1e-12));
+  CHECK(same.velocity_m_s == Approx(q / tailwater).epsilon(1e-12));
+  // Still water 0.15 m deep: R+ = 2 sqrt(g 0.15) = 2.42611, R- = 0.5 - 2 sqrt(g 0.1) = -1.48091,
+  // sqrt(g h_B) = 0.97675 -> h_B = 0.097253 m, u_B = 0.47260 m/s (a deep basin drains).
+  const auto deep = outflow.characteristic_outlet(0.15, 0.0, tailwater);
+  CHECK(deep.depth_m == Approx(0.097253).epsilon(1e-4));
+  CHECK(deep.velocity_m_s == Approx(0.47260).epsilon(1e-4));
+  // The gain: a target lowered by delta lets out (c_t^2 - U_t^2) delta / (2 c_t) more, to first order.
+  const double delta = 1e-6, c_t = std::sqrt(g * tailwater), u_t = q / tailwater;
+  const auto lowered = outflow.characteristic_outlet(tailwater, u_t, tailwater - delta);
+  CHECK((lowered.depth_m * lowered.velocity_m_s - q) / delta == Approx((c_t * c_t - u_t * u_t) / (2.0 * c_t)).epsilon(1e-4));
+  // A dry strip or water flowing back: never a negative depth or velocity.
+  const auto dry = outflow.characteristic_outlet(0.0, -3.0, tailwater);
+  CHECK(dry.depth_m == 0.0);
+  CHECK(dry.velocity_m_s == 0.0);
+}
+
+TEST_CASE("Absorbing outflow moves its buffer at the characteristic outlet's state", "[sph][open_boundary]") {
   const double dx = 0.01, x_out = 1.0, tailwater = 0.1, q = 0.05, g = 9.81;
   BufferParameters params = parameters(dx);
   params.outflow = OutflowCondition::absorbing;
@@ -143,19 +168,18 @@ TEST_CASE("Absorbing outflow moves its buffer at the tailwater's Riemann invaria
     for (int r = 0; r < rows; ++r, ++i) p.assign(i, ParticleType::fluid, 0.805 + c * dx, (r + 0.5) * dx, 1000.0, 0.1, id++);
   const double initial = total_mass(p, ParticleType::fluid);
   const double removed = outflow.advance(p, 1e-3);
-  // h = 0.15 m measured over the strip: u_b = U_t + 2 (sqrt(g h) - sqrt(g y_t)) > U_t, so the level drains.
-  const double h = rows * dx;
-  const double expected = q / tailwater + 2.0 * (std::sqrt(g * h) - std::sqrt(g * tailwater));
+  // h = 0.15 m and u = 0 over the strip: the outlet state of the case above, by hand.
+  const double h_b = 0.097253, u_b = 0.47260;
   int buffer = 0;
   const TaitEquationOfState eos(1000.0, 40.0);
   for (Eigen::Index k = 0; k < p.size(); ++k) {
     if (p.type[k] != static_cast<std::uint8_t>(ParticleType::outflow)) continue;
     ++buffer;
-    CHECK(p.u[k] == Approx(expected).epsilon(1e-9));
-    // hydrostatic below the measured level h (not the tailwater level)
-    CHECK(p.rho[k] == Approx(eos.hydrostatic_density(g, std::max(0.0, h - p.z[k]))).epsilon(1e-12));
+    CHECK(p.u[k] == Approx(u_b).epsilon(1e-4));
+    // hydrostatic below the outlet level h_B (not the basin's, nor the tailwater's)
+    CHECK(p.rho[k] == Approx(eos.hydrostatic_density(g, std::max(0.0, h_b - p.z[k]))).epsilon(1e-6));
   }
-  CHECK(buffer == rows);  // the column past x_out, none spilled (all within 2 dx of the level)
+  CHECK(buffer == rows);  // the column past x_out, none spilled (all within 2 dx of the basin's level)
   CHECK(total_mass(p, ParticleType::fluid) + total_mass(p, ParticleType::outflow) + removed == Approx(initial));
 }
 

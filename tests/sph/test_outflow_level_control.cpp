@@ -67,10 +67,10 @@ TEST_CASE("the level control integrates the section's depth error at its control
   CHECK_THROWS_WITH(OutflowLevelControl(0.5, y2, 0.0, 2.0 * dx), Catch::Contains("integral time"));
 }
 
-TEST_CASE("the level-controlled outlet drains at the Riemann invariant of its moved target depth", "[sph][open_boundary][level_control]") {
+TEST_CASE("the level-controlled outlet drains at the characteristic state of its moved target depth", "[sph][open_boundary][level_control]") {
   // Geometry: outflow at x = 1 m with y2 = 0.10 m; the section at x = 0.5 m sits in still water
   // 0.12 m deep. After the open boundaries have moved the target to y_t, the absorbing buffer moves
-  // at u_b = q / y_t + 2 (sqrt(g h) - sqrt(g y_t)) with h the strip depth upstream of the outlet.
+  // at the characteristic outlet's u_B for the strip upstream of the outlet (depth h, at rest).
   const double dx = 0.01, y2 = 0.10, q = 0.05, g = 9.81;
   cases::CaseGeometry geometry;
   geometry.bed = cases::BedProfile::flat(0.0);
@@ -100,8 +100,9 @@ TEST_CASE("the level-controlled outlet drains at the Riemann invariant of its mo
   p.resize(n + 12);
   for (int r = 0; r < 12; ++r) p.assign(n + r, ParticleType::fluid, 1.0 + 0.5 * dx, (r + 0.5) * dx, 1000.0, 0.1, 10000 + r);
   open.advance(p, 0.0115, 1e-4);
-  const double h = 0.12;  // the strip upstream of the outlet
-  const double expected = q / y_t + 2.0 * (std::sqrt(g * h) - std::sqrt(g * y_t));
+  const double h = 0.12;  // the strip upstream of the outlet, at rest
+  // u_B = (R+ + R-) / 2, R+ = 0 + 2 sqrt(g h), R- = q / y_t - 2 sqrt(g y_t)
+  const double expected = 0.5 * (2.0 * std::sqrt(g * h) + q / y_t - 2.0 * std::sqrt(g * y_t));
   int buffer = 0;
   for (Eigen::Index k = 0; k < p.size(); ++k)
     if (p.type[k] == static_cast<std::uint8_t>(ParticleType::outflow)) {

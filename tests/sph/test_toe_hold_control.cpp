@@ -1,6 +1,6 @@
 // The toe-holding tailwater control (sph/toe_hold_control.hpp, [case.tailwater] control = "hold_toe"):
 // - the law by hand: V*(0) = V(0) and y_t = y2*; one output with the toe 0.1 m downstream raises V* by
-//   (y2* - y1) / T_x * 0.1 m * dt and the outlet by that over T_V (U_t + c_t); no toe counts as a toe at
+//   (y2* - y1) / T_x * 0.1 m * dt and the outlet by that over T_V S; no toe counts as a toe at
 //   the outlet; the clamps; the law is refused for a case that does not hold its toe;
 // - on a short smooth channel (A_smooth's inflow, dx 10 mm) with two basin starts 0.1 m apart and
 //   everything else the same: each held toe goes to its own basin start;
@@ -35,7 +35,8 @@ ToeHoldLaw hand_law() {
   law.tailwater_depth_m = 0.132;
   law.target_toe_x_m = 0.2;
   law.outlet_x_m = 1.0;
-  law.outlet_speeds_m_s = 0.0508 / 0.132 + std::sqrt(9.81 * 0.132);
+  // S = (c_t^2 - U_t^2) / (2 c_t): U_t = 0.0508 / 0.132 = 0.38485 m/s, c_t = 1.13794 m/s -> 0.50389 m/s
+  law.outlet_gain_m_s = 0.50389;
   law.interval_s = 0.1;
   law.volume_hold_time_s = 1.0;
   law.toe_hold_time_s = 5.0;
@@ -105,14 +106,14 @@ TEST_CASE("the toe-holding law by hand: the first output, a toe downstream, no t
   CHECK(first.volume_target_m2 == Approx(0.12).epsilon(1e-15));
   CHECK(first.outlet_depth_m == 0.132);
   // The toe 0.1 m downstream of the target: V* += (0.132 - 0.0254) / 5 * 0.1 * 0.1 = 2.132e-4 m^2,
-  // and with V unchanged the outlet rises by that over T_V (U_t + c_t).
+  // and with V unchanged the outlet rises by that over T_V S.
   const ToeHoldState second = toe_hold_step(law, first.volume_target_m2, mass, 0.3);
   const double dv = (0.132 - 0.0254) / 5.0 * 0.1 * 0.1;
   CHECK(second.volume_target_m2 - first.volume_target_m2 == Approx(dv).epsilon(1e-9));
-  CHECK(second.outlet_depth_m == Approx(0.132 + dv / law.outlet_speeds_m_s).epsilon(1e-12));
+  CHECK(second.outlet_depth_m == Approx(0.132 + dv / law.outlet_gain_m_s).epsilon(1e-12));
   // More water than the target: the outlet drops below y2* to let it out.
   const ToeHoldState drain = toe_hold_step(law, 0.12, mass + 1.0, 0.2);
-  CHECK(drain.outlet_depth_m == Approx(0.132 - 0.001 / law.outlet_speeds_m_s).epsilon(1e-12));
+  CHECK(drain.outlet_depth_m == Approx(0.132 - 0.001 / law.outlet_gain_m_s).epsilon(1e-12));
   // No toe: the jump has left the basin, a toe at the outlet (0.8 m downstream).
   const ToeHoldState gone = toe_hold_step(law, first.volume_target_m2, mass, std::numeric_limits<double>::quiet_NaN());
   CHECK(gone.volume_target_m2 - first.volume_target_m2 == Approx(8.0 * dv).epsilon(1e-9));
@@ -125,6 +126,12 @@ TEST_CASE("the toe-holding law by hand: the first output, a toe downstream, no t
   CHECK(from_case.target_toe_x_m == held.geometry.expected_toe_x_m);
   CHECK(from_case.outlet_x_m == held.geometry.x_max_m);
   CHECK(from_case.interval_s == 0.05);
+  {  // its gain S = (c_t^2 - U_t^2) / (2 c_t) from the case's q and tailwater depth, by hand
+    const auto& in = held.geometry.inflows.front();
+    const double u_t = in.depth_m * in.velocity_m_s / held.geometry.outflows.front().tailwater_depth_m;
+    const double c_t = std::sqrt(9.81 * held.geometry.outflows.front().tailwater_depth_m);
+    CHECK(from_case.outlet_gain_m_s == Approx(0.5 * (c_t - u_t * u_t / c_t)).epsilon(1e-12));
+  }
   const auto fixed = held_basin("fixed_depth", 0.0, 1.0);
   CHECK_THROWS_WITH(ToeHoldLaw::from_case(fixed.spec, fixed.geometry, 9.81, 1000.0), Catch::Contains("hold_toe"));
 }
@@ -134,8 +141,8 @@ TEST_CASE("the held toe goes to the basin start: two basins starting 0.1 m apart
   // The same 0.5-m smooth channel and the same initial water (the toe ramp at x = 0.2 m, the tailwater
   // 0.8 y2*, so the jump first runs downstream to about 0.4 m), the basin starting at 0.15 m or at
   // 0.25 m: only the control's target differs (and the sections). Without the control both runs would
-  // be the same run. Measured (dx 0.01 m, T_V 0.5 s, T_x 1.5 s, 3 s): the toes come back to 0.12 and
-  // 0.20 m over the last second, still settling (the loop undershoots by 0.03-0.05 m at 3 s); asserted:
+  // be the same run. Measured (dx 0.01 m, T_V 0.5 s, T_x 1.5 s, 3 s, the characteristic outlet): the toes
+  // come back to 0.178 and 0.245 m over the last second, still settling; asserted:
   // each within 0.06 m (2.4 y1) of its target, and 0.1 m of target apart gives at least 0.05 m of toe.
   const double end = 3.0, dx = 0.01;
   double toe[2] = {0.0, 0.0}, target[2] = {0.0, 0.0};
