@@ -201,6 +201,7 @@ std::string resolved_case_text(const Study& study, const Case& c, const std::str
     if (b->control.holds_toe()) {
       w.num("volume_hold_time_s", b->control.volume_hold_time_s);
       w.num("toe_hold_time_s", b->control.toe_hold_time_s);
+      w.num("toe_hold_gain", b->control.toe_hold_gain);
     }
     w.header("[case.domain]");
     w.num("upstream_length_m", b->upstream_length_m);

@@ -59,7 +59,8 @@ StillingBasinCase read_stilling_basin(TableReader& c, double g) {
   b.control.mode = tail.choice("control", b.control.mode);
   b.control.volume_hold_time_s = tail.number_or("volume_hold_time_s", b.control.volume_hold_time_s, positive("s", 1000.0));
   b.control.toe_hold_time_s = tail.number_or("toe_hold_time_s", b.control.toe_hold_time_s, positive("s", 1000.0));
-  for (const char* key : {"volume_hold_time_s", "toe_hold_time_s"})
+  b.control.toe_hold_gain = tail.number_or("toe_hold_gain", b.control.toe_hold_gain, between(0.0, 10.0));
+  for (const char* key : {"volume_hold_time_s", "toe_hold_time_s", "toe_hold_gain"})
     if (!b.control.holds_toe() && tail.has(key))
       tail.fail_at(tail.raw().get(key), key, "is only used with control = \"hold_toe\" (here \"" + std::string(cases::option_name(b.control.mode)) + "\")");
   tail.reject_unknown_keys();

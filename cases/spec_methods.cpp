@@ -187,12 +187,12 @@ void read_vof(TableReader& t, VofSettings& v) {
   v.mesh_strategy = t.choice("mesh_strategy", v.mesh_strategy);
   v.surface_refinement_band_m = t.number_or("surface_refinement_band_m", v.surface_refinement_band_m, non_negative("m", 100.0));
   // The tailwater control is the case's protocol, read by both solvers ([case.tailwater] control).
-  for (const char* key : {"tailwater_control", "volume_hold_time_s", "toe_hold_time_s"})
+  for (const char* key : {"tailwater_control", "volume_hold_time_s", "toe_hold_time_s", "toe_hold_gain"})
     if (t.has(key))
       t.fail_at(t.raw().get(key), key,
                 "is no [vof] setting: the tailwater control is the case's protocol, read by both solvers: "
                 "[case.tailwater] control = \"hold_toe\" (the default) or \"fixed_depth\", with its "
-                "volume_hold_time_s and toe_hold_time_s");
+                "volume_hold_time_s, toe_hold_time_s and toe_hold_gain");
   v.tailwater_control_interval_s = t.number_or("tailwater_control_interval_s", v.tailwater_control_interval_s, positive("s", 100.0));
   t.reject_unknown_keys();
 }

@@ -1,7 +1,8 @@
 // The tailgate step of `[case.tailwater] control = "hold_toe"` after each leg of interFoam: the toe over
 // the leg's outputs (the freeSurface iso-surface) and the water volume at its end (water_volume) give
 // the law's step (tailwater_control.hpp),
-//   V* += (y2* - y1)/T_x (x_toe - x_basin) dt;   Umean = (q + (V - V*)/T_V) / y2*
+//   I += (y2* - y1)/T_x (x_toe - x_basin) dt;   V* = I + k_p (y2* - y1) (x_toe - x_basin);
+//   Umean = (q + (V - V*)/T_V) / y2*
 // which is logged in tailwater_control.csv and written as the outlet's Umean into the latest U (every
 // processor's when decomposed).
 #include <algorithm>
@@ -20,9 +21,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The last logged step at or before the leg's start: its volume target (nothing: none yet) and time.
+// The last logged step at or before the leg's start: the integral part of its volume target (nothing:
+// none yet) and its time.
 struct PreviousStep {
-  std::optional<double> volume_target_m2;
+  std::optional<double> volume_integral_m2;
   double time_s = 0.0;
 };
 
@@ -30,11 +32,12 @@ struct PreviousStep {
 // from the leg's start: a run resumed between two control times, or after a step that was never
 // logged (the runner killed between the leg's end and its log row), still moves the volume target by
 // the toe over the whole time since that step.
-PreviousStep previous_step(const fs::path& dir, double leg_start_s, double tol) {
+PreviousStep previous_step(const fs::path& dir, const TailwaterControlLaw& law, double leg_start_s, double tol) {
   PreviousStep previous;
   for (const TailwaterControlStep& s : read_tailwater_control_log(dir)) {
     if (s.time_s <= leg_start_s + tol) {
-      previous.volume_target_m2 = s.volume_target_m2;
+      // I = V* - P(x_toe): the row's toe is the one its proportional part used
+      previous.volume_integral_m2 = s.volume_target_m2 - toe_hold_proportional(law, s.toe_x_m);
       previous.time_s = s.time_s;
     }
   }
@@ -120,10 +123,10 @@ void tailwater_control_after_leg(const fs::path& dir, const TailwaterControlLaw&
                                  double max_time_step_s, bool parallel, double leg_start_s, double leg_end_s,
                                  std::ostream& out) {
   const double tol = 1e-6 * std::max(law.interval_s, 1e-3);
-  const PreviousStep previous = previous_step(dir, leg_start_s, tol);
+  const PreviousStep previous = previous_step(dir, law, leg_start_s, tol);
   const std::vector<double> toes = toes_since(dir, law, previous.time_s, leg_start_s, leg_end_s, tol);
   const double volume_m3 = water_volume_at(dir, leg_end_s, max_time_step_s, tol);
-  const TailwaterControlStep step = tailwater_control_step(law, previous.volume_target_m2, leg_end_s,
+  const TailwaterControlStep step = tailwater_control_step(law, previous.volume_integral_m2, leg_end_s,
                                                           leg_end_s - previous.time_s, toes, volume_m3 / thickness_m);
   const std::vector<fs::path> u_files = latest_u_files(dir, parallel);
   const double previous_umean = read_outlet_mean_velocity(u_files.front());

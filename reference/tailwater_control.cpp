@@ -44,10 +44,17 @@ TailwaterControlLaw tailwater_control_law(const cases::Case& c, const cases::Cas
   law.output_interval_s = c.run.output_interval_s;
   law.volume_hold_time_s = c.stilling_basin()->control.volume_hold_time_s;
   law.toe_hold_time_s = c.stilling_basin()->control.toe_hold_time_s;
+  law.toe_hold_gain = c.stilling_basin()->control.toe_hold_gain;
   return law;
 }
 
-TailwaterControlStep tailwater_control_step(const TailwaterControlLaw& law, std::optional<double> previous_target,
+// P = k_p (y2* - y1) (x_toe - x_target)
+double toe_hold_proportional(const TailwaterControlLaw& law, double toe_x_m) {
+  const double toe = std::isfinite(toe_x_m) ? toe_x_m : law.outlet_x_m;
+  return law.toe_hold_gain * (law.tailwater_depth_m - law.inflow_depth_m) * (toe - law.target_toe_x_m);
+}
+
+TailwaterControlStep tailwater_control_step(const TailwaterControlLaw& law, std::optional<double> previous_integral,
                                             double time_s, double leg_s, const std::vector<double>& output_toes_x_m,
                                             double water_volume_m2) {
   TailwaterControlStep step;
@@ -61,10 +68,12 @@ TailwaterControlStep tailwater_control_step(const TailwaterControlLaw& law, std:
   }
   step.toe_x_m = step.toe_outputs > 0 ? sum / step.toe_outputs : std::numeric_limits<double>::quiet_NaN();
   const double toe = step.toe_outputs > 0 ? step.toe_x_m : law.outlet_x_m;
-  // V*(n) = V*(n-1) + (y2* - y1) / T_x * (x_toe - x_target) * dt
+  // I(n) = I(n-1) + (y2* - y1) / T_x * (x_toe - x_target) * dt, I(-1) = V(0) - P(0);  V*(n) = I(n) + P(n)
   const double y2 = law.tailwater_depth_m;
-  step.volume_target_m2 = previous_target.value_or(water_volume_m2) +
+  const double proportional = toe_hold_proportional(law, toe);
+  const double integral = previous_integral.value_or(water_volume_m2 - proportional) +
                           (y2 - law.inflow_depth_m) / law.toe_hold_time_s * (toe - law.target_toe_x_m) * leg_s;
+  step.volume_target_m2 = integral + proportional;
   // Umean = (q + (V - V*) / T_V) / y2*, within [1/4, 4] q / y2*
   const double q = law.discharge_m2_s;
   const double umean = (q + (water_volume_m2 - step.volume_target_m2) / law.volume_hold_time_s) / y2;

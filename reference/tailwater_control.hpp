@@ -11,16 +11,18 @@
 // the target, once per leg of `tailwater_control_interval_s` (interFoam runs leg by leg; the outlet's
 // Umean is rewritten in the latest time directory between legs):
 //
-//   V*(n)     = V*(n-1) + (y2* - y1) / T_x * (x_toe(n) - x_target) * dt        (toe: more water when the
-//                                                                               toe lies downstream)
+//   I(n)      = I(n-1) + (y2* - y1) / T_x * (x_toe(n) - x_target) * dt          (toe: more water when the
+//   V*(n)     = I(n) + k_p (y2* - y1) (x_toe(n) - x_target)                         toe lies downstream)
 //   Umean(n)  = ( q + (V(n) - V*(n)) / T_V ) / y2*,   clamped to [1/4, 4] q / y2*   (volume)
 //
 // V(n) the water volume per unit width (m^2: the integral of alpha.water over the domain divided by
 // the mesh's thickness) at the end of leg n, x_toe(n) the mean of the toe over the leg's outputs,
 // dt the leg's length (the interval, less for a leg that aligns with the output times), T_V = `volume_hold_time_s` (a volume error decays by about dt / T_V per leg),
 // T_x = `toe_hold_time_s` ((y2* - y1) / T_x is the volume per second that moves the toe by 1 m,
-// y2* - y1 per metre of basin). V*(0) = V(0) + its toe term: the first leg's volume, so the control
-// starts without a jump. x_target = the basin start (`expected_toe_x_m`). A leg without a toe on any
+// y2* - y1 per metre of basin), k_p = `toe_hold_gain` (the proportional part, which damps the loop:
+// sph/toe_hold_control.hpp). At the first step I(0) = V(0) - k_p (y2* - y1) (x_toe(0) - x_target) + its
+// toe term, so V*(0) = V(0) + its toe term: the first leg's volume, and the control starts without a
+// jump. I(n-1) is not logged: it is V*(n-1) less the proportional part of that row's toe. x_target = the basin start (`expected_toe_x_m`). A leg without a toe on any
 // output counts as a toe at the outlet (the jump has left the basin downstream). At steady state the
 // outlet lets out q and the toe stands at x_target: the tailwater y2 then is the depth the jump needs,
 // which the comparator sets beside Bélanger's.
@@ -38,6 +40,7 @@
 //   | [case.tailwater] control                     | "hold_toe"      | this control; "fixed_depth": none  |
 //   | [case.tailwater] volume_hold_time_s          | 1.0             | T_V (>= dt)                        |
 //   | [case.tailwater] toe_hold_time_s             | 5.0             | T_x (>= dt)                        |
+//   | [case.tailwater] toe_hold_gain               | 0.5             | k_p, in [0, 10]                    |
 //   | [vof] tailwater_control_interval_s           | whole outputs   | leg length dt, a whole number of   |
 //   |                                              | within 0.5 s    | output intervals, <= end_time_s    |
 // Example:
@@ -74,6 +77,7 @@ struct TailwaterControlLaw {
   double output_interval_s = 0.1;     // the case's output times k dt_out, where the toes are read
   double volume_hold_time_s = 1.0;    // T_V
   double toe_hold_time_s = 5.0;       // T_x
+  double toe_hold_gain = 0.5;         // k_p
 };
 
 // The law of a stilling-basin case with tailwater_control = "hold_toe" and its geometry (throws
@@ -89,9 +93,12 @@ struct TailwaterControlStep {
   double outlet_mean_velocity_m_s = 0.0; // Umean(n), for the next leg
 };
 
+// The proportional part of V*: k_p (y2* - y1) (x_toe - x_target), a toe of NaN (none) at the outlet.
+double toe_hold_proportional(const TailwaterControlLaw& law, double toe_x_m);
+
 // One step of the law above after a leg of `leg_s` seconds (dt: the interval, or less for an aligning
-// or closing leg). `previous_target`: V*(n-1), nothing at the first step.
-TailwaterControlStep tailwater_control_step(const TailwaterControlLaw& law, std::optional<double> previous_target,
+// or closing leg). `previous_integral`: I(n-1), nothing at the first step.
+TailwaterControlStep tailwater_control_step(const TailwaterControlLaw& law, std::optional<double> previous_integral,
                                             double time_s, double leg_s, const std::vector<double>& output_toes_x_m,
                                             double water_volume_m2);
 

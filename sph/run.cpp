@@ -147,7 +147,7 @@ class RunState {
     if (!basin_ || !o_.toe_hold || basin_->samples().empty()) return;
     const BasinSample& s = basin_->samples().back();
     const ToeHoldState next = toe_hold_step(*o_.toe_hold, solver_.clock().held_volume_m2, s.fluid_mass, s.toe_x);
-    solver_.set_tailwater_control(next.outlet_depth_m, next.volume_target_m2);
+    solver_.set_tailwater_control(next.outlet_depth_m, next.volume_integral_m2);
   }
 
   std::string status() const { return basin_ ? basin_->status_line() : std::string(); }

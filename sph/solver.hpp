@@ -45,8 +45,8 @@ struct SolverClock {
   // The outflow buffers' target depth y_t (m), moved by a level control (outflow_level_control.hpp);
   // 0: the case's tailwater depth (a run not yet started, or no outflow buffers).
   double outflow_target_depth = 0.0;
-  // The toe-holding control's water volume target V* (m^2, toe_hold_control.hpp); 0: none, or not
-  // started.
+  // The integral part I of the toe-holding control's water volume target V* (m^2,
+  // toe_hold_control.hpp); 0: none, or not started.
   double held_volume_m2 = 0.0;
 };
 

@@ -28,6 +28,7 @@ ToeHoldLaw ToeHoldLaw::from_case(const cases::Case& c, const cases::CaseGeometry
   law.interval_s = c.run.output_interval_s;
   law.volume_hold_time_s = b.control.volume_hold_time_s;
   law.toe_hold_time_s = b.control.toe_hold_time_s;
+  law.toe_hold_gain = b.control.toe_hold_gain;
   law.rho0 = rho0;
   if (!(law.outlet_x_m > law.target_toe_x_m) || !(law.tailwater_depth_m > law.inflow_depth_m))
     throw std::invalid_argument("case \"" + c.id + "\": the toe-holding control needs the basin start upstream of the "
@@ -38,16 +39,25 @@ ToeHoldLaw ToeHoldLaw::from_case(const cases::Case& c, const cases::CaseGeometry
   return law;
 }
 
-ToeHoldState toe_hold_step(const ToeHoldLaw& law, double volume_target_m2, double water_mass_kg_per_m,
+ToeHoldState toe_hold_step(const ToeHoldLaw& law, double volume_integral_m2, double water_mass_kg_per_m,
                            double toe_x_m) {
   const double volume = water_mass_kg_per_m / law.rho0;
   const double y2 = law.tailwater_depth_m;
-  if (volume_target_m2 == 0.0) return {volume, y2};  // V*(0) = V(0)
   const double toe = std::isfinite(toe_x_m) ? toe_x_m : law.outlet_x_m;
+  const double water_per_metre = y2 - law.inflow_depth_m;  // y2* - y1
+  // P(n) = k_p (y2* - y1) (x_toe(n) - x_target)
+  const double proportional = law.toe_hold_gain * water_per_metre * (toe - law.target_toe_x_m);
   ToeHoldState next;
-  // V*(n) = V*(n-1) + (y2* - y1) / T_x * (x_toe - x_target) * dt
-  next.volume_target_m2 = volume_target_m2 +
-                          (y2 - law.inflow_depth_m) / law.toe_hold_time_s * (toe - law.target_toe_x_m) * law.interval_s;
+  if (volume_integral_m2 == 0.0) {  // the first output: I(0) = V(0) - P(0), V*(0) = V(0)
+    next.volume_integral_m2 = volume - proportional;
+    next.volume_target_m2 = volume;
+    next.outlet_depth_m = y2;
+    return next;
+  }
+  // I(n) = I(n-1) + (y2* - y1) / T_x * (x_toe - x_target) * dt;  V*(n) = I(n) + P(n)
+  next.volume_integral_m2 =
+      volume_integral_m2 + water_per_metre / law.toe_hold_time_s * (toe - law.target_toe_x_m) * law.interval_s;
+  next.volume_target_m2 = next.volume_integral_m2 + proportional;
   // y_t(n) = y2* - (V - V*) / (T_V S), within [y2*/2, 3 y2*/2]
   const double depth = y2 - (volume - next.volume_target_m2) / (law.volume_hold_time_s * law.outlet_gain_m_s);
   next.outlet_depth_m = std::clamp(depth, 0.5 * y2, 1.5 * y2);

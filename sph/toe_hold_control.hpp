@@ -8,12 +8,12 @@
 // the jump has no preferred place: a tailwater 1 % off Bélanger's depth moves the toe at about 1 % of
 // U1. A basin that keeps its water volume holds the jump: moved downstream by dx, it leaves
 // (y2 - y1) dx of water behind, which raises the level behind the roller and pushes it back. So the
-// control holds the volume, and moves that volume slowly to bring the toe to the target. It acts at
-// every output time t_n (spacing dt = run.output_interval_s) on the outflow buffers' target depth y_t
+// control holds the volume, and moves that volume to bring the toe to the target. It acts at every
+// output time t_n (spacing dt = run.output_interval_s) on the outflow buffers' target depth y_t
 // (open_boundaries.hpp):
 //
-//   V*(n)  = V*(n-1) + (y2* - y1) / T_x * (x_toe(n) - x_target) * dt          (more water when the toe
-//                                                                             lies downstream)
+//   I(n)   = I(n-1) + (y2* - y1) / T_x * (x_toe(n) - x_target) * dt          (more water when the toe
+//   V*(n)  = I(n) + k_p (y2* - y1) (x_toe(n) - x_target)                      lies downstream)
 //   y_t(n) = clamp( y2* - (V(n) - V*(n)) / (T_V S),  y2*/2,  3 y2*/2 )             (volume)
 //
 // V(n) the water in the domain per unit width (m^2: the fluid and outflow-buffer mass over rho0, the
@@ -25,11 +25,16 @@
 // error V - V* at the rate (V - V*) / T_V, as the VOF tailgate's Umean = (q + (V - V*)/T_V) / y2* does.
 // (A hydrostatic_level outlet holds its level firmly: its gain is larger, and the volume settles
 // faster than T_V.) The toe term moves the
-// toe to the target over about T_x. V*(0) = V(0) at the first output. At steady state the toe stands
+// toe to the target over about T_x. The proportional part k_p damps the loop: a toe moving back
+// to the target takes its water out again before it overshoots. (Without it the toe of SPH A_smooth,
+// pushed 0.16 m downstream by the start-up, came back and overshot by 0.08 m; a linear model of the
+// loop with the outlet's and the waves' lags puts k_p = 0.5 near the least overshoot for T_x one
+// sloshing period and lags of 0.5-1.5 s.) I(0) = V(0) - k_p (y2* - y1) (x_toe(0) - x_target), so that
+// V*(0) = V(0) at the first output. At steady state the toe stands
 // at x_target and the outlet lets out q: the tailwater then is the depth the jump needs, a prediction
 // the comparator sets beside Bélanger's and the laboratory's.
 //
-// V* and y_t are saved in checkpoints (SolverClock), and the law reads only the current output, so a
+// I and y_t are saved in checkpoints (SolverClock), and the law reads only the current output, so a
 // resumed run continues exactly. The control acts only at outputs on the output grid (not at the end
 // state of a run stopped between two), which an extended run drops.
 //
@@ -40,6 +45,7 @@
 //   |                     | "fixed_depth"  |            |                                            |
 //   | volume_hold_time_s  | (0, 1000] s    | 1.0        | T_V                                        |
 //   | toe_hold_time_s     | (0, 1000] s    | 5.0        | T_x                                        |
+//   | toe_hold_gain       | [0, 10]        | 0.5        | k_p                                        |
 // SPH needs an outflow buffer ("hydrostatic_level" or "absorbing"), not a tailgate weir or a level held
 // at the downstream section (those hold a depth: give control = "fixed_depth").
 // Example:
@@ -64,6 +70,7 @@ struct ToeHoldLaw {
   double interval_s = 0.0;           // dt, the output interval
   double volume_hold_time_s = 1.0;   // T_V
   double toe_hold_time_s = 5.0;      // T_x
+  double toe_hold_gain = 0.5;        // k_p
   double rho0 = 1000.0;              // V = mass / rho0
 
   // The law of a stilling basin with control = "hold_toe" (throws std::invalid_argument otherwise).
@@ -72,14 +79,15 @@ struct ToeHoldLaw {
 };
 
 struct ToeHoldState {
-  double volume_target_m2 = 0.0;     // V*; 0: not started (set to V at the first output)
+  double volume_integral_m2 = 0.0;   // I, the integral part of V*; 0: not started
+  double volume_target_m2 = 0.0;     // V* = I + k_p (y2* - y1) (x_toe - x_target)
   double outlet_depth_m = 0.0;       // y_t (y2* until the first step)
 };
 
 // One control step at an output with the water mass `water_mass_kg_per_m` and the toe `toe_x_m` (NaN:
-// no toe), from the previous V* (0: the first output): the new V* and y_t (y_t depends on V* and V
+// no toe), from the previous I (0: the first output): the new I, V* and y_t (y_t depends on V* and V
 // alone, not on its previous value).
-ToeHoldState toe_hold_step(const ToeHoldLaw& law, double volume_target_m2, double water_mass_kg_per_m,
+ToeHoldState toe_hold_step(const ToeHoldLaw& law, double volume_integral_m2, double water_mass_kg_per_m,
                            double toe_x_m);
 
 }  // namespace hydrojump::sph

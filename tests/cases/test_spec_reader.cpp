@@ -794,8 +794,9 @@ TEST_CASE("The tailwater control is hold_toe by default or fixed_depth in case.t
   CHECK(plain.cases[0].holds_toe());
   CHECK(plain.cases[0].stilling_basin()->control.volume_hold_time_s == 1.0);
   CHECK(plain.cases[0].stilling_basin()->control.toe_hold_time_s == 5.0);
+  CHECK(plain.cases[0].stilling_basin()->control.toe_hold_gain == 0.5);
   CHECK(plain.cases[0].vof.tailwater_control_interval_s == 0.5);
-  const Study again = resolved_reload(parse_study(vof(tail("volume_hold_time_s = 2.0\ntoe_hold_time_s = 8.0"),
+  const Study again = resolved_reload(parse_study(vof(tail("volume_hold_time_s = 2.0\ntoe_hold_time_s = 8.0\ntoe_hold_gain = 0"),
                                                       "tailwater_control_interval_s = 1.0"),
                                                   "spec.toml", "."),
                                       "tailwater");
@@ -803,6 +804,7 @@ TEST_CASE("The tailwater control is hold_toe by default or fixed_depth in case.t
   CHECK(again.cases[0].vof.tailwater_control_interval_s == 1.0);
   CHECK(again.cases[0].stilling_basin()->control.volume_hold_time_s == 2.0);
   CHECK(again.cases[0].stilling_basin()->control.toe_hold_time_s == 8.0);
+  CHECK(again.cases[0].stilling_basin()->control.toe_hold_gain == 0.0);
   const Study fixed = resolved_reload(parse_study(tail("control = \"fixed_depth\""), "spec.toml", "."), "fixed");
   CHECK(fixed.cases[0].stilling_basin()->control.mode == hydrojump::cases::TailwaterControlMode::fixed_depth);
   CHECK(!fixed.cases[0].holds_toe());
@@ -815,6 +817,10 @@ TEST_CASE("The tailwater control is hold_toe by default or fixed_depth in case.t
   CHECK_THAT(rejection(tail("control = \"fixed_depth\"\ntoe_hold_time_s = 5")),
              Catch::Contains("tailwater.toe_hold_time_s is only used with control = \"hold_toe\" (here \"fixed_depth\")"));
   CHECK_THAT(rejection(tail("toe_hold_time_s = 0")), Catch::Contains("tailwater.toe_hold_time_s = 0 is out of range"));
+  CHECK_THAT(rejection(tail("toe_hold_gain = 10.5")), Catch::Contains("tailwater.toe_hold_gain = 10.5 is out of range"));
+  CHECK_THAT(rejection(tail("toe_hold_gain = -1")), Catch::Contains("tailwater.toe_hold_gain = -1 is out of range"));
+  CHECK_THAT(rejection(tail("control = \"fixed_depth\"\ntoe_hold_gain = 1")),
+             Catch::Contains("tailwater.toe_hold_gain is only used with control = \"hold_toe\""));
   // A case's own VOF leg length without the toe control is unused.
   CHECK_THAT(rejection(replaced(tail("control = \"fixed_depth\""), "[case.domain]", "[case.vof]\ntailwater_control_interval_s = 1.0\n[case.domain]")),
              Catch::Contains("vof.tailwater_control_interval_s is only used with [case.tailwater] control = \"hold_toe\" (here \"fixed_depth\")"));
@@ -829,6 +835,7 @@ TEST_CASE("The tailwater control is hold_toe by default or fixed_depth in case.t
   CHECK_THAT(rejection(vof(valid_spec, "tailwater_control = \"hold_toe\"")),
              Catch::Contains("vof.tailwater_control is no [vof] setting") && Catch::Contains("[case.tailwater] control"));
   CHECK_THAT(rejection(vof(valid_spec, "toe_hold_time_s = 5")), Catch::Contains("vof.toe_hold_time_s is no [vof] setting"));
+  CHECK_THAT(rejection(vof(valid_spec, "toe_hold_gain = 1")), Catch::Contains("vof.toe_hold_gain is no [vof] setting"));
   // Legs longer than the run: the control would never act.
   CHECK_THAT(rejection(vof(tail("volume_hold_time_s = 20\ntoe_hold_time_s = 20"), "tailwater_control_interval_s = 20")),
              Catch::Contains("tailwater_control_interval_s = 20 is out of range: must be <= run.end_time_s"));

@@ -433,9 +433,11 @@ TEST_CASE("a tiny basin with the tailwater control resets the outlet's Umean aft
     CHECK(r.toe_x_m == Approx(0.232).margin(0.015));
   };
   for (const auto& r : rows) check_row(r);
-  // The second step continues from the first's volume target (toe target 0.1 m, the basin start).
+  // The second step continues from the first's integral I = V* - k_p (y2* - y1) (x_toe - 0.1) (toe
+  // target 0.1 m, the basin start; k_p 0.5 by default): V*(n) = I(n-1) + integral term + P(n).
   const auto next_target = [](const reference::TailwaterControlStep& previous, const reference::TailwaterControlStep& r) {
-    return previous.volume_target_m2 + (0.06 - 0.0254) / 5.0 * (r.toe_x_m - 0.1) * 0.01;
+    return previous.volume_target_m2 + (0.06 - 0.0254) / 5.0 * (r.toe_x_m - 0.1) * 0.01 +
+           0.5 * (0.06 - 0.0254) * (r.toe_x_m - previous.toe_x_m);
   };
   CHECK(rows[1].volume_target_m2 == Approx(next_target(rows[0], rows[1])).epsilon(1e-9));
   // Resumed to 0.03 s: one more step, from the logged target.

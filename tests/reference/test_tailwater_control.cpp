@@ -92,7 +92,7 @@ ModelRun run_model(ModelBasin b, const TailwaterControlLaw& law, bool control, d
     r.toe_max = std::max(r.toe_max, b.x);
     if (control) {
       const TailwaterControlStep s = reference::tailwater_control_step(law, target, (leg + 1) * law.interval_s, law.interval_s, toes, b.volume);
-      target = s.volume_target_m2;
+      target = s.volume_target_m2 - reference::toe_hold_proportional(law, s.toe_x_m);  // I(n)
       umean = s.outlet_mean_velocity_m_s;
     }
   }
@@ -105,7 +105,8 @@ ModelRun run_model(ModelBasin b, const TailwaterControlLaw& law, bool control, d
 
 TEST_CASE("the tailwater control law: volume target and outlet Umean against hand values", "[reference][tailwater]") {
   const TailwaterControlLaw law = law_b();
-  // First step: V* = V + (y2* - y1) / T_x (x - x_target) dt = 0.38 + 0.1782 / 5 * 0.1 * 0.5
+  // First step: V* = V + (y2* - y1) / T_x (x - x_target) dt = 0.38 + 0.1782 / 5 * 0.1 * 0.5 (the
+  // integral starts at V - P, so the proportional part k_p (y2* - y1) (x - x_target) adds nothing yet)
   const TailwaterControlStep first = reference::tailwater_control_step(law, std::nullopt, 10.5, 0.5, {0.25, 0.35, no_toe, 0.30}, 0.38);
   CHECK(first.toe_outputs == 3);
   CHECK(first.toe_x_m == Approx(0.30).epsilon(1e-12));
@@ -117,14 +118,20 @@ TEST_CASE("the tailwater control law: volume target and outlet Umean against han
   const TailwaterControlStep on = reference::tailwater_control_step(law, 0.381, 11.0, 0.5, {0.2}, 0.383);
   CHECK(on.volume_target_m2 == Approx(0.381).epsilon(1e-12));
   CHECK(on.outlet_mean_velocity_m_s == Approx((0.076 + 0.002) / 0.2036).epsilon(1e-12));
+  // The toe 0.05 m downstream, from the integral 0.38: V* = I + P, I = 0.38 + 0.1782 / 5 * 0.05 * 0.5,
+  // P = k_p (y2* - y1) (x - x_target) = 0.5 * 0.1782 * 0.05.
+  const TailwaterControlStep near = reference::tailwater_control_step(law, 0.38, 11.0, 0.5, {0.25}, 0.38);
+  CHECK(near.volume_target_m2 == Approx(0.38 + 0.1782 / 5.0 * 0.05 * 0.5 + 0.5 * 0.1782 * 0.05).epsilon(1e-12));
+  CHECK(reference::toe_hold_proportional(law, 0.25) == Approx(0.5 * 0.1782 * 0.05).epsilon(1e-12));
   // No toe on any output: counted at the outlet (the jump left the basin): more water.
   const TailwaterControlStep gone = reference::tailwater_control_step(law, 0.38, 11.5, 0.5, {no_toe, no_toe}, 0.38);
   CHECK(gone.toe_outputs == 0);
   CHECK(std::isnan(gone.toe_x_m));
-  CHECK(gone.volume_target_m2 == Approx(0.38 + 0.1782 / 5.0 * (2.49 - 0.2) * 0.5).epsilon(1e-12));
-  // A short leg (an aligning leg of 0.05 s after a stop) moves the target by its own length only.
+  CHECK(gone.volume_target_m2 ==
+        Approx(0.38 + 0.1782 / 5.0 * (2.49 - 0.2) * 0.5 + 0.5 * 0.1782 * (2.49 - 0.2)).epsilon(1e-12));
+  // A short leg (an aligning leg of 0.05 s after a stop) moves the integral by its own length only.
   const TailwaterControlStep short_leg = reference::tailwater_control_step(law, 0.38, 10.1, 0.05, {0.3}, 0.38);
-  CHECK(short_leg.volume_target_m2 == Approx(0.38 + 0.1782 / 5.0 * 0.1 * 0.05).epsilon(1e-12));
+  CHECK(short_leg.volume_target_m2 == Approx(0.38 + 0.1782 / 5.0 * 0.1 * 0.05 + 0.5 * 0.1782 * 0.1).epsilon(1e-12));
   // Clamped to [1/4, 4] q / y2*.
   CHECK(reference::tailwater_control_step(law, 0.38, 12.0, 0.5, {0.2}, 0.0).outlet_mean_velocity_m_s ==
         Approx(0.25 * 0.076 / 0.2036).epsilon(1e-12));

@@ -1,6 +1,7 @@
 // The toe-holding tailwater control (sph/toe_hold_control.hpp, [case.tailwater] control = "hold_toe"):
-// - the law by hand: V*(0) = V(0) and y_t = y2*; one output with the toe 0.1 m downstream raises V* by
-//   (y2* - y1) / T_x * 0.1 m * dt and the outlet by that over T_V S; no toe counts as a toe at
+// - the law by hand: V*(0) = V(0) and y_t = y2*; one output with the toe 0.1 m downstream raises the
+//   integral by (y2* - y1) / T_x * 0.1 m * dt, V* by that plus k_p (y2* - y1) 0.1 m, and the outlet by
+//   V* - V over T_V S; no toe counts as a toe at
 //   the outlet; the clamps; the law is refused for a case that does not hold its toe;
 // - on a short smooth channel (A_smooth's inflow, dx 10 mm) with two basin starts 0.1 m apart and
 //   everything else the same: each held toe goes to its own basin start;
@@ -40,6 +41,7 @@ ToeHoldLaw hand_law() {
   law.interval_s = 0.1;
   law.volume_hold_time_s = 1.0;
   law.toe_hold_time_s = 5.0;
+  law.toe_hold_gain = 0.5;
   law.rho0 = 1000.0;
   return law;
 }
@@ -102,21 +104,28 @@ double mean_toe(const RunOptions& o, const Solver& solver, double t0, double t1)
 TEST_CASE("the toe-holding law by hand: the first output, a toe downstream, no toe, the clamps", "[sph][toe_hold]") {
   const ToeHoldLaw law = hand_law();
   const double mass = 120.0;  // kg/m: V = 0.12 m^2
+  // The first output: V* = V, the integral starts at V - P with P = 0.5 * 0.1066 * 0.15 = 7.995e-3 m^2.
   const ToeHoldState first = toe_hold_step(law, 0.0, mass, 0.35);
   CHECK(first.volume_target_m2 == Approx(0.12).epsilon(1e-15));
+  CHECK(first.volume_integral_m2 == Approx(0.12 - 7.995e-3).epsilon(1e-12));
   CHECK(first.outlet_depth_m == 0.132);
-  // The toe 0.1 m downstream of the target: V* += (0.132 - 0.0254) / 5 * 0.1 * 0.1 = 2.132e-4 m^2,
-  // and with V unchanged the outlet rises by that over T_V S.
-  const ToeHoldState second = toe_hold_step(law, first.volume_target_m2, mass, 0.3);
+  // The toe 0.1 m downstream of the target: I += (0.132 - 0.0254) / 5 * 0.1 * 0.1 = 2.132e-4 m^2,
+  // V* = I + 0.5 * 0.1066 * 0.1, and with V unchanged the outlet rises by V* - V over T_V S.
+  const ToeHoldState second = toe_hold_step(law, first.volume_integral_m2, mass, 0.3);
   const double dv = (0.132 - 0.0254) / 5.0 * 0.1 * 0.1;
-  CHECK(second.volume_target_m2 - first.volume_target_m2 == Approx(dv).epsilon(1e-9));
-  CHECK(second.outlet_depth_m == Approx(0.132 + dv / law.outlet_gain_m_s).epsilon(1e-12));
+  CHECK(second.volume_integral_m2 - first.volume_integral_m2 == Approx(dv).epsilon(1e-9));
+  CHECK(second.volume_target_m2 == Approx(second.volume_integral_m2 + 0.5 * 0.1066 * 0.1).epsilon(1e-12));
+  CHECK(second.outlet_depth_m == Approx(0.132 + (second.volume_target_m2 - 0.12) / law.outlet_gain_m_s).epsilon(1e-12));
+  // The toe moving back does not overshoot the volume: at 0.25 m the proportional part has halved.
+  const ToeHoldState back = toe_hold_step(law, second.volume_integral_m2, mass, 0.25);
+  CHECK(back.volume_target_m2 - back.volume_integral_m2 == Approx(0.5 * 0.1066 * 0.05).epsilon(1e-9));
   // More water than the target: the outlet drops below y2* to let it out.
   const ToeHoldState drain = toe_hold_step(law, 0.12, mass + 1.0, 0.2);
   CHECK(drain.outlet_depth_m == Approx(0.132 - 0.001 / law.outlet_gain_m_s).epsilon(1e-12));
   // No toe: the jump has left the basin, a toe at the outlet (0.8 m downstream).
-  const ToeHoldState gone = toe_hold_step(law, first.volume_target_m2, mass, std::numeric_limits<double>::quiet_NaN());
-  CHECK(gone.volume_target_m2 - first.volume_target_m2 == Approx(8.0 * dv).epsilon(1e-9));
+  const ToeHoldState gone = toe_hold_step(law, first.volume_integral_m2, mass, std::numeric_limits<double>::quiet_NaN());
+  CHECK(gone.volume_integral_m2 - first.volume_integral_m2 == Approx(8.0 * dv).epsilon(1e-9));
+  CHECK(gone.volume_target_m2 - gone.volume_integral_m2 == Approx(0.5 * 0.1066 * 0.8).epsilon(1e-9));
   // The clamps: y2*/2 and 3 y2*/2.
   CHECK(toe_hold_step(law, 0.12, mass + 1000.0, 0.2).outlet_depth_m == Approx(0.066));
   CHECK(toe_hold_step(law, 0.12, mass - 110.0, 0.2).outlet_depth_m == Approx(0.198));
@@ -141,8 +150,8 @@ TEST_CASE("the held toe goes to the basin start: two basins starting 0.1 m apart
   // The same 0.5-m smooth channel and the same initial water (the toe ramp at x = 0.2 m, the tailwater
   // 0.8 y2*, so the jump first runs downstream to about 0.4 m), the basin starting at 0.15 m or at
   // 0.25 m: only the control's target differs (and the sections). Without the control both runs would
-  // be the same run. Measured (dx 0.01 m, T_V 0.5 s, T_x 1.5 s, 3 s, the characteristic outlet): the toes
-  // come back to 0.178 and 0.245 m over the last second, still settling; asserted:
+  // be the same run. Measured (dx 0.01 m, T_V 0.5 s, T_x 1.5 s, k_p 0.5, 3 s, the characteristic outlet): the toes
+  // come back to 0.183 and 0.235 m over the last second, still settling; asserted:
   // each within 0.06 m (2.4 y1) of its target, and 0.1 m of target apart gives at least 0.05 m of toe.
   const double end = 3.0, dx = 0.01;
   double toe[2] = {0.0, 0.0}, target[2] = {0.0, 0.0};
@@ -191,7 +200,7 @@ TEST_CASE("a held run resumed from its checkpoint ends as the uninterrupted one"
     REQUIRE(run_case(first, o) == RunStatus::step_limit);
   }
   const Checkpoint ck = read_checkpoint(checkpoint_path(tmp_b.path()));
-  REQUIRE(ck.clock.held_volume_m2 > 0.0);
+  REQUIRE(ck.clock.held_volume_m2 > 0.0);  // the integral I
   Solver resumed(c.settings, ck.particles, ck.clock, open_of(c));
   REQUIRE(run_case(resumed, options_for(c, tmp_b.path(), end), ck) == RunStatus::finished);
   // The control has moved the outlet (the basin starts 10 % low and its toe downstream).
