@@ -487,8 +487,10 @@ TEST_CASE("the tailwater control resumed between two control times integrates fr
   auto rows = reference::read_tailwater_control_log(dir);
   REQUIRE(rows.size() == 2);
   CHECK(rows[1].toe_outputs == 2);
+  // V*(n) = I(n-1) + integral term + P(n), I(n-1) = V*(n-1) - P(n-1), P = 0.5 (y2* - y1)(x_toe - 0.1)
   const auto next_target = [](const reference::TailwaterControlStep& previous, const reference::TailwaterControlStep& r) {
-    return previous.volume_target_m2 + (0.06 - 0.0254) / 5.0 * (r.toe_x_m - 0.1) * 0.01;
+    return previous.volume_target_m2 + (0.06 - 0.0254) / 5.0 * (r.toe_x_m - 0.1) * 0.01 +
+           0.5 * (0.06 - 0.0254) * (r.toe_x_m - previous.toe_x_m);
   };
 
   // Killed in the second leg after its output at 0.015 s: the resume starts there, and the step at
