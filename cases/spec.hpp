@@ -200,8 +200,8 @@ struct TailwaterControl {
   double volume_hold_time_s = 1.0;      // "hold_toe": T_V, time to drain a volume error
   double toe_hold_time_s = 5.0;         // "hold_toe": T_x, time to bring the toe to the basin start
   // "hold_toe": k_p, the water added at once per metre the toe stands downstream of the basin start,
-  // in units of y2* - y1 (the proportional part of the toe control: it damps the loop).
-  double toe_hold_gain = 0.5;
+  // in units of y2* - y1 (the proportional part of the toe control; 0: integral only).
+  double toe_hold_gain = 0.0;
   bool holds_toe() const { return mode == TailwaterControlMode::hold_toe; }
 };
 

@@ -19,8 +19,8 @@
 // the mesh's thickness) at the end of leg n, x_toe(n) the mean of the toe over the leg's outputs,
 // dt the leg's length (the interval, less for a leg that aligns with the output times), T_V = `volume_hold_time_s` (a volume error decays by about dt / T_V per leg),
 // T_x = `toe_hold_time_s` ((y2* - y1) / T_x is the volume per second that moves the toe by 1 m,
-// y2* - y1 per metre of basin), k_p = `toe_hold_gain` (the proportional part, which damps the loop:
-// sph/toe_hold_control.hpp). At the first step I(0) = V(0) - k_p (y2* - y1) (x_toe(0) - x_target) + its
+// y2* - y1 per metre of basin), k_p = `toe_hold_gain` (the proportional part, off by default: what it
+// did is in sph/toe_hold_control.hpp). At the first step I(0) = V(0) - k_p (y2* - y1) (x_toe(0) - x_target) + its
 // toe term, so V*(0) = V(0) + its toe term: the first leg's volume, and the control starts without a
 // jump. I(n-1) is not logged: it is V*(n-1) less the proportional part of that row's toe. x_target = the basin start (`expected_toe_x_m`). A leg without a toe on any
 // output counts as a toe at the outlet (the jump has left the basin downstream). At steady state the
@@ -40,7 +40,7 @@
 //   | [case.tailwater] control                     | "hold_toe"      | this control; "fixed_depth": none  |
 //   | [case.tailwater] volume_hold_time_s          | 1.0             | T_V (>= dt)                        |
 //   | [case.tailwater] toe_hold_time_s             | 5.0             | T_x (>= dt)                        |
-//   | [case.tailwater] toe_hold_gain               | 0.5             | k_p, in [0, 10]                    |
+//   | [case.tailwater] toe_hold_gain               | 0               | k_p, in [0, 10]                    |
 //   | [vof] tailwater_control_interval_s           | whole outputs   | leg length dt, a whole number of   |
 //   |                                              | within 0.5 s    | output intervals, <= end_time_s    |
 // Example:
@@ -77,7 +77,7 @@ struct TailwaterControlLaw {
   double output_interval_s = 0.1;     // the case's output times k dt_out, where the toes are read
   double volume_hold_time_s = 1.0;    // T_V
   double toe_hold_time_s = 5.0;       // T_x
-  double toe_hold_gain = 0.5;         // k_p
+  double toe_hold_gain = 0.0;         // k_p
 };
 
 // The law of a stilling-basin case with tailwater_control = "hold_toe" and its geometry (throws

@@ -794,9 +794,9 @@ TEST_CASE("The tailwater control is hold_toe by default or fixed_depth in case.t
   CHECK(plain.cases[0].holds_toe());
   CHECK(plain.cases[0].stilling_basin()->control.volume_hold_time_s == 1.0);
   CHECK(plain.cases[0].stilling_basin()->control.toe_hold_time_s == 5.0);
-  CHECK(plain.cases[0].stilling_basin()->control.toe_hold_gain == 0.5);
+  CHECK(plain.cases[0].stilling_basin()->control.toe_hold_gain == 0.0);
   CHECK(plain.cases[0].vof.tailwater_control_interval_s == 0.5);
-  const Study again = resolved_reload(parse_study(vof(tail("volume_hold_time_s = 2.0\ntoe_hold_time_s = 8.0\ntoe_hold_gain = 0"),
+  const Study again = resolved_reload(parse_study(vof(tail("volume_hold_time_s = 2.0\ntoe_hold_time_s = 8.0\ntoe_hold_gain = 0.5"),
                                                       "tailwater_control_interval_s = 1.0"),
                                                   "spec.toml", "."),
                                       "tailwater");
@@ -804,7 +804,7 @@ TEST_CASE("The tailwater control is hold_toe by default or fixed_depth in case.t
   CHECK(again.cases[0].vof.tailwater_control_interval_s == 1.0);
   CHECK(again.cases[0].stilling_basin()->control.volume_hold_time_s == 2.0);
   CHECK(again.cases[0].stilling_basin()->control.toe_hold_time_s == 8.0);
-  CHECK(again.cases[0].stilling_basin()->control.toe_hold_gain == 0.0);
+  CHECK(again.cases[0].stilling_basin()->control.toe_hold_gain == 0.5);
   const Study fixed = resolved_reload(parse_study(tail("control = \"fixed_depth\""), "spec.toml", "."), "fixed");
   CHECK(fixed.cases[0].stilling_basin()->control.mode == hydrojump::cases::TailwaterControlMode::fixed_depth);
   CHECK(!fixed.cases[0].holds_toe());

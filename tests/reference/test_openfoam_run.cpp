@@ -406,7 +406,7 @@ TEST_CASE("a run mapped from a run with a lower air layer keeps setFields' air a
 TEST_CASE("a tiny basin with the tailwater control resets the outlet's Umean after every leg and resumes with it",
           "[reference][openfoam][tailwater]") {
   require_openfoam();
-  const std::string spec = tiny_hold_toe_spec("toe_hold_time_s = 5");
+  const std::string spec = tiny_hold_toe_spec("toe_hold_time_s = 5\ntoe_hold_gain = 0.5");
   const cases::Study study = parse(spec);
   const reference::VofCase vof = reference::build_vof_case(study, study.cases.front(), "quick");
   const TempDir tmp("openfoam-tailwater");
@@ -434,7 +434,7 @@ TEST_CASE("a tiny basin with the tailwater control resets the outlet's Umean aft
   };
   for (const auto& r : rows) check_row(r);
   // The second step continues from the first's integral I = V* - k_p (y2* - y1) (x_toe - 0.1) (toe
-  // target 0.1 m, the basin start; k_p 0.5 by default): V*(n) = I(n-1) + integral term + P(n).
+  // target 0.1 m, the basin start; k_p 0.5 set here): V*(n) = I(n-1) + integral term + P(n).
   const auto next_target = [](const reference::TailwaterControlStep& previous, const reference::TailwaterControlStep& r) {
     return previous.volume_target_m2 + (0.06 - 0.0254) / 5.0 * (r.toe_x_m - 0.1) * 0.01 +
            0.5 * (0.06 - 0.0254) * (r.toe_x_m - previous.toe_x_m);
@@ -478,7 +478,7 @@ TEST_CASE("the tailwater control resumed between two control times integrates fr
   require_openfoam();
   // Outputs every 5 ms, a control step every 10 ms.
   const std::string spec = with_hold_toe(basin_spec("tailwater_control_interval_s = 0.01\n", 0.02, 0.005, "smooth"),
-                                         "volume_hold_time_s = 0.02\ntoe_hold_time_s = 5\n");
+                                         "volume_hold_time_s = 0.02\ntoe_hold_time_s = 5\ntoe_hold_gain = 0.5\n");
   const TempDir tmp("openfoam-tailwater-resume");
   const fs::path dir = generate(spec, tmp.path() / "case");
   std::ostringstream out;

@@ -42,6 +42,7 @@ TailwaterControlLaw law_b() {
   law.interval_s = 0.5;
   law.volume_hold_time_s = 1.0;
   law.toe_hold_time_s = 5.0;
+  law.toe_hold_gain = 0.5;  // the proportional part (off by default), so the hand values test it too
   return law;
 }
 

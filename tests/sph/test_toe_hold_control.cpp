@@ -150,8 +150,9 @@ TEST_CASE("the held toe goes to the basin start: two basins starting 0.1 m apart
   // The same 0.5-m smooth channel and the same initial water (the toe ramp at x = 0.2 m, the tailwater
   // 0.8 y2*, so the jump first runs downstream to about 0.4 m), the basin starting at 0.15 m or at
   // 0.25 m: only the control's target differs (and the sections). Without the control both runs would
-  // be the same run. Measured (dx 0.01 m, T_V 0.5 s, T_x 1.5 s, k_p 0.5, 3 s, the characteristic outlet): the toes
-  // come back to 0.183 and 0.235 m over the last second, still settling; asserted:
+  // be the same run. Measured (dx 0.01 m, T_V 0.5 s, T_x 1.5 s, 3 s, the characteristic outlet): the toes
+  // come back to 0.178 and 0.245 m over the last second (0.183 and 0.235 m with k_p = 0.5), still
+  // settling; asserted:
   // each within 0.06 m (2.4 y1) of its target, and 0.1 m of target apart gives at least 0.05 m of toe.
   const double end = 3.0, dx = 0.01;
   double toe[2] = {0.0, 0.0}, target[2] = {0.0, 0.0};
