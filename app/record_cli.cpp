@@ -6,6 +6,7 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <set>
 
 #include "app/study.hpp"
 #include "util/atomic_file.hpp"
@@ -76,7 +77,7 @@ void record_command(const RecordOptions& o) {
 struct DocOptions {
   fs::path records = "validation/records";
   fs::path out = "docs/validation.md";
-  std::vector<std::string> not_run;  // SPEC and RESOLUTION
+  std::vector<std::string> not_run;  // SPEC and one or more RESOLUTIONs
   fs::path readme;                   // a document with the headline table's markers
   bool check = false;
 };
@@ -95,12 +96,23 @@ void mark_stale(std::vector<compare::ValidationRecord>& records, const cases::St
 void validation_doc_command(const DocOptions& o) {
   auto records = compare::read_records(o.records);
   std::optional<cases::Study> study;
-  if (o.not_run.size() == 2) {
+  if (o.not_run.size() >= 2) {
     study = o.not_run[0] == "default" ? cases::load_embedded_default_study() : cases::load_study(o.not_run[0]);
     mark_stale(records, *study);
+    std::set<std::string> levels;
+    for (const auto& c : study->cases)
+      for (const auto& [name, level] : c.resolutions) levels.insert(name);
+    for (std::size_t k = 1; k < o.not_run.size(); ++k)
+      if (!levels.count(o.not_run[k])) {
+        std::string known;
+        for (const auto& name : levels) known += (known.empty() ? "" : ", ") + name;
+        throw compare::RecordError("--not-run: \"" + o.not_run[k] + "\" is not a resolution of " + o.not_run[0] +
+                                   " (it has: " + (known.empty() ? std::string("none") : known) + ")");
+      }
   }
   std::string text = compare::validation_markdown(records, o.records.generic_string());
-  if (study) text += compare::not_run_markdown(*study, records, o.not_run[1]);
+  if (study)
+    for (std::size_t k = 1; k < o.not_run.size(); ++k) text += compare::not_run_markdown(*study, records, o.not_run[k]);
   std::string readme_text;
   if (!o.readme.empty()) readme_text = compare::with_headline(util::read_text_file(o.readme), compare::headline_markdown(records), o.readme.string());
   if (o.check) {
@@ -163,9 +175,9 @@ void register_record_commands(CLI::App& app) {
   doc->add_option("--records", d->records, "records folder")->capture_default_str()->check(util::non_empty_path());
   doc->add_option("--out,-o", d->out, "the document")->capture_default_str()->check(util::non_empty_path());
   doc->add_option("--not-run", d->not_run,
-                  "SPEC RESOLUTION: also list the stilling basins of SPEC (a file, or \"default\") with no record of a "
-                  "method at RESOLUTION, with the size of each missing run")
-      ->expected(2);
+                  "SPEC RESOLUTION [RESOLUTION...]: also list the stilling basins of SPEC (a file, or \"default\") with "
+                  "no record of a method at each RESOLUTION, with the size and estimated wall time of each missing run")
+      ->expected(2, 1 + 8);
   doc->add_option("--readme", d->readme,
                   "also set the headline table of this document (e.g. README.md) between its lines "
                   "<!-- validation-table:start --> and <!-- validation-table:end -->")

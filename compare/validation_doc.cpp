@@ -320,18 +320,21 @@ double run_work(const cases::Case& c, const std::string& resolution, const std::
 
 std::string not_run_markdown(const cases::Study& study, const std::vector<ValidationRecord>& records,
                              const std::string& resolution) {
-  // The reference of each method: the first record of it at this resolution, of a case of this study,
-  // with its wall time; the others' costs are scaled from it by run_work.
+  // The reference of each method: the first timed record of it, of a case of this study, at this
+  // resolution if there is one, else at another; the others' costs are scaled from it by run_work.
   std::map<std::string, const ValidationRecord*> reference;
   std::map<std::string, const cases::Case*> reference_case;
-  for (const auto& r : records) {
-    if (r.study != study.name || r.resolution != resolution || !r.wall_time_s || reference.count(r.method)) continue;
-    for (const auto& c : study.cases)
-      if (c.id == r.case_id && c.stilling_basin() && c.resolutions.count(resolution)) {
-        reference[r.method] = &r;
-        reference_case[r.method] = &c;
-      }
-  }
+  for (const bool same_resolution : {true, false})
+    for (const auto& r : records) {
+      if (r.study != study.name || (r.resolution == resolution) != same_resolution || !r.wall_time_s ||
+          reference.count(r.method))
+        continue;
+      for (const auto& c : study.cases)
+        if (c.id == r.case_id && c.stilling_basin() && c.resolutions.count(r.resolution)) {
+          reference[r.method] = &r;
+          reference_case[r.method] = &c;
+        }
+    }
   std::ostringstream md;
   int missing = 0;
   std::map<std::string, double> measured, estimated;  // seconds, by method: recorded runs, estimates
@@ -353,7 +356,7 @@ std::string not_run_markdown(const cases::Study& study, const std::vector<Valida
       std::ostringstream cost;
       if (reference.count(method)) {
         const ValidationRecord& ref = *reference.at(method);
-        const double ratio = run_work(c, resolution, method) / run_work(*reference_case.at(method), resolution, method);
+        const double ratio = run_work(c, resolution, method) / run_work(*reference_case.at(method), ref.resolution, method);
         estimated[method] += *ref.wall_time_s * ratio;
         cost << "~" << duration_text(*ref.wall_time_s * ratio);
         if (ref.threads) cost << " on " << workers_text(method, *ref.threads);
@@ -374,7 +377,7 @@ std::string not_run_markdown(const cases::Study& study, const std::vector<Valida
   if (reference.empty()) out << "a record of the same method (none yet)";
   for (auto it = reference.begin(); it != reference.end(); ++it)
     out << (it == reference.begin() ? "" : " and ") << it->second->case_id << " (" << (it->first == "sph" ? "SPH" : "VOF")
-        << ")";
+        << (it->second->resolution == resolution ? "" : ", at `" + it->second->resolution + "`") << ")";
   out << " scaled by size × simulated time × U1 / dx (a rough guide: the solvers' time steps differ between cases).\n\n"
          "| case | method | size | simulated | estimated wall time |\n|---|---|---|---:|---|\n"
       << md.str();

@@ -25,7 +25,9 @@ std::string headline_markdown(const std::vector<ValidationRecord>& records);
 std::string with_headline(const std::string& text, const std::string& block, const std::string& file_name);
 
 // The stilling basins of `study` that have no record of a method at `resolution`, as a Markdown table
-// with the size of each missing run (water area / dx^2 particles, cells from the VOF sizes, simulated time).
+// with the size of each missing run (water area / dx^2 particles, cells from the VOF sizes, simulated time)
+// and its wall time estimated from a timed record of the same method: one at `resolution` if there is one,
+// else one at another resolution of the study (the scaling includes the resolution's sizes).
 std::string not_run_markdown(const cases::Study& study, const std::vector<ValidationRecord>& records,
                              const std::string& resolution);
 

@@ -583,6 +583,14 @@ TEST_CASE("options refuse nan, inf, non-positive numbers, empty paths and the wr
               tmp.path() / "window.log") != 0);
     CHECK_THAT(read_text(tmp.path() / "window.log"), Catch::Contains("--window") && Catch::Contains("must be finite times >= 0 s"));
   }
+  // validation-doc --not-run: a resolution the study does not define is named with those it does; nothing is written.
+  const fs::path doc = tmp.path() / "validation.md";
+  CHECK(run({"validation-doc", "--records", (tmp.path() / "no_records").string(), "--out", doc.string(), "--not-run",
+             std::string(HYDROJUMP_SOURCE_DIR) + "/cases/ead2002.toml", "quick", "fast"},
+            tmp.path() / "doc.log") != 0);
+  CHECK_THAT(read_text(tmp.path() / "doc.log"), Catch::Contains("--not-run: \"fast\" is not a resolution of") &&
+                                                    Catch::Contains("(it has: default, fine, quick)"));
+  CHECK_FALSE(fs::exists(doc));
 }
 
 TEST_CASE("hydrojump bench --json prints particles, steps, threads, speed and memory", "[compare][integration][cli]") {

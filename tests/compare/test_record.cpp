@@ -248,6 +248,27 @@ TEST_CASE("Cases not run are listed with a wall time scaled from a measured reco
   CHECK_THAT(md, Catch::Contains("SPH 30 min measured + ~" + estimate + " estimated; VOF 0 min measured + unknown estimated."));
 }
 
+TEST_CASE("Cases not run at a finer resolution are estimated from a record at another resolution",
+          "[compare][record]") {
+  const auto study = hydrojump::cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/tests/data/basins.toml");
+  ValidationRecord a = sample_record("sph", 0.108535);  // A at quick, 30 min on 2 threads
+  a.study = study.name;
+  a.wall_time_s = 1800.0;
+  const auto& ca = *std::find_if(study.cases.begin(), study.cases.end(), [](const auto& c) { return c.id == "A"; });
+  // SPH work ~ water area / dx^2 x T U1 / dx: A at default costs (dx_quick / dx_default)^3 of A at quick.
+  const double dx_quick = ca.resolutions.at("quick").particle_spacing_m, dx_default = ca.resolutions.at("default").particle_spacing_m;
+  const long minutes = std::lround(30.0 * std::pow(dx_quick / dx_default, 3));
+  const std::string md = not_run_markdown(study, {a}, "default");
+  INFO(md);
+  CHECK_THAT(md, Catch::Contains("## Not run at `default`") && Catch::Contains("A (SPH, at `quick`)"));
+  CHECK_THAT(md, Catch::Contains("| A | SPH |") && Catch::Contains("~" + std::to_string(minutes) + " min on 2 threads |"));
+  // A record at the resolution itself is the reference when there is one.
+  ValidationRecord d = a;
+  d.resolution = "default";
+  d.case_id = "A_smooth";
+  CHECK_THAT(not_run_markdown(study, {a, d}, "default"), Catch::Contains("A_smooth (SPH)") && !Catch::Contains("at `quick`"));
+}
+
 TEST_CASE("A stale record is marked in every table and its case is listed as not run", "[compare][record]") {
   const auto study = hydrojump::cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/tests/data/basins.toml");
   ValidationRecord a = sample_record("sph", 0.108535);
