@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <initializer_list>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -62,6 +63,19 @@ bool is_laboratory_comparison_line(std::string_view line) {
                                "jump_length_m", "front_file"});
 }
 
+namespace {
+
+// A table header line ("[case.measured]", "[[case]]") without its surrounding blanks; nothing for any
+// other line.
+std::optional<std::string> table_header(const std::string& line) {
+  const auto start = line.find_first_not_of(" \t");
+  if (start == std::string::npos || line[start] != '[') return std::nullopt;
+  const auto end = line.find_last_not_of(" \t\r");
+  return line.substr(start, end + 1 - start);
+}
+
+}  // namespace
+
 std::vector<std::string> setting_lines(std::string_view case_text) {
   std::istringstream in{std::string(case_text)};
   std::vector<std::string> lines;
@@ -69,10 +83,7 @@ std::vector<std::string> setting_lines(std::string_view case_text) {
   for (std::string line; std::getline(in, line);) {
     const auto start = line.find_first_not_of(" \t");
     if (start != std::string::npos && line[start] == '#') continue;
-    if (start != std::string::npos && line[start] == '[') {
-      const auto end = line.find_last_not_of(" \t\r");
-      in_measurements = line.substr(start, end + 1 - start) == "[case.measured]";
-    }
+    if (const auto header = table_header(line)) in_measurements = *header == "[case.measured]";
     // The measurements the results are only compared with; sequent_depth_m (which the SPH run monitor
     // reports against) stays a setting.
     if (in_measurements && is_laboratory_comparison_line(line)) continue;
@@ -89,11 +100,7 @@ std::vector<std::string> method_setting_lines(std::string_view case_text, std::s
   std::vector<std::string> kept;
   bool in_other = false;  // inside the other method's table
   for (std::string& line : setting_lines(case_text)) {
-    const auto start = line.find_first_not_of(" \t");
-    if (start != std::string::npos && line[start] == '[') {
-      const auto end = line.find_last_not_of(" \t\r");
-      in_other = line.substr(start, end + 1 - start) == other;
-    }
+    if (const auto header = table_header(line)) in_other = *header == other;
     if (!in_other) kept.push_back(std::move(line));
   }
   return kept;

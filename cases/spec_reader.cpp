@@ -250,13 +250,20 @@ void check_resolution(const Case& c, const Resolution& r, double gravity_m_s2, c
 }
 
 // T_x = c_x T_s of a stilling basin that holds its toe and sets no toe_hold_time_s of its own, from the
-// study's [run] toe_hold_sloshing_periods (cases/case_rules.hpp).
+// study's [run] toe_hold_sloshing_periods (cases/case_rules.hpp), within the range of the key it stands
+// for, (0, 1000] s.
 void resolve_toe_hold_rule(TableReader& c, const Study& study, Case& result) {
   auto* b = std::get_if<StillingBasinCase>(&result.data);
   if (!b || !b->control.holds_toe() || !study.run_rule || !study.run_rule->toe_hold_sloshing_periods) return;
   if (auto tail = c.table("tailwater"); tail && tail->has("toe_hold_time_s")) return;
-  b->control.toe_hold_time_s =
-      toe_hold_time_from_sloshing_periods(*study.run_rule->toe_hold_sloshing_periods, *b, study.fluid.gravity_m_s2);
+  const double periods = *study.run_rule->toe_hold_sloshing_periods;
+  const double time = toe_hold_time_from_sloshing_periods(periods, *b, study.fluid.gravity_m_s2);
+  if (!(time > 0.0 && time <= 1000.0))
+    c.fail_at(nullptr, "tailwater.toe_hold_time_s",
+              "= " + util::number_text(time) + " s, the study's [run] toe_hold_sloshing_periods = " + util::number_text(periods) +
+                  " times this basin's sloshing period 2 L / sqrt(g y2*), is out of range: must be > 0 and <= 1000 s; "
+                  "give the case its own [case.tailwater] toe_hold_time_s");
+  b->control.toe_hold_time_s = time;
 }
 
 // [case.tailwater] control = "hold_toe" against the rest of the case (merged settings; a key is named

@@ -1,4 +1,4 @@
-# Writes OUT (hydrojump/version.hpp) with three strings:
+# Writes OUT (hydrojump/version.hpp) with five strings:
 #   version_string      the project VERSION and, when SRC is a git checkout, the commit it was built
 #                       from (`git describe --always --dirty`), e.g. "0.1.0+3399944e07aa-dirty":
 #                       provenance, printed in reports and by --version;
@@ -15,14 +15,16 @@
 #   vof_fingerprint     (SPH) or less sph/ (VOF). Validation records are keyed on their method's, so a
 #                       change to one solver leaves the other's records current.
 # Results of other code are never reused, while a commit that touches only documentation, spec files,
-# data, tests or scripts keeps them. Without git both fingerprints are the VERSION.
+# data, tests or scripts keeps them. Without git the four fingerprints are the VERSION.
 # Run at every build; the header is rewritten only when its content changes.
 cmake_policy(SET CMP0007 NEW)  # script mode: list() keeps empty elements
 set(source_id "")
-set(fingerprint "${VERSION}")
-set(solver_fingerprint "${VERSION}")
-set(sph_fingerprint "${VERSION}")
-set(vof_fingerprint "${VERSION}")
+# The four code fingerprints, each named by its variable and hashed from the manifest of the same stem
+# (fingerprint <- manifest, solver_fingerprint <- solver_manifest, ...).
+set(fingerprint_names fingerprint solver_fingerprint sph_fingerprint vof_fingerprint)
+foreach(name IN LISTS fingerprint_names)
+  set(${name} "${VERSION}")
+endforeach()
 if(EXISTS "${SRC}/.git")
   execute_process(COMMAND git -C "${SRC}" describe --always --dirty --abbrev=12
                   OUTPUT_VARIABLE source_id OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET
@@ -81,27 +83,20 @@ if(EXISTS "${SRC}/.git")
         endif()
       endif()
     endforeach()
-    string(SHA1 digest "${manifest}")
-    string(SUBSTRING "${digest}" 0 16 digest)
-    set(fingerprint "${VERSION}+code.${digest}")
-    string(SHA1 digest "${solver_manifest}")
-    string(SUBSTRING "${digest}" 0 16 digest)
-    set(solver_fingerprint "${VERSION}+code.${digest}")
-    string(SHA1 digest "${sph_manifest}")
-    string(SUBSTRING "${digest}" 0 16 digest)
-    set(sph_fingerprint "${VERSION}+code.${digest}")
-    string(SHA1 digest "${vof_manifest}")
-    string(SUBSTRING "${digest}" 0 16 digest)
-    set(vof_fingerprint "${VERSION}+code.${digest}")
+    foreach(name IN LISTS fingerprint_names)
+      string(REPLACE "fingerprint" "manifest" manifest_name "${name}")
+      string(SHA1 digest "${${manifest_name}}")
+      string(SUBSTRING "${digest}" 0 16 digest)
+      set(${name} "${VERSION}+code.${digest}")
+    endforeach()
   else()
-    # A git failure leaves both unique to this configure time, so that no cache can match by accident.
+    # A git failure leaves all four unique to this configure time, so that no cache can match by accident.
     string(TIMESTAMP now "%Y%m%d%H%M%S")
     message(WARNING "write_version: cannot hash ${code_paths} with git (${list_error}); "
                     "the code fingerprints are unique to this build, so no run cache will match them")
-    set(fingerprint "${VERSION}+unhashed.${now}")
-    set(solver_fingerprint "${VERSION}+unhashed.${now}")
-    set(sph_fingerprint "${VERSION}+unhashed.${now}")
-    set(vof_fingerprint "${VERSION}+unhashed.${now}")
+    foreach(name IN LISTS fingerprint_names)
+      set(${name} "${VERSION}+unhashed.${now}")
+    endforeach()
   endif()
 endif()
 if(source_id)

@@ -167,8 +167,8 @@ void plan_basin(MeshPlan& plan, const cases::Case& c, const cases::StillingBasin
   plan.z_floor_m = g.bed.elevation(in.x_m);
   plan.z_inflow_top_m = plan.z_floor_m + y1;
   const double z_low = std::min(g.z_min_m, g.bed.lowest_elevation());
-  // Highest expected surface: the initial water surface (y1 ramping to the tailwater) and the
-  // tailwater level at the outlet.
+  // Highest expected surface: the initial water surface (y1, a jump's roller up to the tailwater) and
+  // the tailwater level at the outlet.
   double z_surface = plan.z_inflow_top_m;
   for (double z : g.initial_water.surface_z_m) z_surface = std::max(z_surface, z);
   for (const auto& out : g.outflows) {

@@ -327,7 +327,7 @@ double solve(const StepPlace& place, const RunCase& rc, const RunStart& start, d
     std::ostringstream line;
     line << "Tailwater control (hold_toe): every " << format_seconds(control->interval_s)
          << " s the outlet's Umean is reset to hold the water volume, and the volume moved to bring the toe to x = "
-         << control->target_toe_x_m << " m (log: " << tailwater_control_log << ")\n";
+         << control->gains.target_toe_x_m << " m (log: " << tailwater_control_log << ")\n";
     out << line.str();
   }
   // Between two steps (after a leg, during the control step) a stop request ends the run here.
@@ -358,8 +358,7 @@ double solve(const StepPlace& place, const RunCase& rc, const RunStart& start, d
       reached = run_solver(run, leg_start, leg.end_s, out);
       if (leg_control) leg_control->restore(&out);
       if (control) {
-        tailwater_control_after_leg(dir, *control, rc.vof.mesh.thickness_m, rc.c.vof.max_time_step_s, parallel,
-                                    leg_start.value_or(0.0), leg.end_s, out);
+        tailwater_control_after_leg(dir, *control, rc.vof.mesh.thickness_m, parallel, leg_start.value_or(0.0), leg.end_s, out);
       }
       leg_start = leg.end_s;
     }

@@ -129,7 +129,6 @@ void map_initial_state(const StepPlace& place, const MapSource& source);
 // After a leg that ended at `leg_end_s` (started at leg_start_s): the law's step from the leg's outputs,
 // logged, and the outlet's Umean rewritten in the latest time directory (each processor's when decomposed).
 void tailwater_control_after_leg(const std::filesystem::path& dir, const TailwaterControlLaw& law, double thickness_m,
-                                 double max_time_step_s, bool parallel, double leg_start_s, double leg_end_s,
-                                 std::ostream& out);
+                                 bool parallel, double leg_start_s, double leg_end_s, std::ostream& out);
 
 }  // namespace hydrojump::reference::detail

@@ -37,7 +37,7 @@ PreviousStep previous_step(const fs::path& dir, const TailwaterControlLaw& law, 
   for (const TailwaterControlStep& s : read_tailwater_control_log(dir)) {
     if (s.time_s <= leg_start_s + tol) {
       // I = V* - P(x_toe): the row's toe is the one its proportional part used
-      previous.volume_integral_m2 = s.volume_target_m2 - toe_hold_proportional(law, s.toe_x_m);
+      previous.volume_integral_m2 = s.volume_target_m2 - cases::toe_hold_proportional(law.gains, s.toe_x_m);
       previous.time_s = s.time_s;
     }
   }
@@ -65,7 +65,7 @@ std::vector<double> toes_since(const fs::path& dir, const TailwaterControlLaw& l
     } catch (const std::exception& e) {
       throw OpenFoamError(std::string("tailwater control: ") + e.what());
     }
-    toes.push_back(toe_on_surface(x, z, law.toe_search_from_m, law.outlet_x_m, law.inflow_depth_m));
+    toes.push_back(toe_on_surface(x, z, law.toe_search_from_m, law.gains.outlet_x_m, law.gains.inflow_depth_m));
   }
   if (samples == 0) {
     throw OpenFoamError("tailwater control: no free surface (" + std::string(free_surface_file) + ") in " +
@@ -75,15 +75,15 @@ std::vector<double> toes_since(const fs::path& dir, const TailwaterControlLaw& l
   return toes;
 }
 
-// The water volume (m^3) at the leg's end: a row of this leg's last time step, not one left by an
-// earlier run; throws when there is none.
-double water_volume_at(const fs::path& dir, double leg_end_s, double max_time_step_s, double tol) {
+// The water volume (m^3) at the leg's end: the last row up to it, written during this leg (after its
+// start), not one left by an earlier run; throws when there is none.
+double water_volume_at(const fs::path& dir, double leg_start_s, double leg_end_s, double tol) {
   const fs::path volume_dir = dir / "postProcessing" / water_volume_function;
   std::optional<std::pair<double, double>> volume_m3;
   for (const auto& row : read_surface_field_value(volume_dir, "volFieldValue.dat")) {
     if (row.first <= leg_end_s + tol) volume_m3 = row;
   }
-  if (!volume_m3 || volume_m3->first < leg_end_s - max_time_step_s - tol) {
+  if (!volume_m3 || volume_m3->first <= leg_start_s + tol) {
     throw OpenFoamError("tailwater control: no water volume at t = " + format_seconds(leg_end_s) + " s in " +
                         volume_dir.string() + "/*/volFieldValue.dat" +
                         (volume_m3 ? " (its last row before is at t = " + format_seconds(volume_m3->first) + " s)"
@@ -120,12 +120,11 @@ std::vector<fs::path> latest_u_files(const fs::path& dir, bool parallel) {
 }  // namespace
 
 void tailwater_control_after_leg(const fs::path& dir, const TailwaterControlLaw& law, double thickness_m,
-                                 double max_time_step_s, bool parallel, double leg_start_s, double leg_end_s,
-                                 std::ostream& out) {
+                                 bool parallel, double leg_start_s, double leg_end_s, std::ostream& out) {
   const double tol = 1e-6 * std::max(law.interval_s, 1e-3);
   const PreviousStep previous = previous_step(dir, law, leg_start_s, tol);
   const std::vector<double> toes = toes_since(dir, law, previous.time_s, leg_start_s, leg_end_s, tol);
-  const double volume_m3 = water_volume_at(dir, leg_end_s, max_time_step_s, tol);
+  const double volume_m3 = water_volume_at(dir, leg_start_s, leg_end_s, tol);
   const TailwaterControlStep step = tailwater_control_step(law, previous.volume_integral_m2, leg_end_s,
                                                           leg_end_s - previous.time_s, toes, volume_m3 / thickness_m);
   const std::vector<fs::path> u_files = latest_u_files(dir, parallel);
@@ -139,7 +138,7 @@ void tailwater_control_after_leg(const fs::path& dir, const TailwaterControlLaw&
   } else {
     line << "none (counted at the outlet)";
   }
-  line << ", target " << law.target_toe_x_m << " m; water " << step.water_volume_m2 << " m2, target "
+  line << ", target " << law.gains.target_toe_x_m << " m; water " << step.water_volume_m2 << " m2, target "
        << step.volume_target_m2 << " m2; outlet Umean " << previous_umean << " -> " << step.outlet_mean_velocity_m_s
        << " m/s\n";
   out << line.str() << std::flush;

@@ -25,35 +25,21 @@ namespace hydrojump::reference {
 namespace fs = std::filesystem;
 
 TailwaterControlLaw tailwater_control_law(const cases::Case& c, const cases::CaseGeometry& geo) {
-  if (!c.holds_toe() || geo.inflows.empty() || geo.outflows.empty()) {
-    throw std::invalid_argument("case \"" + c.id + "\": the tailwater control holds the toe of a stilling basin "
-                                "with [case.tailwater] control = \"hold_toe\"");
-  }
   TailwaterControlLaw law;
+  law.gains = cases::toe_hold_gains(c, geo);
   const cases::InflowBoundary& in = geo.inflows.front();
   law.discharge_m2_s = cases::unit_discharge(in.depth_m, in.velocity_m_s);
-  law.inflow_depth_m = in.depth_m;
-  law.tailwater_depth_m = geo.outflows.front().tailwater_depth_m;
-  law.target_toe_x_m = geo.expected_toe_x_m;
   law.toe_search_from_m = geo.x_min_m;
   for (const cases::Section& s : geo.sections) {
     if (s.role == cases::SectionRole::upstream) law.toe_search_from_m = s.x_m;
   }
-  law.outlet_x_m = geo.x_max_m;
   law.interval_s = c.vof.tailwater_control_interval_s;
   law.output_interval_s = c.run.output_interval_s;
   law.volume_hold_time_s = c.stilling_basin()->control.volume_hold_time_s;
-  law.toe_hold_time_s = c.stilling_basin()->control.toe_hold_time_s;
-  law.toe_hold_gain = c.stilling_basin()->control.toe_hold_gain;
   return law;
 }
 
 // P = k_p (y2* - y1) (x_toe - x_target)
-double toe_hold_proportional(const TailwaterControlLaw& law, double toe_x_m) {
-  const double toe = std::isfinite(toe_x_m) ? toe_x_m : law.outlet_x_m;
-  return law.toe_hold_gain * (law.tailwater_depth_m - law.inflow_depth_m) * (toe - law.target_toe_x_m);
-}
-
 TailwaterControlStep tailwater_control_step(const TailwaterControlLaw& law, std::optional<double> previous_integral,
                                             double time_s, double leg_s, const std::vector<double>& output_toes_x_m,
                                             double water_volume_m2) {
@@ -67,13 +53,11 @@ TailwaterControlStep tailwater_control_step(const TailwaterControlLaw& law, std:
     ++step.toe_outputs;
   }
   step.toe_x_m = step.toe_outputs > 0 ? sum / step.toe_outputs : std::numeric_limits<double>::quiet_NaN();
-  const double toe = step.toe_outputs > 0 ? step.toe_x_m : law.outlet_x_m;
-  // I(n) = I(n-1) + (y2* - y1) / T_x * (x_toe - x_target) * dt, I(-1) = V(0) - P(0);  V*(n) = I(n) + P(n)
-  const double y2 = law.tailwater_depth_m;
-  const double proportional = toe_hold_proportional(law, toe);
-  const double integral = previous_integral.value_or(water_volume_m2 - proportional) +
-                          (y2 - law.inflow_depth_m) / law.toe_hold_time_s * (toe - law.target_toe_x_m) * leg_s;
-  step.volume_target_m2 = integral + proportional;
+  // V*(n) of cases/toe_hold_law.hpp, from I(-1) = V(0) - P(0) at the first step
+  const double first_integral = water_volume_m2 - cases::toe_hold_proportional(law.gains, step.toe_x_m);
+  step.volume_target_m2 =
+      cases::toe_hold_volume_target(law.gains, previous_integral.value_or(first_integral), step.toe_x_m, leg_s).volume_target_m2;
+  const double y2 = law.gains.tailwater_depth_m;
   // Umean = (q + (V - V*) / T_V) / y2*, within [1/4, 4] q / y2*
   const double q = law.discharge_m2_s;
   const double umean = (q + (water_volume_m2 - step.volume_target_m2) / law.volume_hold_time_s) / y2;

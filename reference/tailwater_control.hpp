@@ -58,6 +58,7 @@
 
 #include "cases/geometry.hpp"
 #include "cases/spec.hpp"
+#include "cases/toe_hold_law.hpp"
 
 namespace hydrojump::reference {
 
@@ -67,17 +68,12 @@ inline constexpr const char* free_surface_file = "alpha_0.5.vtp";
 inline constexpr const char* water_volume_function = "water_volume";
 
 struct TailwaterControlLaw {
+  cases::ToeHoldGains gains;          // y1, y2*, x_target, the outlet (the toe of a leg without one), T_x, k_p
   double discharge_m2_s = 0.0;        // q
-  double inflow_depth_m = 0.0;        // y1
-  double tailwater_depth_m = 0.0;     // y2*
-  double target_toe_x_m = 0.0;        // x_target
   double toe_search_from_m = 0.0;     // the upstream section
-  double outlet_x_m = 0.0;            // the toe of a leg without one
   double interval_s = 0.5;            // the legs' length
   double output_interval_s = 0.1;     // the case's output times k dt_out, where the toes are read
   double volume_hold_time_s = 1.0;    // T_V
-  double toe_hold_time_s = 5.0;       // T_x
-  double toe_hold_gain = 0.0;         // k_p
 };
 
 // The law of a stilling-basin case with tailwater_control = "hold_toe" and its geometry (throws
@@ -92,9 +88,6 @@ struct TailwaterControlStep {
   double volume_target_m2 = 0.0;         // V*(n)
   double outlet_mean_velocity_m_s = 0.0; // Umean(n), for the next leg
 };
-
-// The proportional part of V*: k_p (y2* - y1) (x_toe - x_target), a toe of NaN (none) at the outlet.
-double toe_hold_proportional(const TailwaterControlLaw& law, double toe_x_m);
 
 // One step of the law above after a leg of `leg_s` seconds (dt: the interval, or less for an aligning
 // or closing leg). `previous_integral`: I(n-1), nothing at the first step.

@@ -191,10 +191,11 @@ double OutflowBuffer::advance(ParticleSet& particles, double dt) {
   double level_z = level_z_;  // the level the buffer's pressure refers to
   double spill_z = level_z_ + 0.5 * dx_;
   if (absorbing_ && mass > 0.0) {
-    const CharacteristicOutlet b = characteristic_outlet(volume / strip, u_strip, level_z_ - bed_z_);
+    const double strip_depth = volume / strip;  // h, the strip's mean depth
+    const CharacteristicOutlet b = characteristic_outlet(strip_depth, u_strip, level_z_ - bed_z_);
     u_out = b.velocity_m_s;
     level_z = bed_z_ + b.depth_m;
-    spill_z = bed_z_ + std::max(b.depth_m, volume / strip) + 2.0 * dx_;
+    spill_z = bed_z_ + std::max(b.depth_m, strip_depth) + 2.0 * dx_;
   }
 
   std::vector<char> remove(static_cast<std::size_t>(n), 0);

@@ -11,26 +11,18 @@ namespace hydrojump::sph {
 
 ToeHoldLaw ToeHoldLaw::from_case(const cases::Case& c, const cases::CaseGeometry& geometry, double gravity_m_s2,
                                   double rho0) {
-  if (!c.holds_toe() || geometry.inflows.empty() || geometry.outflows.empty())
-    throw std::invalid_argument("case \"" + c.id + "\": the toe-holding tailwater control needs a stilling basin with an "
-                                "inflow, an outflow and [case.tailwater] control = \"hold_toe\"");
-  const cases::StillingBasinCase& b = *c.stilling_basin();
   ToeHoldLaw law;
-  law.inflow_depth_m = geometry.inflows.front().depth_m;
-  law.tailwater_depth_m = geometry.outflows.front().tailwater_depth_m;
-  law.target_toe_x_m = geometry.expected_toe_x_m;
-  law.outlet_x_m = geometry.x_max_m;
+  law.gains = cases::toe_hold_gains(c, geometry);
+  const cases::ToeHoldGains& g = law.gains;
   const cases::InflowBoundary& in = geometry.inflows.front();
   // S = (c_t^2 - U_t^2) / (2 c_t)
-  const double u_t = cases::unit_discharge(in.depth_m, in.velocity_m_s) / law.tailwater_depth_m;
-  const double c_t = std::sqrt(gravity_m_s2 * law.tailwater_depth_m);
+  const double u_t = cases::unit_discharge(in.depth_m, in.velocity_m_s) / g.tailwater_depth_m;
+  const double c_t = std::sqrt(gravity_m_s2 * g.tailwater_depth_m);
   law.outlet_gain_m_s = (c_t * c_t - u_t * u_t) / (2.0 * c_t);
   law.interval_s = c.run.output_interval_s;
-  law.volume_hold_time_s = b.control.volume_hold_time_s;
-  law.toe_hold_time_s = b.control.toe_hold_time_s;
-  law.toe_hold_gain = b.control.toe_hold_gain;
+  law.volume_hold_time_s = c.stilling_basin()->control.volume_hold_time_s;
   law.rho0 = rho0;
-  if (!(law.outlet_x_m > law.target_toe_x_m) || !(law.tailwater_depth_m > law.inflow_depth_m))
+  if (!(g.outlet_x_m > g.target_toe_x_m) || !(g.tailwater_depth_m > g.inflow_depth_m))
     throw std::invalid_argument("case \"" + c.id + "\": the toe-holding control needs the basin start upstream of the "
                                 "outlet and a tailwater deeper than the inflow");
   if (!(law.outlet_gain_m_s > 0.0))
@@ -42,22 +34,17 @@ ToeHoldLaw ToeHoldLaw::from_case(const cases::Case& c, const cases::CaseGeometry
 ToeHoldState toe_hold_step(const ToeHoldLaw& law, double volume_integral_m2, double water_mass_kg_per_m,
                            double toe_x_m) {
   const double volume = water_mass_kg_per_m / law.rho0;
-  const double y2 = law.tailwater_depth_m;
-  const double toe = std::isfinite(toe_x_m) ? toe_x_m : law.outlet_x_m;
-  const double water_per_metre = y2 - law.inflow_depth_m;  // y2* - y1
-  // P(n) = k_p (y2* - y1) (x_toe(n) - x_target)
-  const double proportional = law.toe_hold_gain * water_per_metre * (toe - law.target_toe_x_m);
+  const double y2 = law.gains.tailwater_depth_m;
   ToeHoldState next;
   if (volume_integral_m2 == 0.0) {  // the first output: I(0) = V(0) - P(0), V*(0) = V(0)
-    next.volume_integral_m2 = volume - proportional;
+    next.volume_integral_m2 = volume - cases::toe_hold_proportional(law.gains, toe_x_m);
     next.volume_target_m2 = volume;
     next.outlet_depth_m = y2;
     return next;
   }
-  // I(n) = I(n-1) + (y2* - y1) / T_x * (x_toe - x_target) * dt;  V*(n) = I(n) + P(n)
-  next.volume_integral_m2 =
-      volume_integral_m2 + water_per_metre / law.toe_hold_time_s * (toe - law.target_toe_x_m) * law.interval_s;
-  next.volume_target_m2 = next.volume_integral_m2 + proportional;
+  const cases::VolumeTarget target = cases::toe_hold_volume_target(law.gains, volume_integral_m2, toe_x_m, law.interval_s);
+  next.volume_integral_m2 = target.integral_m2;
+  next.volume_target_m2 = target.volume_target_m2;
   // y_t(n) = y2* - (V - V*) / (T_V S), within [y2*/2, 3 y2*/2]
   const double depth = y2 - (volume - next.volume_target_m2) / (law.volume_hold_time_s * law.outlet_gain_m_s);
   next.outlet_depth_m = std::clamp(depth, 0.5 * y2, 1.5 * y2);

@@ -10,7 +10,7 @@
 // (y2 - y1) dx of water behind, which raises the level behind the roller and pushes it back. So the
 // control holds the volume, and moves that volume to bring the toe to the target. It acts at every
 // output time t_n (spacing dt = run.output_interval_s) on the outflow buffers' target depth y_t
-// (open_boundaries.hpp):
+// (open_boundaries.hpp), with the volume target V* of cases/toe_hold_law.hpp:
 //
 //   I(n)   = I(n-1) + (y2* - y1) / T_x * (x_toe(n) - x_target) * dt          (more water when the toe
 //   V*(n)  = I(n) + k_p (y2* - y1) (x_toe(n) - x_target)                      lies downstream)
@@ -61,19 +61,15 @@
 
 #include "cases/geometry.hpp"
 #include "cases/spec.hpp"
+#include "cases/toe_hold_law.hpp"
 
 namespace hydrojump::sph {
 
 struct ToeHoldLaw {
-  double inflow_depth_m = 0.0;       // y1
-  double tailwater_depth_m = 0.0;    // y2*, the initial level
-  double target_toe_x_m = 0.0;       // x_target, the basin start
-  double outlet_x_m = 0.0;           // the toe of an output without one
+  cases::ToeHoldGains gains;         // y1, y2* (the initial level), x_target, the outlet, T_x, k_p
   double outlet_gain_m_s = 0.0;      // S = (c_t^2 - U_t^2) / (2 c_t), U_t = q / y2*, c_t = sqrt(g y2*)
   double interval_s = 0.0;           // dt, the output interval
   double volume_hold_time_s = 1.0;   // T_V
-  double toe_hold_time_s = 5.0;      // T_x
-  double toe_hold_gain = 0.0;        // k_p
   double rho0 = 1000.0;              // V = mass / rho0
 
   // The law of a stilling basin with control = "hold_toe" (throws std::invalid_argument otherwise).

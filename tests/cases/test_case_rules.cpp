@@ -116,6 +116,11 @@ TEST_CASE("The toe-control rule gives T_x = c_x T_s per basin and a case's own t
   CHECK(parse_study(basin_study("[run]\n", ""), "rules.toml", ".").cases[0].stilling_basin()->control.toe_hold_time_s == 5.0);
   CHECK_THAT(rejection(basin_study("[run]\ntoe_hold_sloshing_periods = 0\n", "")),
              Catch::Contains("run.toe_hold_sloshing_periods = 0 is out of range"));
+  // A derived T_x beyond the key's range, (0, 1000] s: a 10.4-m domain, T_s = 18.29 s, 99 periods: 1811 s.
+  std::string long_basin = basin_study("[run]\ntoe_hold_sloshing_periods = 99\n", "");
+  long_basin.replace(long_basin.find("basin_length_m = 1.36"), 21, "basin_length_m = 10.0");
+  CHECK_THAT(rejection(long_basin), Catch::Contains("case \"A\"") && Catch::Contains("tailwater.toe_hold_time_s = 1811") &&
+                                        Catch::Contains("is out of range: must be > 0 and <= 1000 s"));
 }
 
 TEST_CASE("The run rule is refused for a case that has no sloshing period", "[cases][rules]") {

@@ -34,15 +34,15 @@ namespace {
 TailwaterControlLaw law_b() {
   TailwaterControlLaw law;
   law.discharge_m2_s = 0.076;
-  law.inflow_depth_m = 0.0254;
-  law.tailwater_depth_m = 0.2036;
-  law.target_toe_x_m = 0.2;
+  law.gains.inflow_depth_m = 0.0254;
+  law.gains.tailwater_depth_m = 0.2036;
+  law.gains.target_toe_x_m = 0.2;
   law.toe_search_from_m = 0.1;
-  law.outlet_x_m = 2.49;
+  law.gains.outlet_x_m = 2.49;
   law.interval_s = 0.5;
   law.volume_hold_time_s = 1.0;
-  law.toe_hold_time_s = 5.0;
-  law.toe_hold_gain = 0.5;  // the proportional part (off by default), so the hand values test it too
+  law.gains.toe_hold_time_s = 5.0;
+  law.gains.toe_hold_gain = 0.5;  // the proportional part (off by default), so the hand values test it too
   return law;
 }
 
@@ -75,7 +75,7 @@ ModelRun run_model(ModelBasin b, const TailwaterControlLaw& law, bool control, d
   const double dt = 1e-3;
   const int steps_per_leg = static_cast<int>(std::lround(law.interval_s / dt));
   const int sample_every = steps_per_leg / 5;
-  double umean = law.discharge_m2_s / law.tailwater_depth_m;
+  double umean = law.discharge_m2_s / law.gains.tailwater_depth_m;
   std::optional<double> target;
   std::vector<double> toes;
   ModelRun r;
@@ -93,7 +93,7 @@ ModelRun run_model(ModelBasin b, const TailwaterControlLaw& law, bool control, d
     r.toe_max = std::max(r.toe_max, b.x);
     if (control) {
       const TailwaterControlStep s = reference::tailwater_control_step(law, target, (leg + 1) * law.interval_s, law.interval_s, toes, b.volume);
-      target = s.volume_target_m2 - reference::toe_hold_proportional(law, s.toe_x_m);  // I(n)
+      target = s.volume_target_m2 - hydrojump::cases::toe_hold_proportional(law.gains, s.toe_x_m);  // I(n)
       umean = s.outlet_mean_velocity_m_s;
     }
   }
@@ -123,7 +123,7 @@ TEST_CASE("the tailwater control law: volume target and outlet Umean against han
   // P = k_p (y2* - y1) (x - x_target) = 0.5 * 0.1782 * 0.05.
   const TailwaterControlStep near = reference::tailwater_control_step(law, 0.38, 11.0, 0.5, {0.25}, 0.38);
   CHECK(near.volume_target_m2 == Approx(0.38 + 0.1782 / 5.0 * 0.05 * 0.5 + 0.5 * 0.1782 * 0.05).epsilon(1e-12));
-  CHECK(reference::toe_hold_proportional(law, 0.25) == Approx(0.5 * 0.1782 * 0.05).epsilon(1e-12));
+  CHECK(hydrojump::cases::toe_hold_proportional(law.gains, 0.25) == Approx(0.5 * 0.1782 * 0.05).epsilon(1e-12));
   // No toe on any output: counted at the outlet (the jump left the basin): more water.
   const TailwaterControlStep gone = reference::tailwater_control_step(law, 0.38, 11.5, 0.5, {no_toe, no_toe}, 0.38);
   CHECK(gone.toe_outputs == 0);
@@ -144,7 +144,7 @@ TEST_CASE("the tailwater control holds a model basin's toe at the target and fin
           "[reference][tailwater]") {
   const TailwaterControlLaw law = law_b();
   ModelBasin b;
-  b.volume = b.y1 * b.x + law.tailwater_depth_m * (b.length_m - b.x);  // filled to y2*, 2.3 % too deep
+  b.volume = b.y1 * b.x + law.gains.tailwater_depth_m * (b.length_m - b.x);  // filled to y2*, 2.3 % too deep
   // Without the control the outlet lets out q at y2*: the basin keeps its too-deep water and the
   // jump runs upstream past the upstream section (0.1 m).
   const ModelRun free = run_model(b, law, false, 60.0);

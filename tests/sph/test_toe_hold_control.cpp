@@ -32,16 +32,16 @@ namespace {
 
 ToeHoldLaw hand_law() {
   ToeHoldLaw law;
-  law.inflow_depth_m = 0.0254;
-  law.tailwater_depth_m = 0.132;
-  law.target_toe_x_m = 0.2;
-  law.outlet_x_m = 1.0;
+  law.gains.inflow_depth_m = 0.0254;
+  law.gains.tailwater_depth_m = 0.132;
+  law.gains.target_toe_x_m = 0.2;
+  law.gains.outlet_x_m = 1.0;
   // S = (c_t^2 - U_t^2) / (2 c_t): U_t = 0.0508 / 0.132 = 0.38485 m/s, c_t = 1.13794 m/s -> 0.50389 m/s
   law.outlet_gain_m_s = 0.50389;
   law.interval_s = 0.1;
   law.volume_hold_time_s = 1.0;
-  law.toe_hold_time_s = 5.0;
-  law.toe_hold_gain = 0.5;
+  law.gains.toe_hold_time_s = 5.0;
+  law.gains.toe_hold_gain = 0.5;
   law.rho0 = 1000.0;
   return law;
 }
@@ -132,8 +132,8 @@ TEST_CASE("the toe-holding law by hand: the first output, a toe downstream, no t
   // The law of a case: its basin start and outlet; a fixed-depth case has none.
   const auto held = held_basin("hold_toe", 0.0, 1.0);
   const ToeHoldLaw from_case = ToeHoldLaw::from_case(held.spec, held.geometry, 9.81, 1000.0);
-  CHECK(from_case.target_toe_x_m == held.geometry.expected_toe_x_m);
-  CHECK(from_case.outlet_x_m == held.geometry.x_max_m);
+  CHECK(from_case.gains.target_toe_x_m == held.geometry.expected_toe_x_m);
+  CHECK(from_case.gains.outlet_x_m == held.geometry.x_max_m);
   CHECK(from_case.interval_s == 0.05);
   {  // its gain S = (c_t^2 - U_t^2) / (2 c_t) from the case's q and tailwater depth, by hand
     const auto& in = held.geometry.inflows.front();
