@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "sph/parallel.hpp"
+
 namespace hydrojump::sph {
 
 namespace {
@@ -62,16 +64,18 @@ CellGrid CellGrid::periodic_x(double x_begin, double x_end, const Eigen::VectorX
   return g;
 }
 
+namespace {
+// floor(f) clamped into [0, n - 1] (f finite).
+inline int clamped_index(double f, int n) { return f < 1.0 ? 0 : f >= n - 1 ? n - 1 : static_cast<int>(f); }
+}  // namespace
+
 int CellList::cell_of_point(double px, double pz) const {
   const double fx = (px - grid_.x0) / grid_.cell_size;
   const double fz = (pz - grid_.z0) / grid_.cell_size;
   if (!std::isfinite(fx) || !std::isfinite(fz)) return 0;
-  int cx = static_cast<int>(std::floor(std::clamp(fx, -1.0, static_cast<double>(grid_.nx))));
-  int cz = static_cast<int>(std::floor(std::clamp(fz, -1.0, static_cast<double>(grid_.nz))));
-  if (grid_.periodic) cx = ((cx % grid_.nx) + grid_.nx) % grid_.nx;
-  cx = std::clamp(cx, 0, grid_.nx - 1);
-  cz = std::clamp(cz, 0, grid_.nz - 1);
-  return cz * grid_.nx + cx;
+  // Periodic: a point just outside the period (round-off at the seam) wraps to the column it is in.
+  const int cx = !grid_.periodic ? clamped_index(fx, grid_.nx) : fx < 0.0 ? grid_.nx - 1 : fx >= grid_.nx ? 0 : static_cast<int>(fx);
+  return clamped_index(fz, grid_.nz) * grid_.nx + cx;
 }
 
 void CellList::build(const Eigen::VectorXd& x, const Eigen::VectorXd& z, const CellGrid& grid) {
@@ -80,10 +84,9 @@ void CellList::build(const Eigen::VectorXd& x, const Eigen::VectorXd& z, const C
   const int cells = cell_count();
   cell_.resize(n);
   start_.assign(cells + 1, 0);
-  for (int i = 0; i < n; ++i) {
-    cell_[i] = cell_of_point(x[i], z[i]);
-    ++start_[cell_[i] + 1];
-  }
+#pragma omp parallel for schedule(static) if (use_threads(n))
+  for (int i = 0; i < n; ++i) cell_[i] = cell_of_point(x[i], z[i]);
+  for (int i = 0; i < n; ++i) ++start_[cell_[i] + 1];
   for (int c = 0; c < cells; ++c) start_[c + 1] += start_[c];
   order_.resize(n);
   sorted_cell_.resize(n);

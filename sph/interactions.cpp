@@ -32,7 +32,7 @@ using detail::PairArrays;
 constexpr std::uint8_t kFluid = static_cast<std::uint8_t>(ParticleType::fluid);
 
 // Per-call storage: the per-particle factors V = m/rho, 1/rho and tau/rho^2, and for laminar_sps the
-// velocity gradients and each fluid particle's nearest wall particle.
+// strain rates and each fluid particle's nearest wall particle.
 struct Scratch {
   std::vector<double> volume, inv_rho, sxx, sxz, szz, grad, nearest_r2, nearest_dx, nearest_dz;
   std::vector<int> nearest;
@@ -45,7 +45,7 @@ PairArrays pair_arrays(ParticleSet& ps, const SolverSettings& s, Scratch& w) {
   w.volume.resize(size);
   w.inv_rho.resize(size);
   for (auto* v : {&w.sxx, &w.sxz, &w.szz}) v->resize(sps_size);
-  w.grad.assign(4 * sps_size, 0.0);
+  w.grad.assign(3 * sps_size, 0.0);
   const bool nearest = sps && (s.viscosity.sps_length_near_walls || s.viscosity.wall_function_shear);
   w.nearest_r2.assign(nearest ? size : 0, std::numeric_limits<double>::infinity());
   w.nearest_dx.assign(nearest ? size : 0, 0.0);
@@ -66,61 +66,78 @@ PairArrays pair_arrays(ParticleSet& ps, const SolverSettings& s, Scratch& w) {
     ps.drho[i] = ps.ax[i] = ps.az[i] = 0.0;
   }
   PairArrays a;
-  a.hydrostatic = HydrostaticDensity(s.eos.rho0, s.eos.b, s.body_force_z);
   a.x = ps.x.data(), a.z = ps.z.data(), a.u = ps.u.data(), a.w = ps.w.data(), a.rho = ps.rho.data(), a.p = ps.p.data();
   a.m = ps.mass.data(), a.volume = w.volume.data(), a.inv_rho = w.inv_rho.data();
   a.sxx = w.sxx.data(), a.sxz = w.sxz.data(), a.szz = w.szz.data(), a.wall_u = ps.wall_u.data(), a.wall_w = ps.wall_w.data();
   a.drho = ps.drho.data(), a.ax = ps.ax.data(), a.az = ps.az.data(), a.grad = sps ? w.grad.data() : nullptr;
   a.nearest_r2 = w.nearest_r2.data(), a.nearest_dx = w.nearest_dx.data(), a.nearest_dz = w.nearest_dz.data();
   a.nearest = w.nearest.data();
-  a.support2 = s.support() * s.support();
-  a.eta2 = s.eta2();
-  a.h = s.h;
-  a.alpha_c0_h = s.viscosity.artificial_alpha * s.eos.c0 * s.h;
-  a.wall_factor = s.viscosity.artificial_wall_factor;
-  a.delta_h_c0 = s.density.diffusion_delta * s.h * s.eos.c0;
-  a.nu0 = s.viscosity.kinematic_viscosity;
-  a.free_slip_walls = sps && s.viscosity.viscous_walls_free_slip;
-  a.nearest_wall_needed = nearest;
-  a.dbc = s.boundary == BoundaryMethod::dbc;
+  detail::PairModel& c = a.model;
+  c.hydrostatic = HydrostaticDensity(s.eos.rho0, s.eos.b, s.body_force_z);
+  c.support2 = s.support() * s.support();
+  c.eta2 = s.eta2();
+  c.h = s.h;
+  c.alpha_c0_h = s.viscosity.artificial_alpha * s.eos.c0 * s.h;
+  c.wall_factor = s.viscosity.artificial_wall_factor;
+  c.delta_h_c0 = s.density.diffusion_delta * s.h * s.eos.c0;
+  c.nu0 = s.viscosity.kinematic_viscosity;
+  c.free_slip_walls = sps && s.viscosity.viscous_walls_free_slip;
+  c.nearest_wall_needed = nearest;
+  c.dbc = s.boundary == BoundaryMethod::dbc;
   return a;
 }
 
 // A pair that is not fluid-fluid, by the kinds of its particles (pair_terms.hpp); the fluid one's
 // terms go to its arrays at once. Out of line: the fluid-fluid pairs are the loop's work.
 template <class K, Viscosity V, DensityDiffusion D>
-[[gnu::noinline]] void mixed_pair(const PairArrays& a, const K& kernel, std::uint8_t ti, std::uint8_t tj, int i, int j, double dx,
-                                  double dz, double r2, double& visc) {
+[[gnu::noinline]] void mixed_pair(const PairArrays& a, std::uint8_t ti, std::uint8_t tj, int i, int j, const detail::PairGeometry& r,
+                                  double& visc) {
   const bool wi = is_wall_type(ti), wj = is_wall_type(tj);
   if (ti != kFluid && tj != kFluid && wi == wj) return;  // wall-wall, buffer-buffer
-  const double f = kernel.gradient_factor(std::sqrt(r2));
   OwnSums own;
   if (ti == kFluid) {
-    if (wj) detail::fluid_wall_pair<V>(a, i, j, dx, dz, r2, f, own, visc);
-    else detail::fluid_pair<V, D, false>(a, i, j, dx, dz, r2, f, own, visc);
+    if (wj) detail::fluid_wall_pair<V>(a, i, j, r.dx, r.dz, r.r2, r.f, own, visc);
+    else detail::fluid_pair<V, D, false>(a, a.model, detail::pair_particle<V>(a, i), j, r, own, visc);
     own.add_to(a, i);
   } else if (tj == kFluid) {
-    if (wi) detail::fluid_wall_pair<V>(a, j, i, -dx, -dz, r2, f, own, visc);
-    else detail::fluid_pair<V, D, false>(a, j, i, -dx, -dz, r2, f, own, visc);
+    if (wi) detail::fluid_wall_pair<V>(a, j, i, -r.dx, -r.dz, r.r2, r.f, own, visc);
+    else detail::fluid_pair<V, D, false>(a, a.model, detail::pair_particle<V>(a, j), i, r.reversed(), own, visc);
     own.add_to(a, j);
   } else if (wi) {
-    detail::buffer_wall_pair(a, j, i, -dx, -dz, f);
+    detail::buffer_wall_pair(a, j, i, -r.dx, -r.dz, r.f);
   } else {
-    detail::buffer_wall_pair(a, i, j, dx, dz, f);
+    detail::buffer_wall_pair(a, i, j, r.dx, r.dz, r.f);
   }
 }
 
-// Pair (i, j) with j at x_j + shift_x: i's terms of a fluid-fluid pair into `own`, j's into the arrays.
+// Particle i (values pi) and j at x_j + shift_x: a fluid-fluid pair's i terms into `own`, j's into
+// the arrays; other pairs through mixed_pair.
 template <class K, Viscosity V, DensityDiffusion D>
-inline void pair(const PairArrays& a, const K& kernel, const std::uint8_t* type, int i, int j, double shift_x, OwnSums& own,
-                 double& visc) {
-  const double dx = a.x[i] - (a.x[j] + shift_x), dz = a.z[i] - a.z[j];
+[[gnu::always_inline]] inline void pair(const PairArrays& a, const detail::PairModel& c, const K& kernel, const std::uint8_t* type,
+                                        const detail::PairParticle& pi, int i, int j, double shift_x, OwnSums& own, double& visc) {
+  const double dx = pi.x - (a.x[j] + shift_x), dz = pi.z - a.z[j];
   const double r2 = dx * dx + dz * dz;
-  if (r2 >= a.support2) return;
-  if (type[i] == kFluid && type[j] == kFluid)
-    detail::fluid_pair<V, D, true>(a, i, j, dx, dz, r2, kernel.gradient_factor(std::sqrt(r2)), own, visc);
-  else
-    mixed_pair<K, V, D>(a, kernel, type[i], type[j], i, j, dx, dz, r2, visc);
+  if (r2 >= c.support2) return;
+  const detail::PairGeometry r{dx, dz, r2, kernel.gradient_factor(std::sqrt(r2))};
+  if (type[i] == kFluid && type[j] == kFluid) detail::fluid_pair<V, D, true>(a, c, pi, j, r, own, visc);
+  else mixed_pair<K, V, D>(a, type[i], type[j], i, j, r, visc);
+}
+
+// Particle i's pairs with its cell's later particles [i+1, own_end) and the runs [first_run, n_runs).
+// A wall or buffer particle i (FluidI false) pairs only with fluid, and with DBC also with the other
+// kind (a wall's continuity): the rest is skipped before its distance is computed.
+template <class K, Viscosity V, DensityDiffusion D, bool FluidI>
+inline void sweep(const PairArrays& a, const K& kernel, const std::uint8_t* type, int i, int own_end, const CellRun* runs,
+                  int first_run, int n_runs, OwnSums& own, double& visc) {
+  const detail::PairModel c = a.model;
+  const detail::PairParticle pi = detail::pair_particle<V>(a, i);
+  const bool i_wall = is_wall_type(type[i]);
+  const auto wanted = [&](int j) { return FluidI || type[j] == kFluid || (c.dbc && i_wall != is_wall_type(type[j])); };
+  for (int j = i + 1; j < own_end; ++j)
+    if (wanted(j)) pair<K, V, D>(a, c, kernel, type, pi, i, j, 0.0, own, visc);
+  for (int r = first_run; r < n_runs; ++r)
+    for (int j = runs[r].begin; j < runs[r].end; ++j)
+      if (wanted(j)) pair<K, V, D>(a, c, kernel, type, pi, i, j, runs[r].shift_x, own, visc);
 }
 
 // Every pair of particles closer than the support once: each cell with itself and its forward
@@ -145,9 +162,8 @@ double pair_loop(const PairArrays& a, const K& kernel, const ParticleSet& ps, co
       const int own_end = first_follows ? runs[0].end : last;
       for (int i = first; i < last; ++i) {
         OwnSums own;
-        for (int j = i + 1; j < own_end; ++j) pair<K, V, D>(a, kernel, type, i, j, 0.0, own, visc);
-        for (int r = first_follows ? 1 : 0; r < n_runs; ++r)
-          for (int j = runs[r].begin; j < runs[r].end; ++j) pair<K, V, D>(a, kernel, type, i, j, runs[r].shift_x, own, visc);
+        if (type[i] == kFluid) sweep<K, V, D, true>(a, kernel, type, i, own_end, runs, first_follows ? 1 : 0, n_runs, own, visc);
+        else sweep<K, V, D, false>(a, kernel, type, i, own_end, runs, first_follows ? 1 : 0, n_runs, own, visc);
         own.add_to(a, i);
       }
     }
@@ -205,8 +221,8 @@ double update_sps_stress(ParticleSet& ps, const SolverSettings& s, const Scratch
       const double d = w.nearest[i] < 0 && wall_distances != nullptr ? wall_distances->at(ps.x[i], ps.z[i]) : std::sqrt(w.nearest_r2[i]);
       length = mixing_length_near_wall(s.viscosity.sps_length, d, s.dx);
     }
-    const double* gi = w.grad.data() + 4 * static_cast<std::size_t>(i);
-    const SpsStress t = sps_stress(gi[0], gi[1], gi[2], gi[3], length, s.viscosity.blin, s.dx);
+    const double* gi = w.grad.data() + 3 * static_cast<std::size_t>(i);
+    const SpsStress t = sps_stress(gi[0], gi[1], gi[2], length, s.viscosity.blin, s.dx);
     ps.tau_xx[i] = t.xx;
     ps.tau_xz[i] = t.xz;
     ps.tau_zz[i] = t.zz;

@@ -1,5 +1,7 @@
 #include "sph/particles.hpp"
 
+#include "sph/parallel.hpp"
+
 namespace hydrojump::sph {
 
 Eigen::Index ParticleSet::fluid_count() const {
@@ -59,11 +61,13 @@ void ParticleSet::permute(const std::vector<int>& order) {
   const Eigen::Index n = size();
   Vector tmp(n);
   for_each_real_array([&](Vector& v) {
+#pragma omp parallel for schedule(static) if (use_threads(n))
     for (Eigen::Index k = 0; k < n; ++k) tmp[k] = v[order[k]];
     v.swap(tmp);
   });
   IdVector id_tmp(n);
   TypeVector type_tmp(n);
+#pragma omp parallel for schedule(static) if (use_threads(n))
   for (Eigen::Index k = 0; k < n; ++k) {
     id_tmp[k] = id[order[k]];
     type_tmp[k] = type[order[k]];

@@ -87,13 +87,13 @@ struct SpsStress {
   double eddy_viscosity = 0.0;          // nu_t (m^2/s), for the time-step bound
 };
 
-// tau/rho from the velocity gradient (du/dx, du/dz, dw/dx, dw/dz), Dalrymple & Rogers (2006):
+// tau/rho from the strain rate (du/dx, dw/dz and the shear du/dz + dw/dx: the velocity gradient's
+// rotation does not enter), Dalrymple & Rogers (2006):
 //   S_ab = (d_a v_b + d_b v_a)/2,  |S| = sqrt(2 S_ab S_ab),  nu_t = l^2 |S|,
 //   tau_ab/rho = 2 nu_t S_ab - 2/3 nu_t S_kk delta_ab - 2/3 C_I dx^2 |S|^2 delta_ab,
 // with the length l = C_s dx (Smagorinsky) or a mixing length given in metres (Prandtl).
-inline SpsStress sps_stress(double dudx, double dudz, double dwdx, double dwdz, double length, double blin,
-                            double dx) {
-  const double sxx = dudx, szz = dwdz, sxz = 0.5 * (dudz + dwdx);
+inline SpsStress sps_stress(double dudx, double dwdz, double shear, double length, double blin, double dx) {
+  const double sxx = dudx, szz = dwdz, sxz = 0.5 * shear;
   const double s2 = 2.0 * (sxx * sxx + szz * szz + 2.0 * sxz * sxz);  // |S|^2
   const double nu_t = length * length * std::sqrt(s2);
   const double iso = -(2.0 / 3.0) * nu_t * (sxx + szz) - (2.0 / 3.0) * blin * dx * dx * s2;

@@ -95,7 +95,7 @@ TEST_CASE("a viscosity given as nu sets alpha = 8 nu / (h c0) at each resolution
 TEST_CASE("SPS stress of a simple shear: Smagorinsky's length C_s dx or a mixing length", "[sph][viscosity]") {
   const double gamma = 12.0, dx = 0.005, blin = 0.0066;
   for (const double length : {0.12 * dx, 0.015}) {
-    const auto t = hydrojump::sph::sps_stress(0.0, gamma, 0.0, 0.0, length, blin, dx);
+    const auto t = hydrojump::sph::sps_stress(0.0, 0.0, gamma, length, blin, dx);
     CHECK(t.xz == Approx(length * length * gamma * gamma).epsilon(1e-12));
     CHECK(t.xx == Approx(-2.0 / 3.0 * blin * dx * dx * gamma * gamma).epsilon(1e-12));
     CHECK(t.zz == Approx(t.xx).epsilon(1e-12));
