@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <set>
 #include <utility>
@@ -106,4 +107,41 @@ TEST_CASE("a grid cut to a limit box stays small and exact with points far outsi
   CHECK(grid.nx <= std::lround(1.2 / radius) + 1);  // 25 cells of 0.05 m, not 20,000
   CHECK(grid.nz <= std::lround(0.6 / radius) + 1);
   CHECK(cell_search(x, z, radius, grid) == brute_force(x, z, radius, 0.0));
+}
+
+TEST_CASE("the cell of a point: floor of its grid coordinate, clamped into the grid or wrapped around the period",
+          "[sph][neighbours]") {
+  // The rule written out: f = (p - p0) / cell size clamped into [-1, n], then floor; cx taken modulo nx
+  // with periodic wrap (a point just outside the period), then both clamped into [0, n - 1]; a
+  // non-finite point goes to cell 0.
+  const auto expected = [](const CellGrid& g, double px, double pz) {
+    const double fx = (px - g.x0) / g.cell_size, fz = (pz - g.z0) / g.cell_size;
+    if (!std::isfinite(fx) || !std::isfinite(fz)) return 0;
+    long cx = static_cast<long>(std::floor(std::min(std::max(fx, -1.0), static_cast<double>(g.nx))));
+    if (g.periodic) cx = ((cx % g.nx) + g.nx) % g.nx;
+    cx = std::min<long>(std::max<long>(cx, 0), g.nx - 1);
+    const long cz = std::min<long>(std::max<long>(static_cast<long>(std::floor(std::min(std::max(fz, -1.0), double(g.nz)))), 0), g.nz - 1);
+    return static_cast<int>(cz * g.nx + cx);
+  };
+  const double inf = std::numeric_limits<double>::infinity(), nan = std::numeric_limits<double>::quiet_NaN();
+  for (const bool periodic : {false, true}) {
+    CellGrid g;
+    g.x0 = -0.3, g.z0 = 0.2, g.cell_size = 0.1, g.nx = 7, g.nz = 4, g.periodic = periodic;
+    Eigen::VectorXd x(1), z(1);
+    x << 0.0;
+    z << 0.3;
+    CellList cells;
+    cells.build(x, z, g);
+    std::vector<double> xs{-1e300, -inf, nan, inf, 1e300, -0.0, 0.0};
+    std::vector<double> zs{-1e300, -inf, nan, inf, 1e300, -0.0, 0.0};
+    for (int k = -25; k <= 95; ++k) {  // every cell face, and just either side of it, within and beyond the grid
+      xs.push_back(g.x0 + 0.1 * k * g.cell_size), xs.push_back(std::nextafter(g.x0 + 0.1 * k * g.cell_size, -inf));
+      zs.push_back(g.z0 + 0.06 * k * g.cell_size), zs.push_back(std::nextafter(g.z0 + 0.06 * k * g.cell_size, inf));
+    }
+    for (double px : xs)
+      for (double pz : zs) {
+        INFO("periodic " << periodic << ", point (" << px << ", " << pz << ")");
+        REQUIRE(cells.cell_of_point(px, pz) == expected(g, px, pz));
+      }
+  }
 }
