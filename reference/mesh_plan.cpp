@@ -12,6 +12,13 @@ namespace {
 
 constexpr double max_growth_per_cell = 1.2;   // geometric transition between cell sizes
 
+// A corrugated bed acts on the jump through the pressure on its corrugations (form drag), which the
+// staircase bed gives only where it has the corrugation's shape: with bed-size cells a quick mesh had
+// 1-3 steps across the corrugation height T and a quarter to a half of the bed force the laboratory's
+// y2 needs. So the cells from the troughs to the crests are at most T/8 high (8 steps), graded back to
+// the bed size by the inflow surface; at resolutions fine enough for 8 cells across T nothing changes.
+constexpr int min_cells_across_corrugation = 8;
+
 // A band of uniform cells of about `h`; at least `min_cells`.
 GridBand uniform_band(double begin, double end, double h, int min_cells = 1) {
   const int n = std::max(min_cells, static_cast<int>(std::lround((end - begin) / h)));
@@ -45,6 +52,27 @@ void require_positive(double value, const std::string& what, const cases::Case& 
   if (!(value > 0.0) || !std::isfinite(value)) {
     throw std::invalid_argument("case \"" + c.id + "\": " + what + " must be > 0 for the VOF mesh");
   }
+}
+
+// One band [begin, end] whose cells grow geometrically from about `first` to at most `last`, by at
+// most 20 % per cell: the fewest cells that can do it. The ratio q of neighbouring cells solves
+// first (q^n - 1) / (q - 1) = end - begin for n cells; n grows until q <= 1.2 and first q^(n-1) <= last.
+GridBand graded_band(double begin, double end, double first, double last) {
+  const double length = end - begin;
+  const int most = std::max(1, static_cast<int>(std::ceil(length / first)));
+  for (int n = 1; n < most; ++n) {
+    // The series' sum grows with q: bisect on [1e-3, 1.2] for the q that fills the band.
+    auto sum = [&](double q) { return std::abs(q - 1.0) < 1e-12 ? first * n : first * (std::pow(q, n) - 1.0) / (q - 1.0); };
+    if (sum(max_growth_per_cell) < length) continue;
+    double lo = 1e-3, hi = max_growth_per_cell;
+    for (int it = 0; it < 100; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (sum(mid) < length ? lo : hi) = mid;
+    }
+    const double q = 0.5 * (lo + hi);
+    if (first * std::pow(q, n - 1) <= last * (1.0 + 1e-9)) return GridBand{begin, end, n, std::pow(q, n - 1)};
+  }
+  return uniform_band(begin, end, first);
 }
 
 }  // namespace
@@ -180,8 +208,17 @@ void plan_basin(MeshPlan& plan, const cases::Case& c, const cases::StillingBasin
   plan.z_fine_top_m = std::min(z_surface + band, g.z_max_m);
   const bool has_troughs = z_low < plan.z_floor_m - 1e-9;
   GridBand floor_band{z_low, plan.z_floor_m, 0, 1.0};
-  if (has_troughs) floor_band = uniform_band(z_low, plan.z_floor_m, h);
-  const GridBand inflow_band = uniform_band(plan.z_floor_m, plan.z_inflow_top_m, h, 2);
+  GridBand inflow_band = uniform_band(plan.z_floor_m, plan.z_inflow_top_m, h, 2);
+  if (has_troughs) {
+    floor_band = uniform_band(z_low, plan.z_floor_m, h);
+    // The staircase bed: at least min_cells_across_corrugation rows from troughs to crests, graded
+    // back to h by the inflow surface (a grid line stays on it).
+    const double h_corrugation = (plan.z_floor_m - z_low) / min_cells_across_corrugation;
+    if (strategy == cases::MeshStrategy::cartesian_cut && h_corrugation < h) {
+      floor_band = uniform_band(z_low, plan.z_floor_m, h_corrugation);
+      inflow_band = graded_band(plan.z_floor_m, plan.z_inflow_top_m, h_corrugation * max_growth_per_cell, h);
+    }
+  }
   if (strategy == cases::MeshStrategy::body_fitted) {
     // The lowest band follows the bed from z_b(x) up to the inflow surface.
     plan.z_bands.push_back(

@@ -7,7 +7,9 @@
 //
 // Vertical cell sizes (both strategies), bottom to top:
 //   [z_lowest, z_floor]      corrugation troughs up to the upstream floor (cut or body-fitted)   h_bed
+//                            (cartesian_cut: at most T/8, T the corrugation height)
 //   [z_floor,  z_inflow]     the supercritical inflow layer y1 (a grid line at its surface)        h_bed
+//                            (cartesian_cut on corrugations: graded from T/8 to h_bed, <= 20 %/cell)
 //   [z_inflow, z_fine_top]   up to the highest expected surface plus the refinement band          h_bed
 //   [z_fine_top, z_bulk]     geometric transition (ratio <= 1.2 per cell) to the bulk size
 //   [z_bulk, z_max]          the air above                                                         h_bulk

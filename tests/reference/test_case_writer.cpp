@@ -87,15 +87,24 @@ TEST_CASE("cartesian_cut plan: grid lines at the floor and the inflow surface, g
   };
   CHECK(has_line(0.0));  // the upstream floor
   CHECK(has_line(y1));   // the inflow surface
-  // Cells: fine (about h) up to the top of the refinement band, at most 20 % growth, bulk at the top.
+  // Cells: T/8 from troughs to crests (8 steps across the corrugation), graded by at most 20 % per cell
+  // to about h by the inflow surface, h up to the top of the refinement band, graded to the bulk size.
   double previous = 0.0;
+  int corrugation_rows = 0;
   for (std::size_t j = 0; j + 1 < z.size(); ++j) {
     const double dz = z[j + 1] - z[j];
     CHECK(dz > 0.0);
-    if (z[j + 1] <= plan.z_fine_top_m + 1e-12) CHECK(dz <= h * 1.34);  // T = 13 mm in 3 cells
-    if (previous > 0.0 && z[j] >= plan.z_fine_top_m - 1e-12) CHECK(dz / previous <= 1.2 + 1e-9);
+    if (z[j + 1] <= 1e-12) {
+      CHECK(dz == Approx(T / 8).epsilon(1e-9));
+      ++corrugation_rows;
+    } else if (z[j + 1] <= plan.z_fine_top_m + 1e-12) {
+      CHECK(dz <= h * (1.0 + 1e-9));
+    }
+    if (previous > 0.0 && (z[j] <= y1 + 1e-12 || z[j] >= plan.z_fine_top_m - 1e-12)) CHECK(dz / previous <= 1.2 + 1e-9);
     previous = dz;
   }
+  CHECK(corrugation_rows == 8);
+  CHECK(z[static_cast<std::size_t>(corrugation_rows) + 5] - z[static_cast<std::size_t>(corrugation_rows) + 4] > 0.6 * h);
   CHECK(z[z.size() - 1] - z[z.size() - 2] == Approx(h_bulk).epsilon(0.2));
   CHECK(plan.z_fine_top_m >= 0.06 + 0.25 * 0.06 - 1e-12);  // tailwater + default band 0.25 y2
 
