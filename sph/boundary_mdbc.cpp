@@ -7,6 +7,7 @@
 
 #include <Eigen/Dense>
 
+#include "sph/cpu_dispatch.hpp"
 #include "sph/kernel.hpp"
 #include "sph/parallel.hpp"
 
@@ -31,7 +32,7 @@ constexpr double kMinDeterminant = 1e-3;
 // and the no-slip wall velocity v_b = 2 v_wall - v_g, v_g from the same system with m_j -> m_j u_j / rho_j
 // (only its value, the gradient is not extrapolated).
 template <class K>
-void mdbc_with(ParticleSet& ps, const CellList& cells, const SolverSettings& s, const K& kernel) {
+HYDROJUMP_HOT_LOOP void mdbc_with(ParticleSet& ps, const CellList& cells, const SolverSettings& s, const K& kernel) {
   const Eigen::Index n = ps.size();
   const double support2 = s.support() * s.support();
   const double rho0 = s.eos.rho0;

@@ -6,7 +6,9 @@
 #include <vector>
 
 #include "sph/cell_pairs.hpp"
+#include "sph/cpu_dispatch.hpp"
 #include "sph/kernel.hpp"
+#include "sph/neighbour_list.hpp"
 #include "sph/pair_terms.hpp"
 #include "sph/parallel.hpp"
 #include "sph/viscosity.hpp"
@@ -27,6 +29,12 @@ namespace hydrojump::sph {
 namespace {
 
 using detail::OwnSums;
+
+// The neighbour search an interaction reads: the cells in the list's order and the list.
+struct Neighbours {
+  const CellList& cells;
+  const NeighbourList& list;
+};
 using detail::PairArrays;
 
 constexpr std::uint8_t kFluid = static_cast<std::uint8_t>(ParticleType::fluid);
@@ -123,27 +131,30 @@ template <class K, Viscosity V, DensityDiffusion D>
   else mixed_pair<K, V, D>(a, type[i], type[j], i, j, r, visc);
 }
 
-// Particle i's pairs with its cell's later particles [i+1, own_end) and the runs [first_run, n_runs).
-// A wall or buffer particle i (FluidI false) pairs only with fluid, and with DBC also with the other
-// kind (a wall's continuity): the rest is skipped before its distance is computed.
+// Particle i's listed pairs (neighbour_list.hpp). A wall or buffer particle i (FluidI false) pairs
+// only with fluid, and with DBC also with the other kind (a wall's continuity): the rest is skipped
+// before its distance is computed. always_inline, as pair() and the pair terms: pair_loop's CPU clones
+// (cpu_dispatch.hpp) would otherwise call the baseline's copy.
 template <class K, Viscosity V, DensityDiffusion D, bool FluidI>
-inline void sweep(const PairArrays& a, const K& kernel, const std::uint8_t* type, int i, int own_end, const CellRun* runs,
-                  int first_run, int n_runs, OwnSums& own, double& visc) {
+[[gnu::always_inline]] inline void sweep(const PairArrays& a, const K& kernel, const std::uint8_t* type, int i, const NeighbourList& list, OwnSums& own,
+                  double& visc) {
   const detail::PairModel c = a.model;
   const detail::PairParticle pi = detail::pair_particle<V>(a, i);
   const bool i_wall = is_wall_type(type[i]);
   const auto wanted = [&](int j) { return FluidI || type[j] == kFluid || (c.dbc && i_wall != is_wall_type(type[j])); };
-  for (int j = i + 1; j < own_end; ++j)
-    if (wanted(j)) pair<K, V, D>(a, c, kernel, type, pi, i, j, 0.0, own, visc);
-  for (int r = first_run; r < n_runs; ++r)
-    for (int j = runs[r].begin; j < runs[r].end; ++j)
-      if (wanted(j)) pair<K, V, D>(a, c, kernel, type, pi, i, j, runs[r].shift_x, own, visc);
+  const int* nb = list.neighbours();
+  const int plain_end = list.plain_end(i), end = list.end(i);
+  for (int k = list.begin(i); k < plain_end; ++k)
+    if (wanted(nb[k])) pair<K, V, D>(a, c, kernel, type, pi, i, nb[k], 0.0, own, visc);
+  for (int k = list.shifted_begin(i); k < end; ++k)
+    if (wanted(nb[k])) pair<K, V, D>(a, c, kernel, type, pi, i, nb[k], list.shift(k), own, visc);
 }
 
-// Every pair of particles closer than the support once: each cell with itself and its forward
-// neighbours, the cells of a colour phase in parallel (cell_pairs.hpp). Returns the max viscous rate.
+// Every pair of particles closer than the support once: each cell's particles with their listed
+// neighbours (the cell's later particles and its forward neighbours' when the list was built), the
+// cells of a colour phase in parallel (cell_pairs.hpp). Returns the max viscous rate.
 template <class K, Viscosity V, DensityDiffusion D>
-double pair_loop(const PairArrays& a, const K& kernel, const ParticleSet& ps, const CellList& cells) {
+HYDROJUMP_HOT_LOOP double pair_loop(const PairArrays& a, const K& kernel, const ParticleSet& ps, const CellList& cells, const NeighbourList& list) {
   const std::vector<std::vector<int>> phases = colour_phases(cells.grid());
   const std::uint8_t* type = ps.type.data();
   double visc = 0.0;
@@ -152,18 +163,10 @@ double pair_loop(const PairArrays& a, const K& kernel, const ParticleSet& ps, co
 #pragma omp for schedule(dynamic, 8)
     for (std::size_t k = 0; k < phase.size(); ++k) {
       const int c = phase[k];
-      const int first = cells.cell_start(c), last = cells.cell_start(c + 1);
-      if (first == last) continue;
-      CellRun runs[4];
-      const int n_runs = forward_runs(cells, c, runs);
-      // The cell's own later particles and, when it follows them in sorted order (the E neighbour,
-      // or the next row's run when the cells between are empty), the first forward run: one run.
-      const bool first_follows = n_runs > 0 && runs[0].begin == last && runs[0].shift_x == 0.0;
-      const int own_end = first_follows ? runs[0].end : last;
-      for (int i = first; i < last; ++i) {
+      for (int i = cells.cell_start(c), last = cells.cell_start(c + 1); i < last; ++i) {
         OwnSums own;
-        if (type[i] == kFluid) sweep<K, V, D, true>(a, kernel, type, i, own_end, runs, first_follows ? 1 : 0, n_runs, own, visc);
-        else sweep<K, V, D, false>(a, kernel, type, i, own_end, runs, first_follows ? 1 : 0, n_runs, own, visc);
+        if (type[i] == kFluid) sweep<K, V, D, true>(a, kernel, type, i, list, own, visc);
+        else sweep<K, V, D, false>(a, kernel, type, i, list, own, visc);
         own.add_to(a, i);
       }
     }
@@ -232,11 +235,11 @@ double update_sps_stress(ParticleSet& ps, const SolverSettings& s, const Scratch
 }
 
 template <class K, Viscosity V, DensityDiffusion D>
-InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, const SolverSettings& s, const K& kernel,
+InteractionSummary interactions_with(ParticleSet& ps, const Neighbours& nb, const SolverSettings& s, const K& kernel,
                                      const WallDistanceTable* wall_distances) {
   Scratch w;
   const PairArrays a = pair_arrays(ps, s, w);
-  const double max_visc = pair_loop<K, V, D>(a, kernel, ps, cells);
+  const double max_visc = pair_loop<K, V, D>(a, kernel, ps, nb.cells, nb.list);
   const Eigen::Index n = ps.size();
   double max_acc2 = 0.0;
 #pragma omp parallel for schedule(static) reduction(max : max_acc2) if (use_threads(n))
@@ -246,19 +249,19 @@ InteractionSummary interactions_with(ParticleSet& ps, const CellList& cells, con
 }
 
 template <class K, Viscosity V>
-InteractionSummary with_diffusion(ParticleSet& ps, const CellList& cells, const SolverSettings& s, const K& kernel,
+InteractionSummary with_diffusion(ParticleSet& ps, const Neighbours& nb, const SolverSettings& s, const K& kernel,
                                   const WallDistanceTable* wall_distances) {
   const DensityDiffusion d = s.density.diffusion_delta > 0.0 ? s.density.diffusion : DensityDiffusion::none;
-  if (d == DensityDiffusion::molteni) return interactions_with<K, V, DensityDiffusion::molteni>(ps, cells, s, kernel, wall_distances);
-  if (d == DensityDiffusion::fourtakas) return interactions_with<K, V, DensityDiffusion::fourtakas>(ps, cells, s, kernel, wall_distances);
-  return interactions_with<K, V, DensityDiffusion::none>(ps, cells, s, kernel, wall_distances);
+  if (d == DensityDiffusion::molteni) return interactions_with<K, V, DensityDiffusion::molteni>(ps, nb, s, kernel, wall_distances);
+  if (d == DensityDiffusion::fourtakas) return interactions_with<K, V, DensityDiffusion::fourtakas>(ps, nb, s, kernel, wall_distances);
+  return interactions_with<K, V, DensityDiffusion::none>(ps, nb, s, kernel, wall_distances);
 }
 
 template <class K>
-InteractionSummary with_model(ParticleSet& ps, const CellList& cells, const SolverSettings& s, const K& kernel,
+InteractionSummary with_model(ParticleSet& ps, const Neighbours& nb, const SolverSettings& s, const K& kernel,
                               const WallDistanceTable* wall_distances) {
-  if (s.viscosity.model == Viscosity::artificial) return with_diffusion<K, Viscosity::artificial>(ps, cells, s, kernel, wall_distances);
-  return with_diffusion<K, Viscosity::laminar_sps>(ps, cells, s, kernel, wall_distances);
+  if (s.viscosity.model == Viscosity::artificial) return with_diffusion<K, Viscosity::artificial>(ps, nb, s, kernel, wall_distances);
+  return with_diffusion<K, Viscosity::laminar_sps>(ps, nb, s, kernel, wall_distances);
 }
 
 }  // namespace
@@ -269,10 +272,18 @@ void compute_pressure(ParticleSet& ps, const SolverSettings& s) {
   for (Eigen::Index i = 0; i < n; ++i) ps.p[i] = s.eos.pressure(ps.rho[i]);
 }
 
+InteractionSummary compute_interactions(ParticleSet& ps, const CellList& cells, const NeighbourList& list, const SolverSettings& s,
+                                        const WallDistanceTable* wall_distances) {
+  const Neighbours nb{cells, list};
+  if (s.kernel == KernelType::wendland_c2) return with_model(ps, nb, s, WendlandC2(s.h), wall_distances);
+  return with_model(ps, nb, s, CubicSpline(s.h), wall_distances);
+}
+
 InteractionSummary compute_interactions(ParticleSet& ps, const CellList& cells, const SolverSettings& s,
                                         const WallDistanceTable* wall_distances) {
-  if (s.kernel == KernelType::wendland_c2) return with_model(ps, cells, s, WendlandC2(s.h), wall_distances);
-  return with_model(ps, cells, s, CubicSpline(s.h), wall_distances);
+  NeighbourList list;
+  list.build(ps.x, ps.z, ps.type, cells, s.support());
+  return compute_interactions(ps, cells, list, s, wall_distances);
 }
 
 }  // namespace hydrojump::sph

@@ -1,5 +1,7 @@
 #include "sph/particles.hpp"
 
+#include <limits>
+
 #include "sph/parallel.hpp"
 
 namespace hydrojump::sph {
@@ -21,7 +23,7 @@ double ParticleSet::water_mass() const {
 
 void ParticleSet::for_each_real_array(const std::function<void(Vector&)>& f) {
   for (Vector* v : {&x, &z, &u, &w, &rho, &mass, &ghost_dx, &ghost_dz, &wall_u, &wall_w, &x_old, &z_old, &u_old, &w_old,
-                    &rho_old, &p, &ax, &az, &drho, &tau_xx, &tau_xz, &tau_zz})
+                    &rho_old, &p, &ax, &az, &drho, &tau_xx, &tau_xz, &tau_zz, &x_search, &z_search})
     f(*v);
 }
 
@@ -40,6 +42,10 @@ void ParticleSet::resize(Eigen::Index n) {
   if (n > old) {
     id.tail(n - old).setZero();
     type.tail(n - old).setZero();
+  }
+  if (n != old) {
+    x_search.setConstant(std::numeric_limits<double>::quiet_NaN());
+    z_search.setConstant(std::numeric_limits<double>::quiet_NaN());
   }
 }
 

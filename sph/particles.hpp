@@ -48,6 +48,10 @@ struct ParticleSet {
   Vector drho;        // density rate (kg/m^3/s)
   // Sub-particle-scale stress over density tau/rho (m^2/s^2), laminar_sps only.
   Vector tau_xx, tau_xz, tau_zz;
+  // Where the solver's last neighbour search saw each particle (its Verlet list, neighbour_list.hpp);
+  // NaN after a change of the particle count (the list no longer fits). Saved with checkpoints, so a
+  // resumed run rebuilds the very list it left.
+  Vector x_search, z_search;
 
   Eigen::Index size() const { return x.size(); }
   bool is_fluid(Eigen::Index i) const { return type[i] == static_cast<std::uint8_t>(ParticleType::fluid); }
@@ -58,7 +62,7 @@ struct ParticleSet {
   // is fluid before its gate crossing counts it.)
   double water_mass() const;
 
-  // Resizes every array to n (new entries are zero).
+  // Resizes every array to n (new entries are zero); a new count voids the neighbour search (NaN).
   void resize(Eigen::Index n);
   // Sets particle i to rest at (px, pz) with the given density and mass (i < size()).
   void assign(Eigen::Index i, ParticleType t, double px, double pz, double density, double particle_mass,

@@ -16,8 +16,9 @@
 // the concentration gradient from the corrector's interaction (at the predictor's half-step
 // positions), then the fluid particles' displacement down it after the corrector.
 //
-// interactions() sorts the particles by cell (the order of the neighbour search), computes the
-// boundary densities (mDBC), pressures, SPS stresses and the rates. Every loop adds to a particle in a
+// interactions() renews the neighbour search when a particle has moved too far since the last one
+// (a Verlet list with a skin: the particles sorted by cell, the pairs closer than the support plus the
+// skin listed), then computes the boundary densities (mDBC), pressures, SPS stresses and the rates. Every loop adds to a particle in a
 // fixed order (the pair loop: each pair once, cells in colour phases, cell_pairs.hpp),
 // so a step gives the same result with any number of OpenMP threads.
 #pragma once
@@ -73,7 +74,14 @@ class Solver {
 
  private:
   InteractionSummary interactions();
-  void sort_by_cell();
+  // The neighbour search (a Verlet list, neighbour_list.hpp): current while every particle is within
+  // skin/2 of where it saw them (x_search, z_search); search_neighbours() sorts the particles by the
+  // cells of those positions and lists the pairs closer than support + skin there.
+  static double search_skin(const SolverSettings& s);
+  bool search_current() const;
+  bool search_positions_current() const;  // every particle within skin/2 of x_search, z_search
+  void remember_search_positions();
+  void search_neighbours();
   // The cell grid's extent: the domain box plus the tolerated margin and three kernel supports (the
   // boundary particles' layers); fluid beyond it is stopped by the run's checks after the step.
   CellGrid::Box grid_limit() const;
@@ -82,7 +90,9 @@ class Solver {
   ParticleSet particles_;
   SolverClock clock_;
   OpenBoundaries open_;
-  CellList cells_;
+  CellList cells_;           // of the last search's positions, cells of support + skin
+  NeighbourList neighbours_;
+  double skin_ = 0.0;
   // sph.sps_wall_distance = "whole_domain": the fixed walls' distance table (wall_distance.hpp).
   WallDistanceTable wall_distances_;
   // sph.particle_shifting: the last concentration gradients (storage reused from step to step).

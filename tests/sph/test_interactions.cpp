@@ -4,7 +4,8 @@
 // moving wall, inflow- and outflow-buffer particles mixed, with the study's SPH model (laminar + SPS
 // with the near-wall mixing length, Fourtakas diffusion, mDBC with free-slip walls), the dam-break
 // benchmark's (artificial viscosity, DBC) and the other combinations of boundary, viscosity and
-// diffusion; a set large enough for the loops' threads; and a periodic seam.
+// diffusion; a set large enough for the loops' threads; a periodic seam; and a Verlet list (the
+// solver's neighbour search) built before the particles moved up to half its skin.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -15,6 +16,7 @@
 #include "sph/cell_list.hpp"
 #include "sph/interactions.hpp"
 #include "sph/kernel.hpp"
+#include "sph/neighbour_list.hpp"
 #include "sph/parallel.hpp"
 #include "sph/particles.hpp"
 #include "sph/settings.hpp"
@@ -205,17 +207,30 @@ double max_abs(const std::vector<double>& v) {
 // The loop's rates and stresses against the oracle's, each array to 1e-9 of its largest entry (the
 // two add the same terms in other orders), the density rates also to what the loop's expansion of
 // the Fourtakas hydrostatic part leaves out.
-void check_against_oracle(const sph::SolverSettings& s, unsigned seed, const Layout& layout = {}) {
+// skin > 0: the loop reads a Verlet list (sph/neighbour_list.hpp) built on cells of support + skin,
+// after which every particle moves by up to skin/2 in a random direction (the oracle sees where they
+// went; on a periodic domain they stay inside it).
+void check_against_oracle(const sph::SolverSettings& s, unsigned seed, const Layout& layout = {}, double skin = 0.0) {
   sph::ParticleSet ps = mixed_particles(seed, layout);
+  const double reach = s.support() + skin;
   sph::CellList cells;
   cells.build(ps.x, ps.z,
-              s.domain.periodic_x ? sph::CellGrid::periodic_x(s.domain.x_min, s.domain.x_max, ps.z, s.support())
-                                  : sph::CellGrid::enclosing(ps.x, ps.z, s.support()));
+              s.domain.periodic_x ? sph::CellGrid::periodic_x(s.domain.x_min, s.domain.x_max, ps.z, reach)
+                                  : sph::CellGrid::enclosing(ps.x, ps.z, reach));
   ps.permute(cells.order());
   cells.mark_sorted();
+  sph::NeighbourList list;
+  list.build(ps.x, ps.z, ps.type, cells, reach);
+  std::mt19937 rng(seed + 100u);
+  std::uniform_real_distribution<double> angle(0.0, 2.0 * std::acos(-1.0)), length(0.0, 0.5 * skin);
+  for (Eigen::Index i = 0; skin > 0.0 && i < ps.size(); ++i) {
+    const double a = angle(rng), l = length(rng);
+    ps.x[i] += l * std::cos(a), ps.z[i] += l * std::sin(a);
+    if (s.domain.periodic_x) ps.x[i] = std::clamp(ps.x[i], s.domain.x_min, std::nextafter(s.domain.x_max, 0.0));
+  }
   sph::compute_pressure(ps, s);
   const sph::ParticleSet before = ps;
-  const sph::InteractionSummary summary = sph::compute_interactions(ps, cells, s);
+  const sph::InteractionSummary summary = sph::compute_interactions(ps, cells, list, s);
   const Oracle o = brute_force(before, s);
   const std::vector<double> none(o.drho.size(), 0.0);
   const auto check = [&](const char* name, const Eigen::VectorXd& got, const std::vector<double>& want, const std::vector<double>& bound) {
@@ -281,4 +296,21 @@ TEST_CASE("the pair loop equals a brute-force sum over all particles: periodic i
   s.domain.x_min = 0.0;
   s.domain.x_max = layout.columns * kDx;
   for (unsigned seed : {6u, 7u}) check_against_oracle(s, seed, layout);
+}
+
+TEST_CASE("the pair loop on a Verlet list equals the brute-force sum after the particles moved half the skin",
+          "[sph][interactions][neighbours]") {
+  // A skin of 0.1 support and 0.5 support (the list is used while no particle has moved skin/2).
+  sph::SolverSettings s = study_model();
+  for (const double skin : {0.1 * s.support(), 0.5 * s.support()}) {
+    INFO("skin " << skin << " m");
+    for (unsigned seed : {11u, 12u}) check_against_oracle(s, seed, {}, skin);
+    check_against_oracle(model(sph::BoundaryMethod::dbc, sph::Viscosity::artificial, sph::DensityDiffusion::fourtakas), 13u, {}, skin);
+    sph::SolverSettings p = s;
+    const Layout layout{20, 12, true};
+    p.domain.periodic_x = true;
+    p.domain.x_min = 0.0;
+    p.domain.x_max = layout.columns * kDx;
+    check_against_oracle(p, 14u, layout, skin);
+  }
 }
