@@ -4,6 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
+#include <stdexcept>
 
 #include <Eigen/Dense>
 
@@ -32,41 +35,37 @@ constexpr double kMinDeterminant = 1e-3;
 // and the no-slip wall velocity v_b = 2 v_wall - v_g, v_g from the same system with m_j -> m_j u_j / rho_j
 // (only its value, the gradient is not extrapolated).
 template <class K>
-HYDROJUMP_HOT_LOOP void mdbc_with(ParticleSet& ps, const CellList& cells, const SolverSettings& s, const K& kernel) {
+HYDROJUMP_HOT_LOOP void mdbc_with(ParticleSet& ps, const GhostNeighbourList& list, const SolverSettings& s, const K& kernel) {
   const Eigen::Index n = ps.size();
   const double support2 = s.support() * s.support();
   const double rho0 = s.eos.rho0;
-  const double period = s.domain.x_max - s.domain.x_min;
 #pragma omp parallel for schedule(dynamic, 64) if (use_threads(n))
   for (Eigen::Index i = 0; i < n; ++i) {
     if (!is_wall_type(ps.type[i])) continue;  // walls only; buffers have imposed densities
-    double gx = ps.x[i] + ps.ghost_dx[i];
+    const double gx = ps.x[i] + ps.ghost_dx[i] + list.ghost_wrap(i);
     const double gz = ps.z[i] + ps.ghost_dz[i];
-    if (s.domain.periodic_x) gx = s.domain.x_min + std::fmod(std::fmod(gx - s.domain.x_min, period) + period, period);
     Eigen::Matrix3d a = Eigen::Matrix3d::Zero();
     Eigen::Vector3d rhs = Eigen::Vector3d::Zero(), rhs_u = Eigen::Vector3d::Zero(), rhs_w = Eigen::Vector3d::Zero();
-    cells.for_each_neighbour_range(cells.cell_of_point(gx, gz), [&](int begin, int end, double shift) {
-      for (int j = begin; j < end; ++j) {
-        if (is_wall_type(ps.type[j])) continue;  // the fluid side: fluid and buffer particles
-        const double rx = ps.x[j] + shift - gx, rz = ps.z[j] - gz;  // r_j - r_g
-        const double r2 = rx * rx + rz * rz;
-        if (r2 >= support2) continue;
-        const double r = std::sqrt(r2);
-        const double wv = kernel.value(r);
-        const double f = kernel.gradient_factor(r);
-        const double dwdx = -f * rx, dwdz = -f * rz;  // grad_g W = F (r_g - r_j)
-        const double v = ps.mass[j] / ps.rho[j];
-        a(0, 0) += v * wv;        a(0, 1) += v * rx * wv;    a(0, 2) += v * rz * wv;
-        a(1, 0) += v * dwdx;      a(1, 1) += v * rx * dwdx;  a(1, 2) += v * rz * dwdx;
-        a(2, 0) += v * dwdz;      a(2, 1) += v * rx * dwdz;  a(2, 2) += v * rz * dwdz;
-        rhs(0) += ps.mass[j] * wv;
-        rhs(1) += ps.mass[j] * dwdx;
-        rhs(2) += ps.mass[j] * dwdz;
-        const Eigen::Vector3d basis(v * wv, v * dwdx, v * dwdz);
-        rhs_u += ps.u[j] * basis;
-        rhs_w += ps.w[j] * basis;
-      }
-    });
+    for (int k = list.begin(i), last = list.end(i); k < last; ++k) {
+      const int j = list.neighbour(k);  // the fluid side: fluid and buffer particles
+      const double rx = ps.x[j] + list.shift(k) - gx, rz = ps.z[j] - gz;  // r_j - r_g
+      const double r2 = rx * rx + rz * rz;
+      if (r2 >= support2) continue;
+      const double r = std::sqrt(r2);
+      const double wv = kernel.value(r);
+      const double f = kernel.gradient_factor(r);
+      const double dwdx = -f * rx, dwdz = -f * rz;  // grad_g W = F (r_g - r_j)
+      const double v = ps.mass[j] / ps.rho[j];
+      a(0, 0) += v * wv;        a(0, 1) += v * rx * wv;    a(0, 2) += v * rz * wv;
+      a(1, 0) += v * dwdx;      a(1, 1) += v * rx * dwdx;  a(1, 2) += v * rz * dwdx;
+      a(2, 0) += v * dwdz;      a(2, 1) += v * rx * dwdz;  a(2, 2) += v * rz * dwdz;
+      rhs(0) += ps.mass[j] * wv;
+      rhs(1) += ps.mass[j] * dwdx;
+      rhs(2) += ps.mass[j] * dwdz;
+      const Eigen::Vector3d basis(v * wv, v * dwdx, v * dwdz);
+      rhs_u += ps.u[j] * basis;
+      rhs_w += ps.w[j] * basis;
+    }
     double rho_b = rho0, u_g = 0.0, w_g = 0.0;
     if (a(0, 0) >= kSomeSupport) {  // the ghost node lies in the fluid (not mostly in air)
       const double det = a.determinant();
@@ -105,9 +104,68 @@ HYDROJUMP_HOT_LOOP void mdbc_with(ParticleSet& ps, const CellList& cells, const 
 
 }  // namespace
 
+void GhostNeighbourList::build(const Eigen::VectorXd& x, const Eigen::VectorXd& z, const ParticleSet& ps, const CellList& cells,
+                               const SolverSettings& s, double reach) {
+  const Eigen::Index n = ps.size();
+  const auto size = static_cast<std::size_t>(n);
+  const bool periodic = cells.grid().periodic;
+  const double period = s.domain.x_max - s.domain.x_min;
+  const double reach2 = reach * reach;
+  // Each wall particle's ghost node (brought into the periodic domain) and its cell.
+  std::vector<double> gx(size), gz(size);
+  std::vector<int> cell(size, -1);
+  wrap_.assign(periodic ? size : 0, 0.0);
+  start_.assign(size, 0);
+  end_.assign(size, 0);
+  std::int64_t total = 0;
+  for (Eigen::Index b = 0; b < n; ++b) {
+    const auto k = static_cast<std::size_t>(b);
+    start_[k] = static_cast<int>(total);
+    end_[k] = start_[k];
+    if (!is_wall_type(ps.type[b])) continue;
+    gx[k] = x[b] + ps.ghost_dx[b];
+    gz[k] = z[b] + ps.ghost_dz[b];
+    if (periodic) {
+      const double wrapped = s.domain.x_min + std::fmod(std::fmod(gx[k] - s.domain.x_min, period) + period, period);
+      wrap_[k] = wrapped - gx[k];
+      gx[k] = wrapped;
+    }
+    cell[k] = cells.cell_of_point(gx[k], gz[k]);
+    cells.for_each_neighbour_range(cell[k], [&](int begin, int end, double) { total += end - begin; });
+    // Only particles piled into a few cells (a run blowing up) get here; its checks then stop it.
+    if (total > std::numeric_limits<int>::max()) throw std::runtime_error("mDBC ghost list: over 2^31 candidates (particles piled up)");
+  }
+  j_.resize(static_cast<std::size_t>(total));
+  shift_.assign(periodic ? j_.size() : 0, 0.0);
+#pragma omp parallel for schedule(dynamic, 64) if (use_threads(n))
+  for (Eigen::Index b = 0; b < n; ++b) {
+    const auto k = static_cast<std::size_t>(b);
+    if (cell[k] < 0) continue;
+    int fill = start_[k];
+    cells.for_each_neighbour_range(cell[k], [&](int begin, int end, double shift) {
+      for (int j = begin; j < end; ++j) {
+        if (is_wall_type(ps.type[j])) continue;  // the fluid side: fluid and buffer particles
+        const double rx = x[j] + shift - gx[k], rz = z[j] - gz[k];
+        if (rx * rx + rz * rz >= reach2) continue;
+        j_[static_cast<std::size_t>(fill)] = j;
+        if (periodic) shift_[static_cast<std::size_t>(fill)] = shift;
+        ++fill;
+      }
+    });
+    end_[k] = fill;
+  }
+}
+
+void mdbc_boundary_density(ParticleSet& ps, const GhostNeighbourList& list, const SolverSettings& s) {
+  if (list.particles() != ps.size()) throw std::logic_error("mdbc_boundary_density: the ghost list was built for another particle set");
+  if (s.kernel == KernelType::wendland_c2) mdbc_with(ps, list, s, WendlandC2(s.h));
+  else mdbc_with(ps, list, s, CubicSpline(s.h));
+}
+
 void mdbc_boundary_density(ParticleSet& ps, const CellList& cells, const SolverSettings& s) {
-  if (s.kernel == KernelType::wendland_c2) mdbc_with(ps, cells, s, WendlandC2(s.h));
-  else mdbc_with(ps, cells, s, CubicSpline(s.h));
+  GhostNeighbourList list;
+  list.build(ps.x, ps.z, ps, cells, s, s.support());
+  mdbc_boundary_density(ps, list, s);
 }
 
 }  // namespace hydrojump::sph

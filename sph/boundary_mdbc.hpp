@@ -31,13 +31,46 @@
 // CaseGeometry walls. Example (spec): `[sph]  boundary = "mdbc"`
 #pragma once
 
+#include <vector>
+
+#include <Eigen/Core>
+
 #include "sph/cell_list.hpp"
 #include "sph/particles.hpp"
 #include "sph/settings.hpp"
 
 namespace hydrojump::sph {
 
-// Sets rho (and the no-slip wall velocity wall_u, wall_w) of every boundary particle from its ghost node.
+// The fluid-side particles near each wall particle's ghost node, a Verlet list as neighbour_list.hpp's:
+// for every wall particle b, the fluid and buffer particles j closer than `reach` to b's ghost node
+// at the positions (x, z) it is built from (periodic images with their shift). It serves while no
+// particle has moved more than (reach - support)/2 since: a wall's ghost node moves with it (fixed
+// offset), so a pair within the support then was within the reach when listed. Built with the pair
+// list, it spares every interaction the scan of the 3 x 3 cells around each ghost node.
+class GhostNeighbourList {
+ public:
+  // `cells` built from (x, z) with cells of at least `reach`; `type`, ghost offsets from `ps`.
+  void build(const Eigen::VectorXd& x, const Eigen::VectorXd& z, const ParticleSet& ps, const CellList& cells, const SolverSettings& s,
+             double reach);
+  // Particle b's listed neighbours: entries [begin(b), end(b)), neighbour(k) seen at x + shift(k).
+  int begin(Eigen::Index b) const { return start_[static_cast<std::size_t>(b)]; }
+  int end(Eigen::Index b) const { return end_[static_cast<std::size_t>(b)]; }
+  int neighbour(int k) const { return j_[static_cast<std::size_t>(k)]; }
+  double shift(int k) const { return shift_.empty() ? 0.0 : shift_[static_cast<std::size_t>(k)]; }
+  // What brings b's ghost node x_b + ghost_dx_b into the periodic domain as listed (0 if not periodic).
+  double ghost_wrap(Eigen::Index b) const { return wrap_.empty() ? 0.0 : wrap_[static_cast<std::size_t>(b)]; }
+  Eigen::Index particles() const { return static_cast<Eigen::Index>(end_.size()); }
+
+ private:
+  std::vector<int> start_, end_;  // per particle (walls only non-empty); slots of the candidates' size
+  std::vector<int> j_;
+  std::vector<double> shift_, wrap_;  // periodic domains only
+};
+
+// Sets rho (and the no-slip wall velocity wall_u, wall_w) of every boundary particle from its ghost
+// node, over the ghost list's neighbours.
+void mdbc_boundary_density(ParticleSet& ps, const GhostNeighbourList& list, const SolverSettings& s);
+// The same with a list built now from `cells` (the particles at the positions `cells` was built from).
 void mdbc_boundary_density(ParticleSet& ps, const CellList& cells, const SolverSettings& s);
 
 }  // namespace hydrojump::sph

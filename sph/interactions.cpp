@@ -155,7 +155,7 @@ template <class K, Viscosity V, DensityDiffusion D, bool FluidI>
 // cells of a colour phase in parallel (cell_pairs.hpp). Returns the max viscous rate.
 template <class K, Viscosity V, DensityDiffusion D>
 HYDROJUMP_HOT_LOOP double pair_loop(const PairArrays& a, const K& kernel, const ParticleSet& ps, const CellList& cells, const NeighbourList& list) {
-  const std::vector<std::vector<int>> phases = colour_phases(cells.grid());
+  const std::vector<std::vector<int>>& phases = list.phases();
   const std::uint8_t* type = ps.type.data();
   double visc = 0.0;
 #pragma omp parallel if (use_threads(ps.size())) reduction(max : visc)

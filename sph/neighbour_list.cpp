@@ -53,6 +53,7 @@ void NeighbourList::build(const Eigen::VectorXd& x, const Eigen::VectorXd& z, co
   // and a filling one); the unshifted neighbours fill it from the front, the periodic images from the back.
   std::vector<int> slot(size, 0);
   const int n_cells = cells.cell_count();
+  phases_ = colour_phases(cells.grid());
   for (int c = 0; c < n_cells; ++c) count_candidates(cells, c, slot);
   start_.assign(size + 1, 0);
   std::int64_t total = 0;

@@ -14,6 +14,7 @@
 // Usage:
 //   NeighbourList list;
 //   list.build(x0, z0, type, cells, reach);   // cells built from x0, z0, cell size >= reach
+//   for (const auto& phase : list.phases()) ...  // the pair loop's colour phases of those cells
 //   for (int k = list.begin(i); k < list.plain_end(i); ++k) pair(i, list.neighbours()[k], 0.0);
 //   for (int k = list.shifted_begin(i); k < list.end(i); ++k) pair(i, list.neighbours()[k], list.shift(k));
 #pragma once
@@ -35,7 +36,7 @@ class NeighbourList {
   void build(const Eigen::VectorXd& x, const Eigen::VectorXd& z, const Eigen::Matrix<std::uint8_t, Eigen::Dynamic, 1>& type,
              const CellList& cells, double reach);
 
-  // Particle i's listed neighbours j > i in the forward stencil: entries [begin(i), plain_end(i))
+  // Particle i's listed neighbours in the forward stencil (j > i except across a periodic seam): entries [begin(i), plain_end(i))
   // are seen at x_j, entries [shifted_begin(i), end(i)) at x_j + shift(k) (periodic seam); the
   // entries between are unused (each particle has a slot of its candidates' size).
   int begin(int i) const { return start_[static_cast<std::size_t>(i)]; }
@@ -46,6 +47,8 @@ class NeighbourList {
   double shift(int k) const { return shift_[static_cast<std::size_t>(k)]; }
   // Particles the list was built for.
   Eigen::Index particles() const { return static_cast<Eigen::Index>(start_.size()) - 1; }
+  // The colour phases of the cells it was built on (cell_pairs.hpp), made once per build.
+  const std::vector<std::vector<int>>& phases() const { return phases_; }
 
  private:
   std::vector<int> start_{0};   // size particles + 1: the slots
@@ -53,6 +56,7 @@ class NeighbourList {
   std::vector<int> shifted_;    // size particles
   std::vector<int> j_;
   std::vector<double> shift_;   // size pairs; periodic grids only
+  std::vector<std::vector<int>> phases_;
 };
 
 }  // namespace hydrojump::sph

@@ -76,6 +76,7 @@ void Solver::search_neighbours() {
     cells_.mark_sorted();
   }
   neighbours_.build(ps.x_search, ps.z_search, ps.type, cells_, reach);
+  if (settings_.boundary == BoundaryMethod::mdbc) ghosts_.build(ps.x_search, ps.z_search, ps, cells_, settings_, reach);
 }
 
 InteractionSummary Solver::interactions() {
@@ -83,7 +84,7 @@ InteractionSummary Solver::interactions() {
     remember_search_positions();
     search_neighbours();
   }
-  if (settings_.boundary == BoundaryMethod::mdbc) mdbc_boundary_density(particles_, cells_, settings_);
+  if (settings_.boundary == BoundaryMethod::mdbc) mdbc_boundary_density(particles_, ghosts_, settings_);
   compute_pressure(particles_, settings_);
   return compute_interactions(particles_, cells_, neighbours_, settings_,
                               settings_.viscosity.sps_wall_distance_table ? &wall_distances_ : nullptr);

@@ -17,14 +17,15 @@
 // positions), then the fluid particles' displacement down it after the corrector.
 //
 // interactions() renews the neighbour search when a particle has moved too far since the last one
-// (a Verlet list with a skin: the particles sorted by cell, the pairs closer than the support plus the
-// skin listed), then computes the boundary densities (mDBC), pressures, SPS stresses and the rates. Every loop adds to a particle in a
+// (Verlet lists with a skin: the particles sorted by cell, the pairs closer than the support plus the
+// skin listed, and with mDBC each wall particle's ghost-node neighbours), then computes the boundary densities (mDBC), pressures, SPS stresses and the rates. Every loop adds to a particle in a
 // fixed order (the pair loop: each pair once, cells in colour phases, cell_pairs.hpp),
 // so a step gives the same result with any number of OpenMP threads.
 #pragma once
 
 #include <cstdint>
 
+#include "sph/boundary_mdbc.hpp"
 #include "sph/cell_list.hpp"
 #include "sph/interactions.hpp"
 #include "sph/open_boundaries.hpp"
@@ -92,6 +93,7 @@ class Solver {
   OpenBoundaries open_;
   CellList cells_;           // of the last search's positions, cells of support + skin
   NeighbourList neighbours_;
+  GhostNeighbourList ghosts_;  // mDBC: the fluid side of each wall particle's ghost node
   double skin_ = 0.0;
   // sph.sps_wall_distance = "whole_domain": the fixed walls' distance table (wall_distance.hpp).
   WallDistanceTable wall_distances_;
