@@ -10,7 +10,8 @@
 //
 // sph/CMakeLists.txt defines HYDROJUMP_CPU_CLONES where the compiler can clone function templates
 // for these levels (GCC on x86-64; not Clang 14, not other architectures) and the build is not
-// already -march=native (HYDROJUMP_NATIVE). Elsewhere HYDROJUMP_HOT_LOOP is empty.
+// already -march=native (HYDROJUMP_NATIVE) nor built with sanitizers (HYDROJUMP_SANITIZE). Elsewhere
+// HYDROJUMP_HOT_LOOP is empty.
 //
 // Usage:
 //   template <class K>

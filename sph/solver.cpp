@@ -1,5 +1,6 @@
 #include "sph/solver.hpp"
 
+#include <cmath>
 #include <utility>
 
 #include "sph/boundary_mdbc.hpp"
@@ -28,10 +29,11 @@ Solver::Solver(SolverSettings settings, ParticleSet particles, SolverClock clock
 
 // The Verlet list's skin: a tenth of the support, so that the list lasts while the fastest particle
 // moves 0.05 support (about ten interactions in a jump run at CFL 0.2 with c0 = 10 U). None on a
-// periodic domain too short for cells of support + skin (CellGrid::periodic_x needs three).
+// periodic domain too short for cells of support + skin (CellGrid::periodic_x needs three, counted
+// as it counts them, so that a tie falls back to no skin rather than failing there).
 double Solver::search_skin(const SolverSettings& s) {
   const double skin = 0.1 * s.support();
-  if (s.domain.periodic_x && s.domain.x_max - s.domain.x_min < 3.0 * (s.support() + skin)) return 0.0;
+  if (s.domain.periodic_x && std::floor((s.domain.x_max - s.domain.x_min) / (s.support() + skin)) < 3.0) return 0.0;
   return skin;
 }
 
