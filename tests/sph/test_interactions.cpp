@@ -211,24 +211,37 @@ double max_abs(const std::vector<double>& v) {
 // skin > 0: the loop reads a Verlet list (sph/neighbour_list.hpp) built on cells of support + skin,
 // after which every particle moves by up to skin/2 in a random direction (the oracle sees where they
 // went; on a periodic domain they stay inside it).
-void check_against_oracle(const sph::SolverSettings& s, unsigned seed, const Layout& layout = {}, double skin = 0.0) {
-  sph::ParticleSet ps = mixed_particles(seed, layout);
-  const double reach = s.support() + skin;
+// The particles sorted into cells of `reach` (periodic in x if the domain is), as the solver's search.
+sph::CellList sorted_cells(sph::ParticleSet& ps, const sph::SolverSettings& s, double reach) {
   sph::CellList cells;
   cells.build(ps.x, ps.z,
               s.domain.periodic_x ? sph::CellGrid::periodic_x(s.domain.x_min, s.domain.x_max, ps.z, reach)
                                   : sph::CellGrid::enclosing(ps.x, ps.z, reach));
   ps.permute(cells.order());
   cells.mark_sorted();
-  sph::NeighbourList list;
-  list.build(ps.x, ps.z, ps.type, cells, reach);
-  std::mt19937 rng(seed + 100u);
-  std::uniform_real_distribution<double> angle(0.0, 2.0 * std::acos(-1.0)), length(0.0, 0.5 * skin);
-  for (Eigen::Index i = 0; skin > 0.0 && i < ps.size(); ++i) {
+  return cells;
+}
+
+// Every particle moved a random distance up to `most` in a random direction (kept inside a periodic
+// domain): what a Verlet list built before must still cover when `most` is half its skin.
+void move_particles(sph::ParticleSet& ps, const sph::SolverSettings& s, double most, unsigned seed) {
+  if (!(most > 0.0)) return;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> angle(0.0, 2.0 * std::acos(-1.0)), length(0.0, most);
+  for (Eigen::Index i = 0; i < ps.size(); ++i) {
     const double a = angle(rng), l = length(rng);
     ps.x[i] += l * std::cos(a), ps.z[i] += l * std::sin(a);
     if (s.domain.periodic_x) ps.x[i] = std::clamp(ps.x[i], s.domain.x_min, std::nextafter(s.domain.x_max, 0.0));
   }
+}
+
+void check_against_oracle(const sph::SolverSettings& s, unsigned seed, const Layout& layout = {}, double skin = 0.0) {
+  sph::ParticleSet ps = mixed_particles(seed, layout);
+  const double reach = s.support() + skin;
+  const sph::CellList cells = sorted_cells(ps, s, reach);
+  sph::NeighbourList list;
+  list.build(ps.x, ps.z, ps.type, cells, reach);
+  move_particles(ps, s, 0.5 * skin, seed + 100u);
   sph::compute_pressure(ps, s);
   const sph::ParticleSet before = ps;
   const sph::InteractionSummary summary = sph::compute_interactions(ps, cells, list, s);
@@ -325,34 +338,19 @@ TEST_CASE("mDBC on a ghost list equals a fresh search after the particles moved 
     sph::SolverSettings s = study;
     const Layout layout{periodic ? 20 : 14, 12, periodic};
     if (periodic) s.domain.periodic_x = true, s.domain.x_min = 0.0, s.domain.x_max = layout.columns * kDx;
-    const auto grid = [&](const sph::ParticleSet& p, double reach) {
-      return periodic ? sph::CellGrid::periodic_x(s.domain.x_min, s.domain.x_max, p.z, reach) : sph::CellGrid::enclosing(p.x, p.z, reach);
-    };
     for (const double skin : {0.1 * s.support(), 0.5 * s.support()}) {
       INFO("periodic " << periodic << ", skin " << skin << " m");
       sph::ParticleSet ps = mixed_particles(21u, layout);
       for (Eigen::Index i = 0; i < ps.size(); ++i)
         if (sph::is_wall_type(ps.type[i])) ps.ghost_dz[i] = -2.0 * ps.z[i];  // mirrored through the bed z = 0
       const double reach = s.support() + skin;
-      sph::CellList cells;
-      cells.build(ps.x, ps.z, grid(ps, reach));
-      ps.permute(cells.order());
-      cells.mark_sorted();
+      const sph::CellList cells = sorted_cells(ps, s, reach);
       sph::GhostNeighbourList list;
       list.build(ps.x, ps.z, ps, cells, s, reach);
-      std::mt19937 rng(121u);
-      std::uniform_real_distribution<double> angle(0.0, 2.0 * std::acos(-1.0)), length(0.0, 0.5 * skin);
-      for (Eigen::Index i = 0; i < ps.size(); ++i) {
-        const double a = angle(rng), l = length(rng);
-        ps.x[i] += l * std::cos(a), ps.z[i] += l * std::sin(a);
-        if (periodic) ps.x[i] = std::clamp(ps.x[i], s.domain.x_min, std::nextafter(s.domain.x_max, 0.0));
-      }
+      move_particles(ps, s, 0.5 * skin, 121u);
       sph::ParticleSet fresh = ps;
       sph::mdbc_boundary_density(ps, list, s);
-      sph::CellList fresh_cells;
-      fresh_cells.build(fresh.x, fresh.z, grid(fresh, s.support()));
-      fresh.permute(fresh_cells.order());
-      fresh_cells.mark_sorted();
+      const sph::CellList fresh_cells = sorted_cells(fresh, s, s.support());
       sph::mdbc_boundary_density(fresh, fresh_cells, s);
       std::vector<Eigen::Index> at(static_cast<std::size_t>(ps.size()));
       for (Eigen::Index k = 0; k < fresh.size(); ++k) at[static_cast<std::size_t>(fresh.id[k])] = k;
