@@ -1,5 +1,7 @@
 #include "sph/cell_pairs.hpp"
 
+#include <algorithm>
+
 namespace hydrojump::sph {
 
 int forward_runs(const CellList& cells, int c, CellRun (&out)[4]) {
@@ -39,6 +41,13 @@ std::vector<std::vector<int>> colour_phases(const CellGrid& grid) {
       phases[static_cast<std::size_t>(2 * column_class + cz % 2)].push_back(cz * grid.nx + cx);
     }
   return phases;
+}
+
+std::span<const int> phase_cells_in(const std::vector<int>& phase, const CellList& cells, int first, int last) {
+  const auto starts_before = [&](int c, int particle) { return cells.cell_start(c) < particle; };
+  const auto begin = std::lower_bound(phase.begin(), phase.end(), first, starts_before);
+  const auto end = std::lower_bound(begin, phase.end(), last, starts_before);
+  return {begin, end};
 }
 
 }  // namespace hydrojump::sph

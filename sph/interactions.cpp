@@ -5,6 +5,8 @@
 #include <limits>
 #include <vector>
 
+#include <omp.h>
+
 #include "sph/cell_pairs.hpp"
 #include "sph/cpu_dispatch.hpp"
 #include "sph/kernel.hpp"
@@ -152,23 +154,26 @@ template <class K, Viscosity V, DensityDiffusion D, bool FluidI>
 
 // Every pair of particles closer than the support once: each cell's particles with their listed
 // neighbours (the cell's later particles and its forward neighbours' when the list was built), the
-// cells of a colour phase in parallel (cell_pairs.hpp). Returns the max viscous rate.
+// cells of a colour phase in parallel, each thread the cells of its own slice of the particles
+// (cell_pairs.hpp). Returns the max viscous rate.
 template <class K, Viscosity V, DensityDiffusion D>
 HYDROJUMP_HOT_LOOP double pair_loop(const PairArrays& a, const K& kernel, const ParticleSet& ps, const CellList& cells, const NeighbourList& list) {
   const std::vector<std::vector<int>>& phases = list.phases();
   const std::uint8_t* type = ps.type.data();
   double visc = 0.0;
 #pragma omp parallel if (use_threads(ps.size())) reduction(max : visc)
-  for (const std::vector<int>& phase : phases) {
-#pragma omp for schedule(dynamic, 8)
-    for (std::size_t k = 0; k < phase.size(); ++k) {
-      const int c = phase[k];
-      for (int i = cells.cell_start(c), last = cells.cell_start(c + 1); i < last; ++i) {
-        OwnSums own;
-        if (type[i] == kFluid) sweep<K, V, D, true>(a, kernel, type, i, list, own, visc);
-        else sweep<K, V, D, false>(a, kernel, type, i, list, own, visc);
-        own.add_to(a, i);
-      }
+  {
+    const int threads = omp_get_num_threads(), t = omp_get_thread_num();
+    const int first = list.slice_begin(t, threads), last = list.slice_begin(t + 1, threads);
+    for (const std::vector<int>& phase : phases) {
+      for (const int c : phase_cells_in(phase, cells, first, last))
+        for (int i = cells.cell_start(c), end = cells.cell_start(c + 1); i < end; ++i) {
+          OwnSums own;
+          if (type[i] == kFluid) sweep<K, V, D, true>(a, kernel, type, i, list, own, visc);
+          else sweep<K, V, D, false>(a, kernel, type, i, list, own, visc);
+          own.add_to(a, i);
+        }
+#pragma omp barrier
     }
   }
   return visc;

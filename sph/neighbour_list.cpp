@@ -1,5 +1,6 @@
 #include "sph/neighbour_list.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <limits>
 #include <stdexcept>
@@ -95,6 +96,16 @@ void NeighbourList::build(const Eigen::VectorXd& x, const Eigen::VectorXd& z, co
     });
     close();
   }
+}
+
+int NeighbourList::slice_begin(int k, int slices) const {
+  const auto n = static_cast<int>(particles());
+  if (k <= 0) return 0;
+  if (k >= slices) return n;
+  // start_ does not decrease: the first particle whose slot starts at or after k/slices of all slots.
+  const std::int64_t target = static_cast<std::int64_t>(start_.back()) * k / slices;
+  const auto slot = std::lower_bound(start_.begin(), start_.end() - 1, target, [](int s, std::int64_t t) { return s < t; });
+  return static_cast<int>(slot - start_.begin());
 }
 
 }  // namespace hydrojump::sph

@@ -47,6 +47,10 @@ class NeighbourList {
   double shift(int k) const { return shift_[static_cast<std::size_t>(k)]; }
   // Particles the list was built for.
   Eigen::Index particles() const { return static_cast<Eigen::Index>(start_.size()) - 1; }
+  // The first particle of slice k (0 <= k <= slices) when the particles are cut into `slices`
+  // ranges of consecutive particles with about the same number of list slots each (the pair loop's
+  // work): the threads' shares of the pair loop (cell_pairs.hpp).
+  int slice_begin(int k, int slices) const;
   // The colour phases of the cells it was built on (cell_pairs.hpp), made once per build.
   const std::vector<std::vector<int>>& phases() const { return phases_; }
 

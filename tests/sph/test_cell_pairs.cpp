@@ -13,6 +13,7 @@
 
 #include "neighbour_sets.hpp"
 #include "sph/cell_pairs.hpp"
+#include "sph/neighbour_list.hpp"
 
 using hydrojump::sph::CellGrid;
 using hydrojump::sph::CellList;
@@ -106,6 +107,49 @@ TEST_CASE("the half stencil and its phases with periodic wrap in x", "[sph][neig
       int across = 0;  // some pairs really do cross the seam
       for (const auto& [i, j] : expected) across += std::abs(x[i] - x[j]) > 0.5 * length ? 1 : 0;
       CHECK(across > 0);
+    }
+  }
+}
+
+// The pair loop's thread shares (NeighbourList::slice_begin, phase_cells_in): for any number of
+// slices, every phase's cells fall into the slices' shares once each, in order, and each slice holds
+// at most its even part of the list slots plus one particle's slot.
+TEST_CASE("the threads' slices share out every phase's cells once and evenly", "[sph][neighbours]") {
+  const double radius = 0.05;
+  for (const bool clustered : {false, true}) {
+    auto [x0, z0] = neighbour_test::random_set(1500, 1.0, 0.4, 11u, clustered);
+    CellList unsorted;
+    unsorted.build(x0, z0, CellGrid::enclosing(x0, z0, radius));
+    Eigen::VectorXd x(x0.size()), z(z0.size());  // the particles in cell order, as the solver keeps them
+    for (Eigen::Index k = 0; k < x.size(); ++k) {
+      x[k] = x0[unsorted.order()[static_cast<std::size_t>(k)]];
+      z[k] = z0[unsorted.order()[static_cast<std::size_t>(k)]];
+    }
+    CellList cells;
+    cells.build(x, z, CellGrid::enclosing(x, z, radius));
+    cells.mark_sorted();
+    hydrojump::sph::NeighbourList list;
+    list.build(x, z, Eigen::Matrix<std::uint8_t, Eigen::Dynamic, 1>::Zero(x.size()), cells, radius);
+    const int n = static_cast<int>(x.size());
+    int largest_slot = 0;
+    for (int i = 0; i < n; ++i) largest_slot = std::max(largest_slot, list.end(i) - list.begin(i));
+    for (const int slices : {1, 2, 3, 7}) {
+      INFO("clustered " << clustered << ", " << slices << " slices");
+      CHECK(list.slice_begin(0, slices) == 0);
+      CHECK(list.slice_begin(slices, slices) == n);
+      for (int k = 0; k < slices; ++k) {
+        const int first = list.slice_begin(k, slices), last = list.slice_begin(k + 1, slices);
+        REQUIRE(first <= last);
+        CHECK(list.begin(last) - list.begin(first) <= list.end(n - 1) / slices + largest_slot + 1);
+      }
+      for (const auto& phase : list.phases()) {
+        std::vector<int> shared;
+        for (int k = 0; k < slices; ++k) {
+          const auto share = hydrojump::sph::phase_cells_in(phase, cells, list.slice_begin(k, slices), list.slice_begin(k + 1, slices));
+          shared.insert(shared.end(), share.begin(), share.end());
+        }
+        CHECK(shared == phase);
+      }
     }
   }
 }
