@@ -27,11 +27,12 @@
 #include "cases/spec_reader.hpp"
 #include "util/stop_signals.hpp"
 #include "app/generate.hpp"
-#include "compare/plots.hpp"
-#include "compare/study_summary.hpp"
+#include "app/stage_queue.hpp"
+#include "app/study_report.hpp"
+#include "compare/run_cost.hpp"
 #include "reference/runner.hpp"
-#include "sph/cli.hpp"
 #include "hydrojump/version.hpp"
+#include "sph/cli.hpp"
 
 namespace hydrojump::app {
 namespace {
@@ -71,15 +72,6 @@ std::string clock_now() {
   localtime_r(&t, &tm);
   std::ostringstream s;
   s << std::put_time(&tm, "%H:%M:%S");
-  return s.str();
-}
-
-std::string duration_text(double seconds) {
-  std::ostringstream s;
-  const long total = static_cast<long>(seconds + 0.5);
-  if (total >= 3600) s << total / 3600 << "h" << std::setw(2) << std::setfill('0') << (total / 60) % 60 << "m";
-  else if (total >= 60) s << total / 60 << "m" << std::setw(2) << std::setfill('0') << total % 60 << "s";
-  else s << total << "s";
   return s.str();
 }
 
@@ -126,25 +118,6 @@ std::vector<std::unique_ptr<util::DirectoryLock>> lock_solver_directories(
   return locks;
 }
 
-struct StageResult {
-  std::string stage;
-  std::string state;     // "done", "cached", "failed", "stopped", "skipped", "earlier run"
-  double seconds = 0.0;
-  int exit_status = 0;
-  std::string message;   // why a stage failed before it could run
-};
-
-struct CaseResult {
-  std::string id;
-  std::vector<StageResult> stages;
-  bool failed() const {
-    for (const auto& s : stages) {
-      if (s.state == "failed") return true;
-    }
-    return false;
-  }
-};
-
 class StudyRunner {
  public:
   StudyRunner(const StudyOptions& options, const cases::Study& study, std::ostream& log)
@@ -153,19 +126,59 @@ class StudyRunner {
         log_(log),
         self_(options.executable.empty() ? std::filesystem::read_symlink("/proc/self/exe") : options.executable) {}
 
-  // Runs every stage of `c`; never throws (a failure is recorded, so the other cases go on).
-  CaseResult run_case(const cases::Case& c) {
+  // A case's first stage: its records imported (--records) or its directories generated where the case
+  // changed. Returns the case's result when nothing is left to run (imported, or failed: a failure is
+  // recorded, so the other cases go on); none when its solver stages are to run. Never throws.
+  std::optional<CaseResult> prepare_case(const cases::Case& c) {
     try {
-      return run_case_stages(c);
+      return prepare_case_directories(c);
     } catch (const std::exception& e) {
       say(c.id + ": FAILED: " + e.what());
       return CaseResult{c.id, {{"setup", "failed", 0.0, 1, e.what()}}};
     }
   }
 
+  // One solver stage ("sph" or "vof") of a prepared case, resumed where an earlier one stopped. Never
+  // throws. The two solvers of a case may run at once: they write only their own files.
+  StageResult run_solver_stage(const cases::Case& c, const std::string& method) {
+    try {
+      return run_solver(c, method);
+    } catch (const std::exception& e) {
+      say(c.id + ": " + method + " FAILED: " + e.what());
+      return {method, "failed", 0.0, 1, e.what()};
+    }
+  }
+
+  // The case's comparison, once its solver stages (`solvers`, in the order of --methods) have ended;
+  // its result. Never throws.
+  CaseResult finish_case(const cases::Case& c, std::vector<StageResult> solvers) {
+    CaseResult result{c.id, std::move(solvers)};
+    try {
+      bool any_solver_ok = false, any_solver_ran = false;
+      for (const auto& stage : result.stages) {
+        any_solver_ok = any_solver_ok || stage.state == "done" || stage.state == "cached";
+        // A stopped run wrote new outputs too: the comparison is stale.
+        any_solver_ran = any_solver_ran || stage.state == "done" || stage.state == "failed" || stage.state == "stopped";
+      }
+      const auto dir = options_.out / c.id;
+      // A comparison is only as current as the solver results it read.
+      if (any_solver_ran) std::filesystem::remove(dir / "compare.stamp");
+      if (any_solver_ok && !study_stopping()) {
+        const std::string compare_fingerprint = case_fingerprint(study_, c, options_.resolution, source_fingerprint);
+        result.stages.push_back(run_stage(c.id, "compare", {self_.string(), "compare", dir.string()}, dir,
+                                          compare_fingerprint, {}));
+      } else {
+        result.stages.push_back({"compare", "skipped", 0.0, 0, {}});
+      }
+    } catch (const std::exception& e) {
+      say(c.id + ": compare FAILED: " + e.what());
+      result.stages.push_back({"compare", "failed", 0.0, 1, e.what()});
+    }
+    return result;
+  }
+
  private:
-  CaseResult run_case_stages(const cases::Case& c) {
-    CaseResult result{c.id, {}};
+  std::optional<CaseResult> prepare_case_directories(const cases::Case& c) {
     const auto dir = options_.out / c.id;
     const std::string fingerprint = case_fingerprint(study_, c, options_.resolution, solver_fingerprint);
     const std::string run_fingerprint = run_fingerprint_of(study_, c, options_.resolution);
@@ -214,47 +227,33 @@ class StudyRunner {
       util::write_file_atomically(generated_stamp, fingerprint);
       util::write_file_atomically(run_stamp, run_fingerprint);
     }
-    bool any_solver_ok = false, any_solver_ran = false;
-    for (const auto& method : options_.methods) {
-      if (study_stopping()) {
-        result.stages.push_back({method, "skipped", 0.0, 0, "the study was stopped"});
-        continue;
-      }
-      std::vector<std::string> args = {self_.string(), method, (dir / method).string()};
-      if (method == "sph" && options_.sph_threads > 0) {
-        args.push_back("--threads");
-        args.push_back(std::to_string(options_.sph_threads));
-      }
-      if (method == "vof" && options_.mpi_ranks > 1) {
-        args.push_back("--np");
-        args.push_back(std::to_string(options_.mpi_ranks));
-      }
-      // Resume an interrupted solver from what it left: the SPH checkpoint, or OpenFOAM's mesh and
-      // time directories.
-      const auto started = dir / (method + ".started");
-      const bool resumable = method == "sph" ? std::filesystem::exists(dir / "sph" / "checkpoint.bin")
-                                             : std::filesystem::exists(dir / "vof" / "constant" / "polyMesh");
-      if (std::filesystem::exists(started) && resumable) args.push_back("--resume");
-      // An SPH run of this study that stopped before its first checkpoint (its outputs and failure.txt
-      // are the study's own) starts over; `hydrojump sph` refuses to overwrite them otherwise.
-      else if (std::filesystem::exists(started) && method == "sph") args.push_back("--restart");
-      // A run that starts from the beginning has no earlier legs.
-      if (args.back() != "--resume") std::filesystem::remove(dir / (method + ".legs"));
-      const auto stage = run_stage(c.id, method, args, dir, method_run_key(study_, c, options_.resolution, method), started);
-      any_solver_ok = any_solver_ok || stage.state == "done" || stage.state == "cached";
-      // A stopped run wrote new outputs too: the comparison is stale.
-      any_solver_ran = any_solver_ran || stage.state == "done" || stage.state == "failed" || stage.state == "stopped";
-      result.stages.push_back(stage);
+    return std::nullopt;
+  }
+
+  StageResult run_solver(const cases::Case& c, const std::string& method) {
+    const auto dir = options_.out / c.id;
+    if (study_stopping()) return {method, "skipped", 0.0, 0, "the study was stopped"};
+    std::vector<std::string> args = {self_.string(), method, (dir / method).string()};
+    if (method == "sph" && options_.sph_threads > 0) {
+      args.push_back("--threads");
+      args.push_back(std::to_string(options_.sph_threads));
     }
-    // A comparison is only as current as the solver results it read.
-    if (any_solver_ran) std::filesystem::remove(dir / "compare.stamp");
-    if (any_solver_ok && !study_stopping()) {
-      result.stages.push_back(run_stage(c.id, "compare", {self_.string(), "compare", dir.string()}, dir,
-                                        compare_fingerprint, {}));
-    } else {
-      result.stages.push_back({"compare", "skipped", 0.0, 0, {}});
+    if (method == "vof" && options_.mpi_ranks > 1) {
+      args.push_back("--np");
+      args.push_back(std::to_string(options_.mpi_ranks));
     }
-    return result;
+    // Resume an interrupted solver from what it left: the SPH checkpoint, or OpenFOAM's mesh and
+    // time directories.
+    const auto started = dir / (method + ".started");
+    const bool resumable = method == "sph" ? std::filesystem::exists(dir / "sph" / "checkpoint.bin")
+                                           : std::filesystem::exists(dir / "vof" / "constant" / "polyMesh");
+    if (std::filesystem::exists(started) && resumable) args.push_back("--resume");
+    // An SPH run of this study that stopped before its first checkpoint (its outputs and failure.txt
+    // are the study's own) starts over; `hydrojump sph` refuses to overwrite them otherwise.
+    else if (std::filesystem::exists(started) && method == "sph") args.push_back("--restart");
+    // A run that starts from the beginning has no earlier legs.
+    if (args.back() != "--resume") std::filesystem::remove(dir / (method + ".legs"));
+    return run_stage(c.id, method, args, dir, method_run_key(study_, c, options_.resolution, method), started);
   }
 
   // The case from its validation records (--records) when every method asked for has one whose key is
@@ -465,62 +464,12 @@ std::vector<CaseResult> with_earlier_runs(const StudyOptions& options, const cas
   return out;
 }
 
-void write_study_report(const StudyOptions& options, const cases::Study& study,
-                        const std::vector<CaseResult>& results, std::ostream& log) {
-  std::ostringstream md;
-  md << "# Study \"" << study.name << "\" at resolution \"" << options.resolution << "\"\n\n";
-  if (!study.description.empty()) md << study.description << "\n\n";
-  md << "Generated by hydrojump " << version_string << " from `" << study.source_file.string() << "`.\n\n";
-
-  // Results across cases (from each case's comparison), then the eta bars.
-  std::vector<std::pair<std::string, std::filesystem::path>> compared;
-  std::vector<std::filesystem::path> case_dirs;
-  for (const auto& r : results) {
-    compared.emplace_back(r.id, options.out / r.id);
-    case_dirs.push_back(options.out / r.id);
-  }
-  const compare::StudySummary summary = compare::summarize_study(compared);
-  md << "## Results\n\n" << summary.markdown << "\n";
-  util::write_file_atomically(options.out / "eta_summary.csv", summary.eta_csv);
-  const auto bars = options.out / "eta_bars.png";
-  const std::string plot_problem = compare::plot_study_eta_bars(case_dirs, bars);
-  if (plot_problem.empty()) {
-    md << "![Energy dissipation rate across runs](eta_bars.png)\n\n";
-  } else {
-    md << "(eta bars not plotted: " << plot_problem << ")\n\n";
-    log << "study: eta bars not plotted: " << plot_problem << std::endl;
-    std::error_code ignored;
-    std::filesystem::remove(bars, ignored);  // an earlier study's bars would pass for this one's
-  }
-
-  md << "## Runs\n\n";
-  const bool any_earlier = std::any_of(results.begin(), results.end(), [](const CaseResult& r) {
-    return !r.stages.empty() && r.stages.front().state == "earlier run";
-  });
-  if (any_earlier)
-    md << "\"earlier run\": a case not asked for this time whose comparison in this directory is current "
-          "(same case settings, resolution and code), from an earlier `hydrojump study` into the same directory.\n\n";
-  md << "| case | stage | state | wall time | report |\n|---|---|---|---|---|\n";
-  for (const auto& r : results) {
-    for (const auto& s : r.stages) {
-      const bool has_report = std::filesystem::exists(options.out / r.id / "report.md");
-      md << "| " << r.id << " | " << s.stage << " | " << s.state
-         << (s.state == "failed" ? (s.message.empty() ? " (exit " + std::to_string(s.exit_status) + ")" : ": " + s.message)
-             : s.message.empty() ? std::string()
-                                 : " (" + s.message + ")")
-         << " | " << (s.state == "done" || s.state == "failed" || s.state == "stopped" ? duration_text(s.seconds) : "-") << " | "
-         << (has_report && s.stage == "compare" ? "[" + r.id + "/report.md](" + r.id + "/report.md)" : "")
-         << " |\n";
-    }
-  }
-  if (!study.citations.empty()) {
-    md << "\n## References\n\n";
-    for (const auto& c : study.citations) md << "- " << c << "\n";
-  }
-  util::write_file_atomically(options.out / "study_report.md", md.str());
-}
-
 }  // namespace
+
+int stage_jobs(int jobs, int mpi_ranks, int cores, std::size_t stages) {
+  if (jobs <= 0) jobs = std::max(1, cores / std::max(1, mpi_ranks));
+  return std::max(1, std::min<int>(jobs, static_cast<int>(std::max<std::size_t>(1, stages))));
+}
 
 int sph_threads_per_job(int requested, int jobs, int cores) {
   if (requested > 0) return requested;
@@ -528,13 +477,59 @@ int sph_threads_per_job(int requested, int jobs, int cores) {
   return std::max(1, cores / jobs);
 }
 
+namespace {
+
+// Every selected case: prepared one after the other (records imported, directories generated), then
+// the solver stages of all of them `options.jobs` at a time, the largest case's first (run_work: size
+// x simulated time x U1 / dx), each case's comparison on the worker that ended its last solver stage.
+// The results in the order of `selected`.
+std::vector<CaseResult> run_cases(StudyRunner& runner, const StudyOptions& options,
+                                  const std::vector<const cases::Case*>& selected) {
+  std::vector<CaseResult> results(selected.size());
+  std::vector<std::vector<StageResult>> solvers(selected.size(), std::vector<StageResult>(options.methods.size()));
+  std::vector<std::atomic<std::size_t>> left(selected.size());
+  struct Stage {
+    std::size_t case_index, method_index;
+  };
+  std::vector<Stage> stages;
+  std::vector<double> work;
+  for (std::size_t i = 0; i < selected.size(); ++i) {
+    std::optional<CaseResult> done = study_stopping() ? CaseResult{selected[i]->id, {{"setup", "skipped", 0.0, 0, "the study was stopped"}}}
+                                                      : runner.prepare_case(*selected[i]);
+    if (done) {
+      results[i] = *done;
+      continue;
+    }
+    if (options.methods.empty()) results[i] = runner.finish_case(*selected[i], {});
+    left[i] = options.methods.size();
+    for (std::size_t m = 0; m < options.methods.size(); ++m) {
+      stages.push_back({i, m});
+      work.push_back(compare::run_work(*selected[i], options.resolution, "sph"));
+    }
+  }
+  run_largest_first(work, options.jobs, [&](std::size_t k) {
+    const auto [i, m] = stages[k];
+    solvers[i][m] = runner.run_solver_stage(*selected[i], options.methods[m]);
+    if (left[i].fetch_sub(1) == 1) results[i] = runner.finish_case(*selected[i], solvers[i]);
+  });
+  return results;
+}
+
+
+}  // namespace
+
 int run_study(const StudyOptions& given, std::ostream& log) {
   const cases::Study study = load_spec_argument(given.spec);
   const auto selected = select_cases(study, given.cases);
   StudyOptions options = given;
-  options.jobs = std::max(1, std::min<int>(options.jobs, static_cast<int>(selected.size())));
-  options.sph_threads = sph_threads_per_job(options.sph_threads, options.jobs,
-                                            static_cast<int>(std::max(1u, std::thread::hardware_concurrency())));
+  // Each method once, in the order given (two runs of one solver in one directory would collide).
+  std::vector<std::string> methods;
+  for (const auto& m : given.methods)
+    if (std::find(methods.begin(), methods.end(), m) == methods.end()) methods.push_back(m);
+  options.methods = methods;
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  options.jobs = stage_jobs(options.jobs, options.mpi_ranks, cores, selected.size() * options.methods.size());
+  options.sph_threads = sph_threads_per_job(options.sph_threads, options.jobs, cores);
   // Validate every selected case first, with what only the solvers' derivations find: nothing runs
   // (and no earlier results are moved aside) while one is invalid.
   check_cases(study, selected, options.resolution);
@@ -561,23 +556,13 @@ int run_study(const StudyOptions& given, std::ostream& log) {
     for (const auto& sub : {options.out / c->id, options.out / c->id / "csv", options.out / c->id / "figures"})
       if (std::filesystem::is_directory(sub)) util::remove_orphaned_temporaries(sub);
   log << "study \"" << study.name << "\": " << selected.size() << " case(s) at resolution \""
-      << options.resolution << "\" into " << options.out.string() << " (" << options.jobs << " at a time"
+      << options.resolution << "\" into " << options.out.string() << " (" << options.jobs << " solver stage(s) at a time, the largest case's first"
       << (options.sph_threads > 0 ? ", " + std::to_string(options.sph_threads) + " SPH thread(s) each" : std::string())
       << ")" << std::endl;
 
   StudyRunner runner(options, study, log);
-  std::vector<CaseResult> results(selected.size());
-  std::atomic<std::size_t> next{0};
   const StudyStopSignals stop_signals;
-  const auto worker = [&] {
-    for (std::size_t i = next++; i < selected.size(); i = next++) {
-      results[i] = study_stopping() ? CaseResult{selected[i]->id, {{"setup", "skipped", 0.0, 0, "the study was stopped"}}}
-                                    : runner.run_case(*selected[i]);
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int j = 0; j < options.jobs; ++j) pool.emplace_back(worker);
-  for (auto& t : pool) t.join();
+  const std::vector<CaseResult> results = run_cases(runner, options, selected);
 
   write_study_report(options, study, with_earlier_runs(options, study, results), log);
   int failed = 0;
@@ -597,6 +582,7 @@ int run_study(const StudyOptions& given, std::ostream& log) {
 
 void register_study_command(CLI::App& app) {
   auto options = std::make_shared<StudyOptions>();
+  options->jobs = 0;  // one stage per core (stage_jobs)
   auto* cmd = app.add_subcommand(
       "study",
       "Run a whole study: generate every case, run the SPH solver and the OpenFOAM reference, compare "
@@ -610,8 +596,9 @@ void register_study_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--cases", options->cases, "case ids, comma-separated or repeated, or \"all\" (the default: every case)")->delimiter(',');
   cmd->add_option("--out,-o", options->out, "study directory")->capture_default_str()->check(util::non_empty_path());
-  cmd->add_option("--jobs,-j", options->jobs, "cases run at the same time")->check(CLI::Range(1, 64))
-      ->capture_default_str();
+  cmd->add_option("--jobs,-j", options->jobs, "solver stages (SPH or OpenFOAM runs) run at the same time, the largest cases' first, each case's "
+                  "comparison after its last solver stage (default: one per core, one per --np cores with "
+                  "--np)")->check(CLI::Range(1, 64));
   cmd->add_option("--np", options->mpi_ranks, "MPI ranks for each OpenFOAM run")->check(CLI::Range(1, 256))
       ->capture_default_str();
   cmd->add_option("--threads", options->sph_threads,

@@ -14,6 +14,7 @@
 // is current (stamp = its fingerprint), so a long study can be run a few cases at a time.
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
 #include <iosfwd>
 #include <string>
@@ -30,7 +31,8 @@ struct StudyOptions {
   std::string resolution = "quick";
   std::vector<std::string> cases;            // empty: all
   std::filesystem::path out = "study";
-  int jobs = 1;                              // cases run at the same time
+  int jobs = 1;                              // solver stages run at the same time (largest cases first);
+                                             // 0: one per core (per mpi_ranks cores)
   int mpi_ranks = 1;                         // --np for the OpenFOAM runs
   int sph_threads = 0;                       // --threads for the SPH runs; 0: all cores with one job, the
                                              // cores shared out with several (sph_threads_per_job)
@@ -40,6 +42,12 @@ struct StudyOptions {
   std::filesystem::path executable;          // the hydrojump binary run for each stage
                                              // (empty: this process's own executable)
 };
+
+// The solver stages the study runs at once: `jobs` (--jobs), or with 0 one per core, one per
+// `mpi_ranks` cores with OpenFOAM runs on several ranks (two single-threaded runs side by side do more
+// than one run on two threads, and no more runs than cores); at most `stages` (the selected cases'
+// solver stages), at least one.
+int stage_jobs(int jobs, int mpi_ranks, int cores, std::size_t stages);
 
 // The OpenMP threads each SPH run gets: `requested` if > 0; else, with several jobs, the `cores` shared
 // out among them (at least one each), so that two cases side by side do not put four spinning threads

@@ -1,6 +1,7 @@
 #include "compare/validation_doc.hpp"
 
 #include "compare/jump_structure.hpp"
+#include "compare/run_cost.hpp"
 #include "cases/jump_toe.hpp"
 
 #include <algorithm>
@@ -296,27 +297,6 @@ std::string with_headline(const std::string& text, const std::string& block, con
                       "\": the headline table goes between them");
   return text.substr(0, a + start.size()) + block + text.substr(b);
 }
-
-namespace {
-
-// The size of a run: SPH particles (the water under the tailwater level over the domain, dx^2 each) or
-// VOF cells (the water and the air above it, bed by bulk cell sizes): rough counts.
-double run_size(const cases::StillingBasinCase& b, const cases::Resolution& level, const std::string& method) {
-  const double length = b.upstream_length_m + b.basin_length_m + b.downstream_length_m;
-  if (method == "sph") return length * b.tailwater_depth_m / (level.particle_spacing_m * level.particle_spacing_m);
-  return length * (b.tailwater_depth_m + b.air_height_m) / (level.vof_cell_size_bed_m * level.vof_cell_size_bulk_m);
-}
-
-// A rough measure of a run's work: size x steps, with steps ~ T U1 / dx (the time step is limited by
-// the sound speed, ~U1, over dx in SPH, and by the Courant number over the bed cell size in VOF).
-double run_work(const cases::Case& c, const std::string& resolution, const std::string& method) {
-  const auto* b = c.stilling_basin();
-  const auto& level = c.resolutions.at(resolution);
-  const double dx = method == "sph" ? level.particle_spacing_m : level.vof_cell_size_bed_m;
-  return run_size(*b, level, method) * c.run.end_time_s * b->inflow_velocity_m_s / dx;
-}
-
-}  // namespace
 
 std::string not_run_markdown(const cases::Study& study, const std::vector<ValidationRecord>& records,
                              const std::string& resolution) {

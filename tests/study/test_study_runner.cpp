@@ -118,13 +118,14 @@ StudyOptions mini_study_failing_b_sph(const fs::path& dir, const fs::path& calls
                                            on_failure + " ; exit 3 ;;\nesac\nexit 0\n");
 }
 
-// Runs the study in a thread until its stand-in SPH run of case A has started (it touches
+// Runs the study in a thread until the stand-in SPH run of case `id` has started (it touches
 // "$2/running"), then sends this process `signals` (the study's handlers take them), half a second
 // apart, and waits for the study to end. Returns its status; `log` gets its log.
-int run_study_stopped_by(const StudyOptions& options, const std::vector<int>& signals, std::ostringstream& log) {
+int run_study_stopped_by(const StudyOptions& options, const std::vector<int>& signals, std::ostringstream& log,
+                         const std::string& id = "A") {
   int status = -1;
   std::thread study([&] { status = run_study(options, log); });
-  const fs::path running = options.out / "A" / "sph" / "running";
+  const fs::path running = options.out / id / "sph" / "running";
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
   while (!fs::exists(running) && std::chrono::steady_clock::now() < deadline)
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
@@ -322,7 +323,7 @@ TEST_CASE("Study runner: a second study on the same output directory stops befor
   CHECK(log.str().empty());  // nothing started
 }
 
-TEST_CASE("Study runner: --methods runs only the chosen solvers, --force re-runs cached stages, --jobs runs cases side by side",
+TEST_CASE("Study runner: --methods runs only the chosen solvers, --force re-runs cached stages, --jobs runs stages side by side",
           "[study]") {
   const TempDir tmp("study_options");
   const fs::path& dir = tmp.path();
@@ -385,6 +386,39 @@ TEST_CASE("Study runner: --methods runs only the chosen solvers, --force re-runs
   CHECK(std::count_if(run.begin(), run.end(), [](const std::string& l) {
           return l.rfind("sph ", 0) == 0 && l.find("--threads 3") != std::string::npos;
         }) == 2);
+
+  // One job: the larger case (B: a longer basin at a higher speed) runs first, each case's comparison
+  // right after its solver stage; the report keeps the spec's order.
+  fs::remove(calls);
+  options.jobs = 1;
+  options.sph_threads = 0;
+  REQUIRE(run_study(options, log) == 0);
+  run = starts();
+  REQUIRE(run.size() == 4);
+  CHECK(run[0].find("sph ") == 0);
+  CHECK(run[0].find("/B/sph") != std::string::npos);
+  CHECK(run[1].find("compare ") == 0);
+  CHECK(run[1].find("/B") != std::string::npos);
+  CHECK(run[2].find("/A/sph") != std::string::npos);
+  const std::string report = hydrojump::util::read_text_file(options.out / "study_report.md");
+  const auto a_row = report.find("| A | sph |"), b_row = report.find("| B | sph |");
+  CHECK(a_row < b_row);
+
+  // --jobs 2 on one case: its SPH and OpenFOAM runs side by side, its comparison after both ended.
+  fs::remove(calls);
+  options.jobs = 2;
+  options.methods = {"sph", "vof"};
+  options.cases = {"A"};
+  write(overlap, "");
+  REQUIRE(run_study(options, log) == 0);
+  fs::remove(overlap);
+  const auto both = lines_of(calls);
+  REQUIRE(both.size() == 6);
+  CHECK(both[0].rfind("start ", 0) == 0);
+  CHECK(both[1].rfind("start ", 0) == 0);
+  const std::string first_two = both[0] + "\n" + both[1];
+  CHECK_THAT(first_two, Catch::Contains("start sph ") && Catch::Contains("start vof "));
+  CHECK(both[4].rfind("start compare ", 0) == 0);
 }
 
 TEST_CASE("Study runner: the SPH threads of each job", "[study]") {
@@ -394,6 +428,16 @@ TEST_CASE("Study runner: the SPH threads of each job", "[study]") {
   CHECK(sph_threads_per_job(0, 2, 2) == 1);
   CHECK(sph_threads_per_job(0, 2, 8) == 4);
   CHECK(sph_threads_per_job(0, 3, 2) == 1);  // more jobs than cores: one each
+}
+
+TEST_CASE("Study runner: the solver stages at once", "[study]") {
+  using hydrojump::app::stage_jobs;
+  CHECK(stage_jobs(0, 1, 2, 20) == 2);    // one per core
+  CHECK(stage_jobs(0, 4, 16, 20) == 4);   // one per --np cores
+  CHECK(stage_jobs(0, 4, 2, 20) == 1);    // at least one
+  CHECK(stage_jobs(0, 1, 16, 4) == 4);    // no more than there are stages
+  CHECK(stage_jobs(3, 1, 2, 20) == 3);    // asked for
+  CHECK(stage_jobs(3, 1, 2, 0) == 1);
 }
 
 TEST_CASE("Study runner: a reworded description or a relaxed stability limit keeps the solver results, and hand-made results are kept",
@@ -460,25 +504,28 @@ TEST_CASE("Study runner: a stop request stops the running stage with its state w
   options.cases = {"A", "B"};
   std::ostringstream log;
   // As `kill -TERM <study>`: the signal reaches the study alone (its stages run in their own groups).
-  const int status = run_study_stopped_by(options, {SIGTERM}, log);
+  // One job: the larger case, B (a longer basin at a higher speed), runs first.
+  const int status = run_study_stopped_by(options, {SIGTERM}, log, "B");
   INFO(log.str());
   CHECK(status == 128 + SIGTERM);
-  CHECK(fs::exists(options.out / "A" / "sph" / "term"));  // passed on to the stage
-  CHECK(fs::exists(options.out / "A" / "sph.started"));  // the next study resumes it
-  CHECK_THAT(log.str(), Catch::Contains("A: sph stopped on request") && Catch::Contains("study stopped by SIGTERM"));
-  // Nothing after it: not A's VOF run or comparison, not case B.
+  CHECK(fs::exists(options.out / "B" / "sph" / "term"));  // passed on to the stage
+  CHECK(fs::exists(options.out / "B" / "sph.started"));  // the next study resumes it
+  CHECK_THAT(log.str(), Catch::Contains("B: sph stopped on request") && Catch::Contains("study stopped by SIGTERM"));
+  // Nothing after it: not B's VOF run or comparison, not case A.
   const auto called = lines_of(calls);
   REQUIRE(called.size() == 1);
   CHECK(called.front().rfind("sph ", 0) == 0);
   const std::string report = hydrojump::util::read_text_file(options.out / "study_report.md");
-  CHECK_THAT(report, Catch::Contains("| A | sph | stopped |") &&
-                         Catch::Contains("| A | vof | skipped (the study was stopped) |") &&
-                         Catch::Contains("| B | setup | skipped (the study was stopped) |"));
+  CHECK_THAT(report, Catch::Contains("| B | sph | stopped |") &&
+                         Catch::Contains("| B | vof | skipped (the study was stopped) |") &&
+                         Catch::Contains("| B | compare | skipped |") &&
+                         Catch::Contains("| A | sph | skipped (the study was stopped) |") &&
+                         Catch::Contains("| A | vof | skipped (the study was stopped) |"));
 
   // The next study resumes the run (a stand-in that finishes after 0.3 s): its stage's wall time counts
   // both legs.
   const double first_leg = [&] {
-    std::istringstream in(hydrojump::util::read_text_file(options.out / "A" / "sph.legs"));
+    std::istringstream in(hydrojump::util::read_text_file(options.out / "B" / "sph.legs"));
     double seconds = -1.0;
     int legs = 0;
     in >> seconds >> legs;
@@ -487,27 +534,27 @@ TEST_CASE("Study runner: a stop request stops the running stage with its state w
   }();
   CHECK(first_leg > 0.0);
   write(dir / "fake_hydrojump", "#!/bin/sh\necho \"$*\" >> '" + calls.string() + "'\nsleep 0.3\nexit 0\n");
-  options.cases = {"A"};
+  options.cases = {"B"};
   std::ostringstream resumed;
   REQUIRE(run_study(options, resumed) == 0);
   INFO(resumed.str());
   CHECK(lines_of(calls).at(1).find("--resume") != std::string::npos);
-  const auto info = toml::parse_file((options.out / "A" / "sph.stage.toml").string());
+  const auto info = toml::parse_file((options.out / "B" / "sph.stage.toml").string());
   CHECK(info["legs"].value_or(0) == 2);
   CHECK_THAT(info["machine"].value_or(std::string()), Catch::EndsWith(" cores"));
   CHECK(info["wall_time_s"].value_or(0.0) >= first_leg + 0.3);
-  CHECK_FALSE(fs::exists(options.out / "A" / "sph.legs"));
+  CHECK_FALSE(fs::exists(options.out / "B" / "sph.legs"));
   // Legs left over beside a stage that then runs from the beginning (no started marker: not a resume)
   // are not counted.
-  write(options.out / "A" / "vof.legs", "100 3\n");
-  fs::remove(options.out / "A" / "vof.stamp");
+  write(options.out / "B" / "vof.legs", "100 3\n");
+  fs::remove(options.out / "B" / "vof.stamp");
   std::ostringstream again;
   REQUIRE(run_study(options, again) == 0);
-  const auto vof_info = toml::parse_file((options.out / "A" / "vof.stage.toml").string());
+  const auto vof_info = toml::parse_file((options.out / "B" / "vof.stage.toml").string());
   CHECK(vof_info["legs"].value_or(0) == 1);
   CHECK(vof_info["wall_time_s"].value_or(1e9) < 100.0);
   // A VOF stage that ran in one leg.
-  CHECK(toml::parse_file((options.out / "A" / "vof.stage.toml").string())["legs"].value_or(0) == 1);
+  CHECK(toml::parse_file((options.out / "B" / "vof.stage.toml").string())["legs"].value_or(0) == 1);
 }
 
 TEST_CASE("Study runner: an output directory OpenFOAM cannot run in is refused before anything runs", "[study]") {

@@ -1,0 +1,30 @@
+#include "app/stage_queue.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <numeric>
+#include <thread>
+
+namespace hydrojump::app {
+
+std::vector<std::size_t> largest_first(const std::vector<double>& work) {
+  std::vector<std::size_t> order(work.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return work[a] > work[b]; });
+  return order;
+}
+
+void run_largest_first(const std::vector<double>& work, int workers, const std::function<void(std::size_t)>& run) {
+  const std::vector<std::size_t> order = largest_first(work);
+  std::atomic<std::size_t> next{0};
+  const auto worker = [&] {
+    for (std::size_t k = next++; k < order.size(); k = next++) run(order[k]);
+  };
+  const int threads = std::clamp<int>(workers, 1, std::max<int>(1, static_cast<int>(order.size())));
+  std::vector<std::thread> pool;
+  for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
+  worker();
+  for (auto& t : pool) t.join();
+}
+
+}  // namespace hydrojump::app
