@@ -21,10 +21,9 @@ void run_largest_first(const std::vector<double>& work, int workers, const std::
     for (std::size_t k = next++; k < order.size(); k = next++) run(order[k]);
   };
   const int threads = std::clamp<int>(workers, 1, std::max<int>(1, static_cast<int>(order.size())));
-  std::vector<std::thread> pool;
+  std::vector<std::jthread> pool;  // joined however this returns
   for (int t = 1; t < threads; ++t) pool.emplace_back(worker);
   worker();
-  for (auto& t : pool) t.join();
 }
 
 }  // namespace hydrojump::app

@@ -1,6 +1,7 @@
 // The order in which `hydrojump study` runs its solver stages: the largest first, so that no long
 // stage is left to run alone at the end while the other workers idle (longest-processing-time-first
-// scheduling, Graham 1969: at most 4/3 of the shortest possible total time on identical workers).
+// scheduling, Graham 1969; the study orders by an estimate of each case's work, not each stage's own
+// time, so Graham's 4/3 bound on the total time is not claimed).
 #pragma once
 
 #include <cstddef>

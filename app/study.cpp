@@ -16,6 +16,8 @@
 #include <sstream>
 #include <thread>
 
+#include <sched.h>
+
 #include "util/atomic_file.hpp"
 #include "util/child_process.hpp"
 #include "util/cli_checks.hpp"
@@ -135,7 +137,15 @@ class StudyRunner {
     } catch (const std::exception& e) {
       say(c.id + ": FAILED: " + e.what());
       return CaseResult{c.id, {{"setup", "failed", 0.0, 1, e.what()}}};
+    } catch (...) {
+      return CaseResult{c.id, {{"setup", "failed", 0.0, 1, "unknown error"}}};
     }
+  }
+
+  // Whether a solver stage of a prepared case is cached (its stamp holds its run key; not with --force).
+  bool stage_current(const cases::Case& c, const std::string& method) const {
+    return !options_.force && util::read_text_file(options_.out / c.id / (method + ".stamp")) ==
+                                  method_run_key(study_, c, options_.resolution, method);
   }
 
   // One solver stage ("sph" or "vof") of a prepared case, resumed where an earlier one stopped. Never
@@ -146,6 +156,8 @@ class StudyRunner {
     } catch (const std::exception& e) {
       say(c.id + ": " + method + " FAILED: " + e.what());
       return {method, "failed", 0.0, 1, e.what()};
+    } catch (...) {
+      return {method, "failed", 0.0, 1, "unknown error"};
     }
   }
 
@@ -173,6 +185,8 @@ class StudyRunner {
     } catch (const std::exception& e) {
       say(c.id + ": compare FAILED: " + e.what());
       result.stages.push_back({"compare", "failed", 0.0, 1, e.what()});
+    } catch (...) {
+      result.stages.push_back({"compare", "failed", 0.0, 1, "unknown error"});
     }
     return result;
   }
@@ -211,9 +225,9 @@ class StudyRunner {
       const auto previous = options_.out / (c.id + ".previous");
       auto runs_idle = lock_solver_directories({dir, previous}, "hydrojump study (moving it)");
       // Results in a directory the study did not make (no stamp: `generate` and `sph` run by hand)
-      // are kept the same way.
-      const bool holds_results = cases::holds_results(dir / "sph") || cases::holds_results(dir / "vof");
-      if (std::filesystem::exists(generated_stamp) || holds_results) {
+      // are kept the same way. A directory whose solvers never ran (a study stopped after preparing
+      // it) holds nothing to keep, and must not replace an older <case>.previous.
+      if (solvers_ran_in(dir)) {
         std::filesystem::remove_all(previous);
         std::filesystem::rename(dir, previous);
         say(c.id + ": the case or the program changed: its previous results are kept in " + previous.string());
@@ -254,6 +268,15 @@ class StudyRunner {
     // A run that starts from the beginning has no earlier legs.
     if (args.back() != "--resume") std::filesystem::remove(dir / (method + ".legs"));
     return run_stage(c.id, method, args, dir, method_run_key(study_, c, options_.resolution, method), started);
+  }
+
+  // Whether a solver ran in the case directory `dir`: its stamp or started marker, or its results.
+  static bool solvers_ran_in(const std::filesystem::path& dir) {
+    for (const std::string method : {"sph", "vof"})
+      if (std::filesystem::exists(dir / (method + ".stamp")) || std::filesystem::exists(dir / (method + ".started")) ||
+          cases::holds_results(dir / method))
+        return true;
+    return false;
   }
 
   // The case from its validation records (--records) when every method asked for has one whose key is
@@ -466,9 +489,16 @@ std::vector<CaseResult> with_earlier_runs(const StudyOptions& options, const cas
 
 }  // namespace
 
-int stage_jobs(int jobs, int mpi_ranks, int cores, std::size_t stages) {
-  if (jobs <= 0) jobs = std::max(1, cores / std::max(1, mpi_ranks));
+int stage_jobs(int jobs, int cores_per_stage, int cores, std::size_t stages) {
+  if (jobs <= 0) jobs = std::max(1, cores / std::max(1, cores_per_stage));
   return std::max(1, std::min<int>(jobs, static_cast<int>(std::max<std::size_t>(1, stages))));
+}
+
+int available_cores() {
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (sched_getaffinity(0, sizeof(set), &set) == 0 && CPU_COUNT(&set) > 0) return CPU_COUNT(&set);
+  return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
 }
 
 int sph_threads_per_job(int requested, int jobs, int cores) {
@@ -480,11 +510,12 @@ int sph_threads_per_job(int requested, int jobs, int cores) {
 namespace {
 
 // Every selected case: prepared one after the other (records imported, directories generated), then
-// the solver stages of all of them `options.jobs` at a time, the largest case's first (run_work: size
-// x simulated time x U1 / dx), each case's comparison on the worker that ended its last solver stage.
-// The results in the order of `selected`.
-std::vector<CaseResult> run_cases(StudyRunner& runner, const StudyOptions& options,
-                                  const std::vector<const cases::Case*>& selected) {
+// the solver stages of all of them --jobs at a time (stage_jobs, counting the stages that will run:
+// not the cached ones), the largest case's first (run_work: size x simulated time x U1 / dx), each
+// case's comparison on the worker that ended its last solver stage. Sets options.jobs and
+// options.sph_threads (the runner reads them); the results in the order of `selected`.
+std::vector<CaseResult> run_cases(StudyRunner& runner, StudyOptions& options, const std::vector<const cases::Case*>& selected,
+                                  std::ostream& log) {
   std::vector<CaseResult> results(selected.size());
   std::vector<std::vector<StageResult>> solvers(selected.size(), std::vector<StageResult>(options.methods.size()));
   std::vector<std::atomic<std::size_t>> left(selected.size());
@@ -493,6 +524,7 @@ std::vector<CaseResult> run_cases(StudyRunner& runner, const StudyOptions& optio
   };
   std::vector<Stage> stages;
   std::vector<double> work;
+  std::size_t to_run = 0;
   for (std::size_t i = 0; i < selected.size(); ++i) {
     std::optional<CaseResult> done = study_stopping() ? CaseResult{selected[i]->id, {{"setup", "skipped", 0.0, 0, "the study was stopped"}}}
                                                       : runner.prepare_case(*selected[i]);
@@ -505,8 +537,18 @@ std::vector<CaseResult> run_cases(StudyRunner& runner, const StudyOptions& optio
     for (std::size_t m = 0; m < options.methods.size(); ++m) {
       stages.push_back({i, m});
       work.push_back(compare::run_work(*selected[i], options.resolution, "sph"));
+      to_run += runner.stage_current(*selected[i], options.methods[m]) ? 0 : 1;
     }
   }
+  const int cores = available_cores();
+  options.jobs = stage_jobs(options.jobs, std::max(options.mpi_ranks, options.sph_threads), cores, to_run);
+  options.sph_threads = sph_threads_per_job(options.sph_threads, options.jobs, cores);
+  // Several OpenFOAM runs on several ranks each: Open MPI would bind each run's ranks to the same
+  // first cores.
+  if (options.jobs > 1 && options.mpi_ranks > 1) ::setenv("OMPI_MCA_hwloc_base_binding_policy", "none", 0);
+  log << to_run << " solver stage(s) to run, " << options.jobs << " at a time, the largest case's first"
+      << (options.sph_threads > 0 ? ", " + std::to_string(options.sph_threads) + " SPH thread(s) each" : std::string())
+      << std::endl;
   run_largest_first(work, options.jobs, [&](std::size_t k) {
     const auto [i, m] = stages[k];
     solvers[i][m] = runner.run_solver_stage(*selected[i], options.methods[m]);
@@ -514,7 +556,6 @@ std::vector<CaseResult> run_cases(StudyRunner& runner, const StudyOptions& optio
   });
   return results;
 }
-
 
 }  // namespace
 
@@ -527,9 +568,6 @@ int run_study(const StudyOptions& given, std::ostream& log) {
   for (const auto& m : given.methods)
     if (std::find(methods.begin(), methods.end(), m) == methods.end()) methods.push_back(m);
   options.methods = methods;
-  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  options.jobs = stage_jobs(options.jobs, options.mpi_ranks, cores, selected.size() * options.methods.size());
-  options.sph_threads = sph_threads_per_job(options.sph_threads, options.jobs, cores);
   // Validate every selected case first, with what only the solvers' derivations find: nothing runs
   // (and no earlier results are moved aside) while one is invalid.
   check_cases(study, selected, options.resolution);
@@ -556,13 +594,11 @@ int run_study(const StudyOptions& given, std::ostream& log) {
     for (const auto& sub : {options.out / c->id, options.out / c->id / "csv", options.out / c->id / "figures"})
       if (std::filesystem::is_directory(sub)) util::remove_orphaned_temporaries(sub);
   log << "study \"" << study.name << "\": " << selected.size() << " case(s) at resolution \""
-      << options.resolution << "\" into " << options.out.string() << " (" << options.jobs << " solver stage(s) at a time, the largest case's first"
-      << (options.sph_threads > 0 ? ", " + std::to_string(options.sph_threads) + " SPH thread(s) each" : std::string())
-      << ")" << std::endl;
+      << options.resolution << "\" into " << options.out.string() << std::endl;
 
   StudyRunner runner(options, study, log);
   const StudyStopSignals stop_signals;
-  const std::vector<CaseResult> results = run_cases(runner, options, selected);
+  const std::vector<CaseResult> results = run_cases(runner, options, selected, log);
 
   write_study_report(options, study, with_earlier_runs(options, study, results), log);
   int failed = 0;
@@ -582,7 +618,7 @@ int run_study(const StudyOptions& given, std::ostream& log) {
 
 void register_study_command(CLI::App& app) {
   auto options = std::make_shared<StudyOptions>();
-  options->jobs = 0;  // one stage per core (stage_jobs)
+  options->jobs = 0;  // stage_jobs: one stage per core
   auto* cmd = app.add_subcommand(
       "study",
       "Run a whole study: generate every case, run the SPH solver and the OpenFOAM reference, compare "
@@ -602,8 +638,8 @@ void register_study_command(CLI::App& app) {
   cmd->add_option("--np", options->mpi_ranks, "MPI ranks for each OpenFOAM run")->check(CLI::Range(1, 256))
       ->capture_default_str();
   cmd->add_option("--threads", options->sph_threads,
-                  "OpenMP threads for each SPH run (default: all cores with --jobs 1, else the cores shared "
-                  "out among the jobs)")
+                  "OpenMP threads for each SPH run (default: the cores shared out among the stages run at once; "
+                  "all of them when one runs)")
       ->check(CLI::Range(1, 1024));
   cmd->add_option("--methods", options->methods, "solvers to run: sph,vof")
       ->delimiter(',')

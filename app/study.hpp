@@ -32,7 +32,7 @@ struct StudyOptions {
   std::vector<std::string> cases;            // empty: all
   std::filesystem::path out = "study";
   int jobs = 1;                              // solver stages run at the same time (largest cases first);
-                                             // 0: one per core (per mpi_ranks cores)
+                                             // 0: one per core (stage_jobs; the command's default)
   int mpi_ranks = 1;                         // --np for the OpenFOAM runs
   int sph_threads = 0;                       // --threads for the SPH runs; 0: all cores with one job, the
                                              // cores shared out with several (sph_threads_per_job)
@@ -43,14 +43,14 @@ struct StudyOptions {
                                              // (empty: this process's own executable)
 };
 
-// The solver stages the study runs at once: `jobs` (--jobs), or with 0 one per core, one per
-// `mpi_ranks` cores with OpenFOAM runs on several ranks (two single-threaded runs side by side do more
-// than one run on two threads, and no more runs than cores); at most `stages` (the selected cases'
-// solver stages), at least one.
-int stage_jobs(int jobs, int mpi_ranks, int cores, std::size_t stages);
+// The solver stages the study runs at once: `jobs` (--jobs), or with 0 one per `cores_per_stage` cores
+// (the larger of --np and --threads, one without them: two single-threaded runs side by side do more
+// than one run on two threads, and no more runs than cores); at most `stages` (the solver stages that
+// will run, not the cached ones), at least one.
+int stage_jobs(int jobs, int cores_per_stage, int cores, std::size_t stages);
 
 // The OpenMP threads each SPH run gets: `requested` if > 0; else, with several jobs, the `cores` shared
-// out among them (at least one each), so that two cases side by side do not put four spinning threads
+// out among them (at least one each), so that two stages side by side do not put four spinning threads
 // on two cores; else 0 (the solver's own default: OMP_NUM_THREADS or all cores).
 int sph_threads_per_job(int requested, int jobs, int cores);
 

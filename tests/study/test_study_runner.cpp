@@ -433,9 +433,10 @@ TEST_CASE("Study runner: the SPH threads of each job", "[study]") {
 TEST_CASE("Study runner: the solver stages at once", "[study]") {
   using hydrojump::app::stage_jobs;
   CHECK(stage_jobs(0, 1, 2, 20) == 2);    // one per core
-  CHECK(stage_jobs(0, 4, 16, 20) == 4);   // one per --np cores
+  CHECK(stage_jobs(0, 4, 16, 20) == 4);   // one per --np (or --threads) cores
   CHECK(stage_jobs(0, 4, 2, 20) == 1);    // at least one
-  CHECK(stage_jobs(0, 1, 16, 4) == 4);    // no more than there are stages
+  CHECK(stage_jobs(0, 1, 16, 4) == 4);    // no more than there are stages to run
+  CHECK(stage_jobs(0, 1, 16, 1) == 1);    // one left to run (the others cached): it gets all the cores
   CHECK(stage_jobs(3, 1, 2, 20) == 3);    // asked for
   CHECK(stage_jobs(3, 1, 2, 0) == 1);
 }
@@ -574,6 +575,63 @@ TEST_CASE("Study runner: an output directory OpenFOAM cannot run in is refused b
   write(options.out, "not a directory\n");
   CHECK_THROWS_WITH(run_study(options, log),
                     Catch::Contains("--out " + options.out.string() + ": cannot be made a study directory (a file of that name is there)"));
+}
+
+TEST_CASE("Study runner: a stop request stops both solver stages of a case run side by side and skips its comparison",
+          "[study]") {
+  const TempDir tmp("study-stop-both");
+  const fs::path& dir = tmp.path();
+  // Both stand-in solvers go on until SIGTERM, which they record before exiting as stopped runs do.
+  StudyOptions options = mini_study_with_stand_in(
+      dir, "case \"$1\" in\n  sph|vof) trap 'echo TERM > \"$2/term\"; exit 143' TERM\n"
+           "    touch \"$2/running\"\n    while true; do sleep 0.05; done ;;\nesac\nexit 0\n");
+  options.cases = {"A"};
+  options.jobs = 2;
+  // Wait for the OpenFOAM stand-in too before the signal.
+  const fs::path vof_running = options.out / "A" / "vof" / "running";
+  std::ostringstream log;
+  int status = -1;
+  std::thread study([&] { status = run_study(options, log); });
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (!(fs::exists(vof_running) && fs::exists(options.out / "A" / "sph" / "running")) &&
+         std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  const bool both_started = fs::exists(vof_running) && fs::exists(options.out / "A" / "sph" / "running");
+  ::kill(::getpid(), SIGTERM);
+  study.join();
+  REQUIRE(both_started);
+  INFO(log.str());
+  CHECK(status == 128 + SIGTERM);
+  for (const char* method : {"sph", "vof"}) {
+    CHECK(fs::exists(options.out / "A" / method / "term"));
+    CHECK(fs::exists(options.out / "A" / (std::string(method) + ".started")));  // the next study resumes it
+    CHECK(fs::exists(options.out / "A" / (std::string(method) + ".legs")));
+  }
+  CHECK_FALSE(fs::exists(options.out / "A" / "compare.stamp"));
+  const std::string report = hydrojump::util::read_text_file(options.out / "study_report.md");
+  CHECK_THAT(report, Catch::Contains("| A | sph | stopped |") && Catch::Contains("| A | vof | stopped |") &&
+                         Catch::Contains("| A | compare | skipped |"));
+}
+
+TEST_CASE("Study runner: a changed case whose new directory no solver ran in does not replace the kept results",
+          "[study]") {
+  const TempDir tmp("study-previous");
+  const fs::path& dir = tmp.path();
+  StudyOptions options = mini_study_with_stand_in(dir, "exit 0\n");
+  options.cases = {"A"};
+  options.methods = {"sph"};
+  std::ostringstream log;
+  REQUIRE(run_study(options, log) == 0);
+  write(options.out / "A" / "sph" / "result.txt", "hours of work");
+  write(dir / "mini.toml", with_tailwater("0.11"));  // changed: A's results are kept aside
+  REQUIRE(run_study(options, log) == 0);
+  REQUIRE(fs::exists(options.out / "A.previous" / "sph" / "result.txt"));
+  // As a study stopped after preparing A and before its solver ran: generated, no stamp, no results.
+  for (const char* file : {"sph.stamp", "sph.started", "compare.stamp"}) fs::remove(options.out / "A" / file);
+  write(dir / "mini.toml", with_tailwater("0.12"));
+  REQUIRE(run_study(options, log) == 0);
+  CHECK(fs::exists(options.out / "A.previous" / "sph" / "result.txt"));
+  CHECK(fs::exists(options.out / "A" / "sph.stamp"));
 }
 
 TEST_CASE("Study runner: a second stop request stops a stage that does not stop on the first", "[study]") {
