@@ -1,21 +1,15 @@
 #include "app/stage_queue.hpp"
 
+#include "compare/run_cost.hpp"
+
 #include <algorithm>
 #include <atomic>
-#include <numeric>
 #include <thread>
 
 namespace hydrojump::app {
 
-std::vector<std::size_t> largest_first(const std::vector<double>& work) {
-  std::vector<std::size_t> order(work.size());
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return work[a] > work[b]; });
-  return order;
-}
-
 void run_largest_first(const std::vector<double>& work, int workers, const std::function<void(std::size_t)>& run) {
-  const std::vector<std::size_t> order = largest_first(work);
+  const std::vector<std::size_t> order = compare::largest_first(work);
   std::atomic<std::size_t> next{0};
   const auto worker = [&] {
     for (std::size_t k = next++; k < order.size(); k = next++) run(order[k]);

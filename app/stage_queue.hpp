@@ -10,11 +10,8 @@
 
 namespace hydrojump::app {
 
-// The task indices 0..n-1 by `work`, largest first; equal work keeps the lower index first.
-std::vector<std::size_t> largest_first(const std::vector<double>& work);
-
 // Runs tasks 0..n-1 on `workers` threads (at least one; no more than there are tasks), each thread
-// taking the next task of largest_first(work) as it becomes free; returns when all have run. `run(k)`
+// taking the next task of compare::largest_first(work) as it becomes free; returns when all have run. `run(k)`
 // runs task k and must not throw.
 void run_largest_first(const std::vector<double>& work, int workers, const std::function<void(std::size_t)>& run);
 

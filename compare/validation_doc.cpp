@@ -319,6 +319,9 @@ std::string not_run_markdown(const cases::Study& study, const std::vector<Valida
   int missing = 0;
   std::map<std::string, double> measured, estimated;  // seconds, by method: recorded runs, estimates
   std::map<std::string, int> untimed, missing_of;      // records without a wall time; runs not recorded
+  // Every stage's time (measured or estimated) and its case's work, in the study's order of stages.
+  std::vector<double> stage_seconds, stage_work;
+  bool all_timed = true;
   for (const auto& c : study.cases) {
     const auto* b = c.stilling_basin();
     if (!b || !c.resolutions.count(resolution)) continue;
@@ -326,9 +329,12 @@ std::string not_run_markdown(const cases::Study& study, const std::vector<Valida
       const auto recorded = std::find_if(records.begin(), records.end(), [&](const ValidationRecord& r) {
         return r.study == study.name && r.case_id == c.id && r.method == method && r.resolution == resolution && !r.stale;
       });
+      stage_work.push_back(run_work(c, resolution, "sph"));  // both methods' stages by the case (app/study.cpp)
       if (recorded != records.end()) {
         if (recorded->wall_time_s) measured[method] += *recorded->wall_time_s;
         else ++untimed[method];
+        all_timed = all_timed && recorded->wall_time_s.has_value();
+        stage_seconds.push_back(recorded->wall_time_s.value_or(0.0));
         continue;
       }
       ++missing_of[method];
@@ -338,10 +344,13 @@ std::string not_run_markdown(const cases::Study& study, const std::vector<Valida
         const ValidationRecord& ref = *reference.at(method);
         const double ratio = run_work(c, resolution, method) / run_work(*reference_case.at(method), ref.resolution, method);
         estimated[method] += *ref.wall_time_s * ratio;
+        stage_seconds.push_back(*ref.wall_time_s * ratio);
         cost << "~" << duration_text(*ref.wall_time_s * ratio);
         if (ref.threads) cost << " on " << workers_text(method, *ref.threads);
       } else {
         cost << dash;
+        all_timed = false;
+        stage_seconds.push_back(0.0);
       }
       md << "| " << c.id << " | " << (method == "sph" ? "SPH" : "VOF") << " | ~" << fix(size / 1000.0, 0)
          << (method == "sph" ? "k particles" : "k cells") << " | " << fix(c.run.end_time_s, 1) << " s | " << cost.str() << " |\n";
@@ -370,7 +379,14 @@ std::string not_run_markdown(const cases::Study& study, const std::vector<Valida
     if (missing_of[method] == 0) out << ", nothing left to run";
     else out << " + " << (reference.count(method) ? "~" + duration_text(estimated[method]) : std::string("unknown")) << " estimated";
   }
-  out << ".\n";
+  out << ".";
+  // The same stages run by `hydrojump study` on two cores: two at a time, the largest case's first.
+  if (all_timed)
+    out << " On two cores (`hydrojump study`, two stages at a time, the largest case's first, each on one thread or "
+           "rank), these stage times take ~"
+        << duration_text(list_schedule_seconds(stage_seconds, largest_first(stage_work), 2))
+        << " (list schedule; the comparisons not counted).";
+  out << "\n";
   return out.str();
 }
 

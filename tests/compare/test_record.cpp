@@ -248,6 +248,44 @@ TEST_CASE("Cases not run are listed with a wall time scaled from a measured reco
   CHECK_THAT(md, Catch::Contains("SPH 30 min measured + ~" + estimate + " estimated; VOF 0 min measured + unknown estimated."));
 }
 
+TEST_CASE("The whole study's stages, measured or estimated, are scheduled two at a time as the study runs them",
+          "[compare][record]") {
+  const auto study = hydrojump::cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/tests/data/basins.toml");
+  ValidationRecord a = sample_record("sph", 0.108535), v = sample_record("vof", 0.108535);
+  a.study = v.study = study.name;
+  a.wall_time_s = 1800.0;
+  v.wall_time_s = 600.0;
+  const auto& ca = *std::find_if(study.cases.begin(), study.cases.end(), [](const auto& c) { return c.id == "A"; });
+  // Each basin's stage times by hand: A's measured ones, the others scaled by size x T x U1 / dx.
+  auto work = [](const hydrojump::cases::Case& c, bool sph) {
+    const auto& b = *c.stilling_basin();
+    const auto& r = c.resolutions.at("quick");
+    const double length = b.upstream_length_m + b.basin_length_m + b.downstream_length_m;
+    const double size = sph ? length * b.tailwater_depth_m / (r.particle_spacing_m * r.particle_spacing_m)
+                            : length * (b.tailwater_depth_m + b.air_height_m) / (r.vof_cell_size_bed_m * r.vof_cell_size_bulk_m);
+    return size * c.run.end_time_s * b.inflow_velocity_m_s / (sph ? r.particle_spacing_m : r.vof_cell_size_bed_m);
+  };
+  std::vector<std::pair<double, double>> stages;  // (the case's SPH work, seconds), in spec order
+  for (const auto& c : study.cases) {
+    if (!c.stilling_basin() || !c.resolutions.count("quick")) continue;
+    stages.push_back({work(c, true), c.id == "A" ? 1800.0 : 1800.0 * work(c, true) / work(ca, true)});
+    stages.push_back({work(c, true), c.id == "A" ? 600.0 : 600.0 * work(c, false) / work(ca, false)});
+  }
+  // The largest case's first (stable), each to the worker free first.
+  std::stable_sort(stages.begin(), stages.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
+  double free_at[2] = {0.0, 0.0};
+  for (const auto& st : stages) *std::min_element(free_at, free_at + 2) += st.second;
+  const long total_min = (std::lround(std::max(free_at[0], free_at[1])) + 30) / 60;
+  const std::string expected = total_min >= 60 ? std::to_string(total_min / 60) + " h " +
+                                                     (total_min % 60 < 10 ? "0" : "") + std::to_string(total_min % 60) + " min"
+                                               : std::to_string(total_min) + " min";
+  const std::string md = not_run_markdown(study, {a, v}, "quick");
+  INFO(md);
+  CHECK_THAT(md, Catch::Contains("these stage times take ~" + expected + " (list schedule"));
+  // Without a VOF record the VOF stages have no time: no schedule.
+  CHECK_THAT(not_run_markdown(study, {a}, "quick"), !Catch::Contains("list schedule"));
+}
+
 TEST_CASE("Cases not run at a finer resolution are estimated from a record at another resolution",
           "[compare][record]") {
   const auto study = hydrojump::cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/tests/data/basins.toml");
