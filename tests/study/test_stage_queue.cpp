@@ -45,7 +45,7 @@ TEST_CASE("Stage queue: the time of a list schedule", "[study]") {
   }
 }
 
-TEST_CASE("Stage queue: every task runs once; the first `workers` run side by side and are the largest", "[study]") {
+TEST_CASE("Stage queue: every task runs once, and the first `workers` run side by side and are the largest", "[study]") {
   std::mt19937 random(7);
   std::uniform_real_distribution<double> size(0.0, 10.0);
   for (const int workers : {1, 2, 3, 8}) {
