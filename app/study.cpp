@@ -16,6 +16,7 @@
 #include <sstream>
 #include <thread>
 
+#include <omp.h>
 #include <sched.h>
 
 #include "util/atomic_file.hpp"
@@ -358,8 +359,9 @@ class StudyRunner {
   // `hydrojump record` keeps.
   void write_stage_info(const std::filesystem::path& dir, const std::string& stage, double seconds) {
     if (stage != "sph" && stage != "vof") return;
-    const int threads = stage == "sph" ? (options_.sph_threads > 0 ? options_.sph_threads
-                                                                    : static_cast<int>(std::max(1u, std::thread::hardware_concurrency())))
+    // Without --threads `hydrojump sph` takes OpenMP's default (OMP_NUM_THREADS, else the cores of the
+    // affinity mask), which it inherits from this process.
+    const int threads = stage == "sph" ? (options_.sph_threads > 0 ? options_.sph_threads : std::max(1, omp_get_max_threads()))
                                        : options_.mpi_ranks;
     const auto [before, legs] = earlier_legs(dir, stage);
     const double total = before + seconds;

@@ -21,7 +21,7 @@ namespace {
 
 // The payload (magic ... magic) and then its FNV-1a checksum as 16 hex digits, so that a
 // byte changed after the write (a damaged disk, an edit) is found, not resumed from.
-constexpr char kMagic[8] = {'H', 'J', 'S', 'P', 'H', 'C', 'K', '7'};
+constexpr char kMagic[8] = {'H', 'J', 'S', 'P', 'H', 'C', 'K', '8'};
 constexpr std::size_t kChecksumBytes = 16;
 
 template <class T>
@@ -93,6 +93,8 @@ void write_checkpoint(const Checkpoint& c, const std::filesystem::path& file) {
     put(out, c.clock.outflow_mass);
     put(out, c.clock.outflow_target_depth);
     put(out, c.clock.held_volume_m2);
+    put(out, c.clock.outlier_particles);
+    put(out, c.clock.outlier_mass);
     const std::int64_t n = c.particles.size();
     put(out, n);
     c.particles.for_each_real_array([&](const Vector& v) { put_array(out, v); });
@@ -140,6 +142,9 @@ void check_contents(const Checkpoint& c, const std::filesystem::path& file) {
     damaged("its outflow target depth is " + std::to_string(k.outflow_target_depth) + " m");
   if (!std::isfinite(k.held_volume_m2) || k.held_volume_m2 < 0.0)
     damaged("its held water volume is " + std::to_string(k.held_volume_m2) + " m^2");
+  if (k.outlier_particles < 0 || !std::isfinite(k.outlier_mass) || k.outlier_mass < 0.0)
+    damaged("its count of removed density outliers (" + std::to_string(k.outlier_particles) + ", " +
+            std::to_string(k.outlier_mass) + " kg/m) is impossible");
   if (!std::isfinite(c.next_output_time) || c.next_output_time < 0.0)
     damaged("its next output time is " + seconds(c.next_output_time));
   Eigen::Index fluid = 0;
@@ -191,6 +196,8 @@ Checkpoint read_checkpoint(const std::filesystem::path& file) {
   c.clock.outflow_mass = r.get<double>();
   c.clock.outflow_target_depth = r.get<double>();
   c.clock.held_volume_m2 = r.get<double>();
+  c.clock.outlier_particles = r.get<std::int64_t>();
+  c.clock.outlier_mass = r.get<double>();
   const auto n = r.get<std::int64_t>();
   // Every particle takes at least its real arrays, id and type in the file: a count the file cannot
   // hold is a damaged file, not a reason to allocate memory.

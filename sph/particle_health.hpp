@@ -11,7 +11,8 @@
 //   | outside     | x outside [x_min, x_max] or z above fluid_ceiling, by more than margin |
 //   | density     | |rho / rho0 - 1| > sph.max_density_variation                          |
 //   | ok          | none of these                                                         |
-// (margin = SolverSettings::domain_margin.)
+// (margin = SolverSettings::domain_margin.) A particle whose density left [0.7, 1.3] rho0 is removed
+// by the step itself (sph/density_outliers.hpp), so the density check stops a run only below that.
 // Example:
 //   if (fluid_health(particles, i, settings) != FluidHealth::ok) ...
 #pragma once

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "util/atomic_file.hpp"
+#include "sph/density_outliers.hpp"
 #include "sph/kernel.hpp"
 #include "sph/particle_health.hpp"
 #include "sph/vtk_output.hpp"
@@ -102,7 +103,7 @@ class RunState {
     std::ostringstream row;
     row << std::setprecision(10) << t << ',' << solver_.clock().steps << ',' << solver_.clock().last_dt << ',' << mass
         << ',' << kinetic << ',' << potential << ',' << max_var << ',' << ps.fluid_count() << ','
-        << solver_.clock().inflow_mass << ',' << solver_.clock().outflow_mass;
+        << solver_.clock().inflow_mass << ',' << solver_.clock().outflow_mass << ',' << solver_.clock().outlier_mass;
     log_rows_.push_back(row.str());
     // Gauges.
     std::ostringstream g;
@@ -128,7 +129,7 @@ class RunState {
     util::write_file_atomically(
         o_.dir / "run_log.csv",
         join("t_s,step,dt_s,fluid_mass_kg_per_m,kinetic_energy_J_per_m,potential_energy_J_per_m,max_density_variation,"
-             "fluid_particles,inflow_mass_kg_per_m,outflow_mass_kg_per_m",
+             "fluid_particles,inflow_mass_kg_per_m,outflow_mass_kg_per_m,outlier_mass_kg_per_m",
              log_rows_));
     std::string header = "t_s";
     for (const auto& gauge : o_.gauges)
@@ -282,6 +283,17 @@ std::string diagnose(const Solver& solver) {
   for (Eigen::Index i = 0; i < ps.size(); ++i) {
     if (!ps.is_fluid(i) && !std::isfinite(ps.rho[i])) report("non-finite density", i);
   }
+  // Density outliers removed (sph/density_outliers.hpp): beyond a small share the water itself is unhealthy.
+  const SolverClock& clock = solver.clock();
+  const double water = ps.water_mass();
+  if (clock.outlier_mass > kOutlierMassShareLimit * water) {
+    out << "  " << clock.outlier_particles << " fluid particles (" << clock.outlier_mass << " kg/m, "
+        << 100.0 * clock.outlier_mass / water << " % of the water's " << water
+        << " kg/m) have been removed since t = 0 because their density left [" << kOutlierDensityLow << ", "
+        << kOutlierDensityHigh << "] rho0: more than " << 100.0 * kOutlierMassShareLimit
+        << " % of the water. Try a smaller sph.cfl_number or a finer resolution.\n";
+    ++reported;
+  }
   const double dt = solver.clock().last_dt;
   if (solver.clock().steps > 0 && !(dt >= 1e-3 * solver.acoustic_time_step())) {
     out << "  time step collapsed: dt = " << dt << " s, below 1e-3 of the acoustic step CFL h/c0 = "
@@ -354,8 +366,14 @@ RunStatus run_case(Solver& solver, const RunOptions& o, const std::optional<Chec
       state.write_checkpoint_now();
       return RunStatus::step_limit;
     }
+    const std::int64_t outliers_before = solver.clock().outlier_particles;
     solver.step();
     ++steps_here;
+    if (solver.clock().outlier_particles > outliers_before && o.progress != nullptr)
+      *o.progress << (o.progress_is_terminal ? "\n" : "") << "t = " << solver.time() << " s: removed "
+                  << solver.clock().outlier_particles - outliers_before << " fluid particle(s) whose density left ["
+                  << kOutlierDensityLow << ", " << kOutlierDensityHigh << "] rho0 (" << solver.clock().outlier_particles
+                  << " since t = 0, " << solver.clock().outlier_mass << " kg/m; see sph/density_outliers.hpp)\n";
     const std::string problem = diagnose(solver);
     if (!problem.empty()) {
       std::string kept = std::filesystem::exists(checkpoint_path(o.dir))

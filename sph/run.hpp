@@ -3,7 +3,8 @@
 //   DIR/particles.pvd, DIR/particles_NNNN.vtp   particle snapshots every output interval (ParaView)
 //   DIR/run_log.csv    t, step, dt, fluid mass, kinetic and potential energy, max |rho/rho0 - 1|,
 //                      fluid particles, mass injected at the inflows and removed at the outflows
-//                      since t = 0 (open boundaries; 0 for closed cases)
+//                      since t = 0 (open boundaries; 0 for closed cases), and the mass of the density
+//                      outliers removed since t = 0 (sph/density_outliers.hpp)
 //   DIR/gauges.csv     at every gauge x: free-surface elevation and the velocity (u, w) at mid-depth
 //                      (Shepard kernel interpolation); for dam breaks also the surge front
 //   DIR/basin.csv      stilling basins: jump toe, inflow/outflow discharge, depth, surface and
@@ -13,8 +14,9 @@
 //   DIR/failure.txt, DIR/failure_state.vtp   only when the run goes unstable
 //
 // The run stops with a SimulationFailure (a diagnosis naming particles, positions and the time) on
-// NaN/Inf, a particle leaving the domain, |rho/rho0 - 1| above sph.max_density_variation, or a time
-// step collapsing below 1e-3 of the acoustic step CFL h / c0; the last good checkpoint and outputs
+// NaN/Inf, a particle leaving the domain, |rho/rho0 - 1| above sph.max_density_variation, density
+// outliers removed beyond 1 % of the water (sph/density_outliers.hpp), or a time step collapsing below
+// 1e-3 of the acoustic step CFL h / c0; the last good checkpoint and outputs
 // are kept. A stop request (SIGINT/SIGTERM: the flag) writes a checkpoint and returns.
 #pragma once
 

@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "sph/boundary_mdbc.hpp"
+#include "sph/density_outliers.hpp"
 #include "sph/parallel.hpp"
 #include "sph/particle_health.hpp"
 #include "sph/time_integration.hpp"
@@ -111,6 +112,9 @@ void Solver::step() {
     verlet_update(particles_, settings_, dt, euler);
     move_walls(particles_, walls, t, t + dt);
   }
+  const DensityOutliers outliers = remove_density_outliers(particles_, settings_.eos.rho0);
+  clock_.outlier_particles += outliers.particles;
+  clock_.outlier_mass += outliers.mass;
   // Not after a step that left a fluid particle unhealthy: the buffers would reset or remove it as
   // outflow before the run's check sees it (sph/particle_health.hpp); the run stops on it instead.
   const OpenBoundaryTotals crossed =

@@ -2,9 +2,12 @@
 //
 //   symplectic:  interactions(); dt = time_step(); predictor(dt); move_walls(t, t + dt/2);
 //                interactions(); [concentration_gradients();] corrector(dt); [shift_particles(dt);]
-//                move_walls(t + dt/2, t + dt); open_boundaries(t, dt);
-//   verlet:      interactions(); dt = time_step(); verlet(dt); move_walls(t, t + dt); open_boundaries(t, dt);
+//                move_walls(t + dt/2, t + dt);
+//   verlet:      interactions(); dt = time_step(); verlet(dt); move_walls(t, t + dt);
+//   both then:   remove_density_outliers(); open_boundaries(t, dt);
 //
+// remove_density_outliers() takes out the fluid particles whose density left [0.7, 1.3] rho0
+// (sph/density_outliers.hpp), counted in the clock.
 // move_walls() moves the moving_wall particles by their prescribed motion (sph/wall_motion.hpp).
 //
 // open_boundaries() advances the inflow/outflow buffers (sph/open_boundaries.hpp) of a stilling
@@ -50,6 +53,9 @@ struct SolverClock {
   // The integral part I of the toe-holding control's water volume target V* (m^2,
   // toe_hold_control.hpp); 0: none, or not started.
   double held_volume_m2 = 0.0;
+  // Fluid particles removed as density outliers since t = 0 (sph/density_outliers.hpp): count, mass (kg/m).
+  std::int64_t outlier_particles = 0;
+  double outlier_mass = 0.0;
 };
 
 class Solver {

@@ -223,7 +223,9 @@ TEST_CASE("a fluid particle gone unhealthy at the outlet is left to the run's ch
           "[sph][open_boundary]") {
   // The outflow buffer resets the density of what it takes (and removes it at its end), so a particle
   // whose density ran away just past the outlet section used to pass the run's check as outflow.
-  auto c = sph_test::short_smooth_basin(0.005);
+  // A stop limit of 0.1, so that the particle is past it but not a density outlier (those leave [0.7, 1.3]
+  // rho0 and are removed by the step: the last check below).
+  auto c = sph_test::short_smooth_basin(0.005, [](hydrojump::cases::Case& spec) { spec.sph.max_density_variation = 0.1; });
   REQUIRE(!c.geometry.outflows.empty());
   const double x_out = c.geometry.outflows.front().x_m, rho0 = c.settings.eos.rho0;
   Eigen::Index k = -1;
@@ -231,7 +233,7 @@ TEST_CASE("a fluid particle gone unhealthy at the outlet is left to the run's ch
     if (c.particles.is_fluid(i) && (k < 0 || c.particles.x[i] > c.particles.x[k])) k = i;
   REQUIRE(k >= 0);
   c.particles.x[k] = x_out + 0.25 * c.settings.dx;
-  c.particles.rho[k] = c.particles.rho_old[k] = rho0 * (1.0 + 4.0 * c.settings.density.max_variation);
+  c.particles.rho[k] = c.particles.rho_old[k] = rho0 * (1.0 + 2.0 * c.settings.density.max_variation);
   const std::int64_t id = c.particles.id[k];
   Solver solver(c.settings, c.particles, {}, OpenBoundaries::from_geometry(c.geometry, buffer_parameters(c.settings)));
   solver.step();
@@ -245,4 +247,12 @@ TEST_CASE("a fluid particle gone unhealthy at the outlet is left to the run's ch
   CHECK_THAT(diagnose(solver), Catch::Contains("|rho/rho0 - 1|") && Catch::Contains("sph.max_density_variation"));
   // Nothing was booked as outflow in that step.
   CHECK(solver.clock().outflow_mass == 0.0);
+  // A density outlier there is removed as one (counted as such), not drained as outflow either.
+  c.particles.rho[k] = c.particles.rho_old[k] = 1.5 * rho0;
+  Solver outlier(c.settings, c.particles, {}, OpenBoundaries::from_geometry(c.geometry, buffer_parameters(c.settings)));
+  outlier.step();
+  CHECK(outlier.clock().outlier_particles == 1);
+  CHECK(outlier.clock().outlier_mass == c.particles.mass[k]);
+  CHECK(outlier.clock().outflow_mass == 0.0);
+  CHECK(diagnose(outlier).empty());
 }
