@@ -143,10 +143,11 @@ std::vector<BasinMonitor::Column> BasinMonitor::columns(const ParticleSet& parti
 }
 
 void BasinMonitor::record(const ParticleSet& particles, double t, double mass_in, double mass_out,
-                          double outlet_target_depth) {
+                          double outlet_target_depth, double mass_removed) {
   BasinSample s;
   s.t = t;
   s.outlet_target_depth = outlet_target_depth;
+  s.mass_removed = mass_removed;
   s.mass_in = mass_in;
   s.mass_out = mass_out;
   // The water in the basin: the fluid (downstream of the inflow section only when a piston
@@ -227,7 +228,7 @@ double BasinMonitor::steady_from(const BalanceSeries& series) const {
 std::string BasinMonitor::csv() const {
   std::ostringstream o;
   o << "t_s,toe_x_m,inflow_discharge_m2_s,outflow_discharge_m2_s,inflow_mass_kg_per_m,outflow_mass_kg_per_m,"
-       "fluid_mass_kg_per_m,outlet_target_depth_m";
+       "fluid_mass_kg_per_m,outlet_target_depth_m,outlier_mass_kg_per_m";
   for (const auto& sec : setup_.sections)
     o << ",depth_" << sec.name << "_m,surface_z_" << sec.name << "_m,discharge_" << sec.name << "_m2_s";
   o << "\n";
@@ -240,7 +241,7 @@ std::vector<std::string> BasinMonitor::csv_rows() const {
   for (const auto& s : samples_) {
     std::string r = csv_number(s.t) + ',' + csv_number(s.toe_x) + ',' + csv_number(s.q_in) + ',' +
                     csv_number(s.q_out) + ',' + csv_number(s.mass_in) + ',' + csv_number(s.mass_out) + ',' +
-                    csv_number(s.fluid_mass) + ',' + csv_number(s.outlet_target_depth);
+                    csv_number(s.fluid_mass) + ',' + csv_number(s.outlet_target_depth) + ',' + csv_number(s.mass_removed);
     for (std::size_t k = 0; k < s.depth.size(); ++k)
       r += ',' + csv_number(s.depth[k]) + ',' + csv_number(s.surface[k]) + ',' + csv_number(s.discharge[k]);
     rows.push_back(std::move(r));
@@ -254,7 +255,7 @@ void BasinMonitor::restore(const std::vector<std::string>& csv_rows) {
     std::vector<double> v;
     for (const auto& cell : util::split_csv_line(row)) v.push_back(util::csv_number(cell));  // "nan" -> NaN
     const std::size_t n_sec = setup_.sections.size();
-    if (v.size() != 8 + 3 * n_sec) throw std::runtime_error("basin monitor: a checkpoint row does not match the case");
+    if (v.size() != 9 + 3 * n_sec) throw std::runtime_error("basin monitor: a checkpoint row does not match the case");
     BasinSample s;
     s.t = v[0];
     s.toe_x = v[1];
@@ -264,10 +265,11 @@ void BasinMonitor::restore(const std::vector<std::string>& csv_rows) {
     s.mass_out = v[5];
     s.fluid_mass = v[6];
     s.outlet_target_depth = v[7];
+    s.mass_removed = v[8];
     for (std::size_t k = 0; k < n_sec; ++k) {
-      s.depth.push_back(v[8 + 3 * k]);
-      s.surface.push_back(v[9 + 3 * k]);
-      s.discharge.push_back(v[10 + 3 * k]);
+      s.depth.push_back(v[9 + 3 * k]);
+      s.surface.push_back(v[10 + 3 * k]);
+      s.discharge.push_back(v[11 + 3 * k]);
     }
     samples_.push_back(std::move(s));
   }
@@ -358,7 +360,8 @@ std::string BasinMonitor::summary_json() const {
   double mass_change = nan_value, net_in = nan_value, mass_error = nan_value;
   if (last && first) {
     mass_change = last->fluid_mass - first->fluid_mass;
-    net_in = (last->mass_in - first->mass_in) - (last->mass_out - first->mass_out);
+    net_in = (last->mass_in - first->mass_in) - (last->mass_out - first->mass_out) -
+             (last->mass_removed - first->mass_removed);
     const double injected = last->mass_in - first->mass_in;
     mass_error = injected > 0.0 ? (mass_change - net_in) / injected : nan_value;
   }
@@ -409,6 +412,7 @@ std::string BasinMonitor::summary_json() const {
   o << "  \"outlet_target_depth_m\": " << json_stats(mean_std(outlet_depth)) << ",\n";
   o << "  \"mass_balance\": {\"fluid_mass_change_kg_per_m\": " << json_number(mass_change)
     << ", \"inflow_minus_outflow_kg_per_m\": " << json_number(net_in)
+    << ", \"density_outliers_kg_per_m\": " << json_number(last && first ? last->mass_removed - first->mass_removed : nan_value)
     << ", \"relative_to_injected\": " << json_number(mass_error) << "},\n";
   o << "  \"jump_state\": " << json_string(jump_state()) << ",\n";
   o << "  \"toe_x_m\": " << json_stats(toe_stats) << ",\n";

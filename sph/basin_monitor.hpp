@@ -100,6 +100,7 @@ struct BasinSample {
   double mass_in = 0.0, mass_out = 0.0;  // kg/m created at the inflow / removed at the outflow since t = 0
   double fluid_mass = 0.0;             // kg/m of water in the domain now (fluid + outflow-buffer particles)
   double outlet_target_depth = 0.0;    // the outflow buffers' target depth y_t (m; NaN: none)
+  double mass_removed = 0.0;           // kg/m removed as density outliers since t = 0 (density_outliers.hpp)
   std::vector<double> depth, surface, discharge;           // per section
 };
 
@@ -108,9 +109,10 @@ class BasinMonitor {
   explicit BasinMonitor(BasinMonitorSetup setup);
 
   // Samples the particles at time t; mass_in/mass_out are the totals since t = 0 (kg/m);
-  // outlet_target_depth the outflow buffers' target depth now (m; NaN: none).
+  // outlet_target_depth the outflow buffers' target depth now (m; NaN: none); mass_removed the
+  // density outliers' total since t = 0 (kg/m), which the mass balance counts as leaving.
   void record(const ParticleSet& particles, double t, double mass_in, double mass_out,
-              double outlet_target_depth = std::numeric_limits<double>::quiet_NaN());
+              double outlet_target_depth = std::numeric_limits<double>::quiet_NaN(), double mass_removed = 0.0);
 
   // The table of all samples (basin.csv).
   std::string csv() const;

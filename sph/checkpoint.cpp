@@ -21,7 +21,7 @@ namespace {
 
 // The payload (magic ... magic) and then its FNV-1a checksum as 16 hex digits, so that a
 // byte changed after the write (a damaged disk, an edit) is found, not resumed from.
-constexpr char kMagic[8] = {'H', 'J', 'S', 'P', 'H', 'C', 'K', '8'};
+constexpr char kMagic[8] = {'H', 'J', 'S', 'P', 'H', 'C', 'K', '9'};
 constexpr std::size_t kChecksumBytes = 16;
 
 template <class T>

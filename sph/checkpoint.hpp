@@ -4,10 +4,10 @@
 // number of threads. Written atomically (temporary file, then rename), so a run killed while writing
 // keeps the previous checkpoint.
 //
-// Format (little endian, host doubles): "HJSPHCK8", the case fingerprint, the clock (time, last dt, steps,
+// Format (little endian, host doubles): "HJSPHCK9", the case fingerprint, the clock (time, last dt, steps,
 // inflow and outflow mass totals, the outflow target depth, the toe-holding control's volume target, the density outliers
 // removed: count and mass),
-// the particle count and arrays, the run state and "HJSPHCK8" again, then the FNV-1a checksum of all that as 16 hex digits. Readers reject
+// the particle count and arrays, the run state and "HJSPHCK9" again, then the FNV-1a checksum of all that as 16 hex digits. Readers reject
 // other magic strings (naming another version's), truncated files, a checksum that does not match
 // (a byte changed after the write), and values no run writes.
 #pragma once

@@ -16,15 +16,19 @@
 //   | too many  | removed mass > 1 % of the water mass (both, kg/m)   | the run stops with a diagnosis   |
 //
 // sph.max_density_variation (the run's stop) still applies to every particle that is kept: below 0.3
-// it stops the run before a particle becomes an outlier.
+// it stops the run first, unless one step takes a particle past both limits (it is then removed).
+// "The water" is what is in the domain now: fluid and outflow-buffer particles (with a piston, its
+// reservoir too).
 // Example:
-//   const DensityOutliers out = remove_density_outliers(particles, settings.eos.rho0);
+//   const DensityOutliers out = remove_density_outliers(particles, settings);
 //   clock.outlier_particles += out.particles;  clock.outlier_mass += out.mass;
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "sph/particles.hpp"
+#include "sph/settings.hpp"
 
 namespace hydrojump::sph {
 
@@ -36,16 +40,19 @@ inline constexpr double kOutlierMassShareLimit = 0.01;
 
 struct DensityOutliers {
   std::int64_t particles = 0;
-  double mass = 0.0;  // kg/m
+  double mass = 0.0;                // kg/m
+  std::vector<double> x_m, mass_kg;  // where each removed particle was, and its mass (kg/m)
 };
 
-// Whether fluid particle density rho is an outlier: rho < 0.7 rho0 or rho > 1.3 rho0 (NaN is not: the
-// run's check names a non-finite state as such).
+// Whether fluid particle density rho is an outlier: rho < 0.7 rho0 or rho > 1.3 rho0 (NaN is not).
 inline bool is_density_outlier(double rho, double rho0) {
   return rho < kOutlierDensityLow * rho0 || rho > kOutlierDensityHigh * rho0;
 }
 
-// Removes the fluid particles whose density is an outlier, keeping the order of the others.
-DensityOutliers remove_density_outliers(ParticleSet& particles, double rho0);
+// Removes the fluid particles whose density is an outlier and that are otherwise healthy (finite state,
+// inside the domain: sph/particle_health.hpp), keeping the order of the others. A particle that is
+// also non-finite, below the bed or out of the domain stays for the run's check to name: a leak
+// through a wall or a blow-up is a failure, not spray.
+DensityOutliers remove_density_outliers(ParticleSet& particles, const SolverSettings& settings);
 
 }  // namespace hydrojump::sph

@@ -277,6 +277,11 @@ void OpenBoundaries::start(const ParticleSet& particles) {
   for (auto& crossing : crossings_) crossing.start(particles);
 }
 
+void OpenBoundaries::forget_removed(const std::vector<double>& x, const std::vector<double>& mass) {
+  for (auto& crossing : crossings_)
+    for (std::size_t k = 0; k < x.size(); ++k) crossing.forget_removed(x[k], mass[k]);
+}
+
 void OpenBoundaries::create(ParticleSet& particles) const {
   std::int64_t next_id = next_particle_id(particles);
   for (const auto& in : inflows_) in.create(particles, next_id);

@@ -184,6 +184,9 @@ class OpenBoundaries {
   bool empty() const { return inflows_.empty() && outflows_.empty() && tailgates_.empty() && crossings_.empty(); }
   // Takes the reference state the piston inflow's bookkeeping needs (the solver, at construction).
   void start(const ParticleSet& particles);
+  // Fluid removed at x_i with masses m_i by another rule (density outliers) since the last advance():
+  // not inflow (a piston reservoir's crossing counts water leaving upstream of its gate section).
+  void forget_removed(const std::vector<double>& x, const std::vector<double>& mass);
   // Appends the inflow buffers' particles, ids from max id + 1.
   void create(ParticleSet& particles) const;
   // Advances every inflow, then every outflow buffer over the step from t to t + dt; new ids from

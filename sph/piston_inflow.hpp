@@ -19,7 +19,9 @@
 //
 //   m_in(t) = M_up(0) - M_up(t),   M_up = sum of the fluid masses with x < x_in,
 //
-// which is exact bookkeeping (nothing else enters or leaves the reservoir). It is the run's inflow
+// which is exact bookkeeping: nothing else enters or leaves the reservoir, except a density outlier
+// removed there (sph/density_outliers.hpp), whose mass M_up(t) loses without a crossing and which is
+// taken out of M_up's reference (forget_removed). It is the run's inflow
 // mass (run_log.csv, basin.csv, summary.json: the inflow discharge is its rate, to be compared with q).
 //
 // Usage
@@ -47,6 +49,11 @@ class GateCrossing {
   void start(const ParticleSet& particles);
   // The mass that crossed x_in since the last call (or start), kg/m.
   double advance(const ParticleSet& particles);
+  // A particle of mass m removed at x by another rule (a density outlier, sph/density_outliers.hpp):
+  // upstream of x_in it left the reservoir without crossing, so the reference drops by m.
+  void forget_removed(double x, double m) {
+    if (x < x_in_) upstream_ -= m;
+  }
   double section_x() const { return x_in_; }
   double mass_in() const { return mass_in_; }
 

@@ -119,7 +119,7 @@ class RunState {
     if (basin_) {
       const double y_t = solver_.open_boundaries().outflows().empty() ? std::numeric_limits<double>::quiet_NaN()
                                                                       : solver_.open_boundaries().outflow_target_depth();
-      basin_->record(ps, t, solver_.clock().inflow_mass, solver_.clock().outflow_mass, y_t);
+      basin_->record(ps, t, solver_.clock().inflow_mass, solver_.clock().outflow_mass, y_t, solver_.clock().outlier_mass);
     }
     write_tables();
   }

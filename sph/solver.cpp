@@ -112,9 +112,10 @@ void Solver::step() {
     verlet_update(particles_, settings_, dt, euler);
     move_walls(particles_, walls, t, t + dt);
   }
-  const DensityOutliers outliers = remove_density_outliers(particles_, settings_.eos.rho0);
+  const DensityOutliers outliers = remove_density_outliers(particles_, settings_);
   clock_.outlier_particles += outliers.particles;
   clock_.outlier_mass += outliers.mass;
+  open_.forget_removed(outliers.x_m, outliers.mass_kg);
   // Not after a step that left a fluid particle unhealthy: the buffers would reset or remove it as
   // outflow before the run's check sees it (sph/particle_health.hpp); the run stops on it instead.
   const OpenBoundaryTotals crossed =
