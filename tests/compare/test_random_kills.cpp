@@ -104,11 +104,11 @@ TEST_CASE("hydrojump sph killed at random moments and resumed each time ends as 
   std::mt19937 random(seed);
   std::uniform_int_distribution<int> delay_ms(30, 400);
   int kills = 0, kills_while_writing = 0, finished_early = 0;
+  // A run killed before its first checkpoint starts over (--restart), as a user would.
+  const auto resume_or_restart = [&] { return fs::exists(killed / "checkpoint.bin") ? "--resume" : "--restart"; };
   for (int attempt = 0; kills < 24 && attempt < 200; ++attempt) {
-    // A run killed before its first checkpoint starts over (--restart), as a user would.
-    const bool resume = fs::exists(killed / "checkpoint.bin");
     const auto log_before = size_of(tmp.path() / "killed.log");
-    const pid_t pid = start({"sph", killed.string(), resume ? "--resume" : "--restart", "--quiet", "--threads", "1",
+    const pid_t pid = start({"sph", killed.string(), resume_or_restart(), "--quiet", "--threads", "1",
                              "--end-time", end_time},
                             tmp.path() / "killed.log");
     // The kill time counts from the run's first line (its case read, its particles made), so that a
@@ -140,9 +140,7 @@ TEST_CASE("hydrojump sph killed at random moments and resumed each time ends as 
   CHECK(kills >= 20);
   CHECK(kills_while_writing >= 3);
   // The rest of the run, resumed once more to its end.
-  const bool resume_last = fs::exists(killed / "checkpoint.bin");
-  const pid_t last = start({"sph", killed.string(), resume_last ? "--resume" : "--restart", "--quiet", "--threads", "1",
-                            "--end-time", end_time},
+  const pid_t last = start({"sph", killed.string(), resume_or_restart(), "--quiet", "--threads", "1", "--end-time", end_time},
                            tmp.path() / "killed.log");
   REQUIRE(hydrojump::util::wait_child(last).exit_code == 0);
 
