@@ -52,11 +52,15 @@ struct RecordOptions {
 void record_command(const RecordOptions& o) {
   std::vector<fs::path> dirs;
   if (o.cases.empty()) {
+    // Compared cases, and cases whose solver failed (a failed run is recorded too).
     for (const auto& entry : fs::directory_iterator(o.study_dir))
-      if (entry.is_directory() && fs::exists(entry.path() / "csv" / "metrics.csv")) dirs.push_back(entry.path());
+      if (entry.is_directory() && (fs::exists(entry.path() / "csv" / "metrics.csv") || fs::exists(entry.path() / "sph.failed") ||
+                                   fs::exists(entry.path() / "vof.failed")))
+        dirs.push_back(entry.path());
     std::sort(dirs.begin(), dirs.end());
     if (dirs.empty())
-      throw CLI::ValidationError("STUDY_DIR", o.study_dir.string() + " holds no compared case (no <case>/csv/metrics.csv)");
+      throw CLI::ValidationError("STUDY_DIR", o.study_dir.string() +
+                                                  " holds no compared case (no <case>/csv/metrics.csv) and no failed run (<case>/<method>.failed)");
   } else {
     for (const auto& id : o.cases) dirs.push_back(o.study_dir / id);
   }
@@ -69,7 +73,8 @@ void record_command(const RecordOptions& o) {
       r.command = "hydrojump study " + study_argument(resolved) + " --cases " + r.case_id + " --resolution " +
                   r.resolution + " --methods " + r.method;
       compare::write_record(o.records, r);
-      std::cout << "recorded " << compare::record_file(o.records, r.study, r.case_id, r.method, r.resolution).string() << "\n";
+      std::cout << "recorded " << compare::record_file(o.records, r.study, r.case_id, r.method, r.resolution).string()
+                << (r.failed() ? " (a failed run: " + r.failure + ")" : std::string()) << "\n";
     }
   }
 }
@@ -145,7 +150,8 @@ void register_record_commands(CLI::App& app) {
   auto r = std::make_shared<RecordOptions>();
   auto* record = app.add_subcommand(
       "record",
-      "Keep the finished comparisons of a study directory as validation records: one small TOML file per case, "
+      "Keep the finished comparisons of a study directory, and its failed runs (with what stopped them), as "
+      "validation records: one small TOML file per case, "
       "method and resolution, RECORDS/<study>/<case>/<method>-<resolution>.toml, holding every metric with its "
       "label (predicted, imposed, input), the laboratory and inputs-only values, the section profiles and mean "
       "surface, the window, the solver's wall time, and its key (the case's resolved settings and the solvers' "

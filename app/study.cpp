@@ -6,7 +6,6 @@
 #include <csignal>
 #include <cstdint>
 #include <ctime>
-#include <fstream>
 #include <initializer_list>
 #include <iomanip>
 #include <iostream>
@@ -30,6 +29,7 @@
 #include "cases/spec_reader.hpp"
 #include "util/stop_signals.hpp"
 #include "app/generate.hpp"
+#include "app/stage_info.hpp"
 #include "app/stage_queue.hpp"
 #include "app/study_report.hpp"
 #include "compare/run_cost.hpp"
@@ -291,6 +291,10 @@ class StudyRunner {
       const auto file = compare::record_file(options_.records, study_.name, c.id, method, options_.resolution);
       const auto record = compare::read_record_if_present(file);
       if (!record) return std::nullopt;
+      if (record->failed()) {
+        say(c.id + ": record " + file.string() + " is of a run that failed (" + record->failure + "): running it");
+        return std::nullopt;
+      }
       const std::string key = method_run_key(study_, c, options_.resolution, method);
       if (record->run_key != key) {
         say(c.id + ": record " + file.string() + " is stale (made with run key " + record->run_key +
@@ -321,56 +325,12 @@ class StudyRunner {
     return result;
   }
 
-  // "<CPU model>, N cores" (/proc/cpuinfo's first model name; "unknown CPU" without it), for the records:
-  // wall times are only comparable on one machine. Quotes and backslashes are dropped (a TOML string).
-  static std::string machine_text() {
-    std::ifstream in("/proc/cpuinfo");
-    std::string model = "unknown CPU";
-    for (std::string line; std::getline(in, line);) {
-      if (line.rfind("model name", 0) != 0) continue;
-      const auto start = line.find_first_not_of(" \t", line.find(':') == std::string::npos ? line.size() : line.find(':') + 1);
-      if (start != std::string::npos) model = line.substr(start);  // "model name\t:" alone keeps "unknown CPU"
-      break;
-    }
-    std::string clean;
-    for (char ch : model)
-      if (ch != '"' && ch != '\\' && static_cast<unsigned char>(ch) >= 0x20) clean += ch;
-    return clean + ", " + std::to_string(std::max(1u, std::thread::hardware_concurrency())) + " cores";
-  }
-
-  // OUT/<case>/<stage>.legs: the wall time and count of the legs of a solver stage that ended unfinished
-  // (stopped or failed) and will be resumed, "seconds legs" (a leg of a study killed outright is not
-  // counted). Gone once the stage finishes or starts over.
-  static std::pair<double, int> earlier_legs(const std::filesystem::path& dir, const std::string& stage) {
-    std::istringstream in(util::read_text_file(dir / (stage + ".legs")));
-    double seconds = 0.0;
-    int legs = 0;
-    if (!(in >> seconds >> legs) || !(seconds >= 0.0) || legs < 0) return {0.0, 0};
-    return {seconds, legs};
-  }
-
-  static void add_leg(const std::filesystem::path& dir, const std::string& stage, double seconds) {
-    const auto [before, legs] = earlier_legs(dir, stage);
-    util::write_file_atomically(dir / (stage + ".legs"), util::number_text(before + seconds) + " " + std::to_string(legs + 1) + "\n");
-  }
-
-  // OUT/<case>/<stage>.stage.toml beside a finished solver stage: its wall time over all its legs (a run
-  // stopped and resumed counts every leg the study saw end) and threads (or MPI ranks), which
-  // `hydrojump record` keeps.
-  void write_stage_info(const std::filesystem::path& dir, const std::string& stage, double seconds) {
-    if (stage != "sph" && stage != "vof") return;
-    // Without --threads `hydrojump sph` takes OpenMP's default (OMP_NUM_THREADS, else the cores of the
-    // affinity mask), which it inherits from this process.
-    const int threads = stage == "sph" ? (options_.sph_threads > 0 ? options_.sph_threads : std::max(1, omp_get_max_threads()))
-                                       : options_.mpi_ranks;
-    const auto [before, legs] = earlier_legs(dir, stage);
-    const double total = before + seconds;
-    std::ostringstream text;  // fixed notation: always a TOML float
-    text << "# all legs of this stage (a run stopped and resumed counts each leg)\nwall_time_s = " << std::fixed
-         << std::setprecision(3) << total << "\nlegs = " << legs + 1 << "\nthreads = " << threads << "\nmachine = \""
-         << machine_text() << "\"\n";
-    util::write_file_atomically(dir / (stage + ".stage.toml"), text.str());
-    std::filesystem::remove(dir / (stage + ".legs"));
+  // The threads (SPH) or MPI ranks (VOF) a solver stage runs on. Without --threads `hydrojump sph` takes
+  // OpenMP's default (OMP_NUM_THREADS, else the cores of the affinity mask), which it inherits from
+  // this process.
+  int stage_threads(const std::string& stage) const {
+    if (stage == "sph") return options_.sph_threads > 0 ? options_.sph_threads : std::max(1, omp_get_max_threads());
+    return options_.mpi_ranks;
   }
 
   StageResult run_stage(const std::string& id, const std::string& stage, const std::vector<std::string>& args,
@@ -385,9 +345,13 @@ class StudyRunner {
     // A request that came since the caller looked: nothing starts (a child stopped before its own
     // handlers are set would die without writing its state).
     if (study_stopping()) return {stage, "skipped", 0.0, 0, "the study was stopped"};
-    if (!started_marker.empty()) util::write_file_atomically(started_marker, fingerprint);
+    if (!started_marker.empty()) {
+      util::write_file_atomically(started_marker, fingerprint);
+      std::filesystem::remove(dir / (stage + ".failed"));  // this run may end otherwise
+    }
     say(id + ": " + stage + " started (log: " + log_file.string() + ")");
     const auto t0 = std::chrono::steady_clock::now();
+    const auto leg_start = std::filesystem::file_time_type::clock::now();
     int status = 127;
     std::string start_error;
     bool stopped = false;
@@ -425,9 +389,12 @@ class StudyRunner {
     if (status != 0) {
       say(id + ": " + stage + " FAILED (exit status " + std::to_string(status) + ") after " +
           duration_text(seconds) + "; last lines of " + log_file.string() + ":\n" + tail(log_file, 8));
+      // A failed run is a result: `hydrojump record` keeps what stopped it.
+      if (!started_marker.empty())
+        write_stage_failure(dir, stage, fingerprint, failure_text(dir, stage, log_file, status, leg_start), stage_threads(stage));
       return {stage, "failed", seconds, status, {}};
     }
-    write_stage_info(dir, stage, seconds);
+    if (!started_marker.empty()) write_stage_info(dir, stage, seconds, stage_threads(stage));
     util::write_file_atomically(stamp, fingerprint);
     if (!started_marker.empty()) std::filesystem::remove(started_marker);
     say(id + ": " + stage + " finished in " + duration_text(seconds));

@@ -119,41 +119,78 @@ const RecordMetric* ValidationRecord::metric(const std::string& quantity) const 
   return nullptr;
 }
 
+namespace {
+
+// A record's description of the run from the resolved case the study ran (OUT/<case>/<method>/case.toml).
+ValidationRecord record_of_resolved_case(const fs::path& resolved, const std::string& method, const std::string& key,
+                                         const RecordProvenance& provenance) {
+  const cases::Study study = cases::load_study(resolved);
+  if (study.cases.size() != 1 || study.cases[0].resolutions.size() != 1)
+    throw RecordError(resolved.string() + ": is not a resolved one-case spec");
+  const cases::Case& c = study.cases[0];
+  ValidationRecord r;
+  r.study = study.name;
+  r.case_id = c.id;
+  r.description = c.description;
+  r.method = method;
+  r.resolution = c.resolutions.begin()->first;
+  r.run_key = key;
+  r.recorded_on = provenance.recorded_on;
+  r.command = provenance.command;
+  if (const auto* b = c.stilling_basin()) {
+    r.tailwater_control = std::string(cases::option_name(b->control.mode));
+    r.bed = std::string(cases::option_name(b->bed.profile));
+    r.inflow_depth_m = b->inflow_depth_m;
+    r.basin_start_m = b->upstream_length_m;
+    r.bed_wavelength_m = b->bed.wavelength_m;
+  }
+  r.window_start_s = c.run.average_start_s;
+  r.window_end_s = c.run.average_end_s;
+  return r;
+}
+
+// OUT/<case>/<method>.failed (app/stage_info.hpp): the run key and what stopped the run, with the
+// stage's timing keys. None when absent or without both.
+std::optional<std::pair<std::string, std::string>> stage_failure(const fs::path& file) {
+  if (!fs::exists(file)) return std::nullopt;
+  try {
+    const toml::table t = toml::parse_file(file.string());
+    const auto key = t["run_key"].value<std::string>();
+    const auto failure = t["failure"].value<std::string>();
+    if (!key || key->empty() || !failure || failure->empty()) return std::nullopt;
+    return std::make_pair(*key, *failure);
+  } catch (const toml::parse_error&) {
+    return std::nullopt;
+  }
+}
+
+}  // namespace
+
 std::vector<ValidationRecord> records_from_case_dir(const fs::path& case_dir, const RecordProvenance& provenance) {
   const fs::path metrics_file = case_dir / "csv" / "metrics.csv";
-  if (!fs::exists(metrics_file))
-    throw RecordError(case_dir.string() + ": has no finished comparison (" + metrics_file.string() +
-                      " is missing): run `hydrojump compare " + case_dir.string() + "` or the study first");
-  const auto metric_rows = csv_rows(metrics_file);
-  const auto profile_rows = csv_rows(case_dir / "csv" / "profiles.csv");
-  const auto surface_rows = csv_rows(case_dir / "csv" / "longitudinal.csv");
+  const bool compared = fs::exists(metrics_file);
+  const auto metric_rows = compared ? csv_rows(metrics_file) : std::vector<std::map<std::string, std::string>>{};
+  const auto profile_rows = compared ? csv_rows(case_dir / "csv" / "profiles.csv") : metric_rows;
+  const auto surface_rows = compared ? csv_rows(case_dir / "csv" / "longitudinal.csv") : metric_rows;
   std::vector<ValidationRecord> out;
   for (const std::string method : {"sph", "vof"}) {
     const std::string key = util::read_text_file(case_dir / (method + ".stamp"));
     const fs::path resolved = case_dir / method / "case.toml";
-    if (key.empty() || !fs::exists(resolved)) continue;  // not run by the study, or not finished
-    const cases::Study study = cases::load_study(resolved);
-    if (study.cases.size() != 1 || study.cases[0].resolutions.size() != 1)
-      throw RecordError(resolved.string() + ": is not a resolved one-case spec");
-    const cases::Case& c = study.cases[0];
-    ValidationRecord r;
-    r.study = study.name;
-    r.case_id = c.id;
-    r.description = c.description;
-    r.method = method;
-    r.resolution = c.resolutions.begin()->first;
-    r.run_key = key;
-    r.recorded_on = provenance.recorded_on;
-    r.command = provenance.command;
-    if (const auto* b = c.stilling_basin()) {
-      r.tailwater_control = std::string(cases::option_name(b->control.mode));
-      r.bed = std::string(cases::option_name(b->bed.profile));
-      r.inflow_depth_m = b->inflow_depth_m;
-      r.basin_start_m = b->upstream_length_m;
-      r.bed_wavelength_m = b->bed.wavelength_m;
+    if (!fs::exists(resolved)) continue;  // not run by the study
+    if (key.empty()) {
+      // Not finished: a failed run is a result too (a miss), kept with what stopped it.
+      const auto failure = stage_failure(case_dir / (method + ".failed"));
+      if (!failure) continue;
+      ValidationRecord r = record_of_resolved_case(resolved, method, failure->first, provenance);
+      r.failure = failure->second;
+      read_stage_info(case_dir / (method + ".failed"), r);
+      out.push_back(std::move(r));
+      continue;
     }
-    r.window_start_s = c.run.average_start_s;
-    r.window_end_s = c.run.average_end_s;
+    if (!compared)
+      throw RecordError(case_dir.string() + ": has no finished comparison (" + metrics_file.string() +
+                        " is missing): run `hydrojump compare " + case_dir.string() + "` or the study first");
+    ValidationRecord r = record_of_resolved_case(resolved, method, key, provenance);
     read_stage_info(case_dir / (method + ".stage.toml"), r);
     // A quantity the method could not give (nan: e.g. no reverse surface flow, so no roller length) is
     // kept as value = nan where it has a laboratory, published or inputs-only value to stand beside.
@@ -185,6 +222,10 @@ std::vector<ValidationRecord> records_from_case_dir(const fs::path& case_dir, co
     }
     out.push_back(std::move(r));
   }
+  if (out.empty() && !compared)
+    throw RecordError(case_dir.string() + ": has no finished comparison (" + metrics_file.string() +
+                      " is missing) and no failed run (<method>.failed): run `hydrojump compare " + case_dir.string() +
+                      "` or the study first");
   if (out.empty())
     throw RecordError(case_dir.string() + ": no method finished here under the study (no sph.stamp or vof.stamp "
                                           "beside a resolved case.toml): records keep study results only");
@@ -212,6 +253,7 @@ std::string record_text(const ValidationRecord& r) {
   if (r.legs) s << "legs = " << *r.legs << "\n";
   if (r.threads) s << "threads = " << *r.threads << "\n";
   if (!r.machine.empty()) s << "machine = " << quoted(r.machine) << "\n";
+  if (r.failed()) s << "failure = " << quoted(r.failure) << "\n";
   s << "window_s = " << numbers({r.window_start_s, r.window_end_s}) << "\n";
   for (const auto& m : r.metrics) {
     s << "\n[[metrics]]\nquantity = " << quoted(m.quantity) << "\nunit = " << quoted(m.unit)
@@ -264,6 +306,7 @@ ValidationRecord parse_record(const std::string& text, const std::string& file) 
   }
   if (auto v = t["threads"].value<int64_t>()) r.threads = static_cast<int>(*v);
   r.machine = t["machine"].value_or(std::string());
+  r.failure = t["failure"].value_or(std::string());
   const auto window = number_array(t, "window_s", file);
   if (window.size() != 2 || !(window[0] < window[1])) fail(file, "window_s", "is not [start, end] with start < end");
   r.window_start_s = window[0];

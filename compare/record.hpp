@@ -67,12 +67,16 @@ struct ValidationRecord {
   std::optional<int> legs;         // the legs that time covers (a run stopped and resumed: several)
   std::optional<int> threads;      // SPH threads or OpenFOAM ranks of that stage
   std::string machine;             // where it ran: "<CPU model>, N cores" (empty: not logged)
+  // A run that stopped before its end (the solver's diagnosis, or its log's last line): a miss kept as
+  // a result. Such a record has no metrics, profiles or surface. Empty: the run finished.
+  std::string failure;
   double window_start_s = 0.0, window_end_s = 0.0;
   std::vector<RecordMetric> metrics;
   std::vector<RecordProfile> profiles;
   std::vector<double> surface_x_m, surface_mean_m;  // the time-mean free surface
 
   const RecordMetric* metric(const std::string& quantity) const;
+  bool failed() const { return !failure.empty(); }
 };
 
 // What the record writer adds to the results: today's date and the command that made them.
@@ -82,8 +86,9 @@ struct RecordProvenance {
 };
 
 // The records of one case directory of a study (OUT/<case>): one per method whose stage finished
-// (its stamp) and whose values the comparison holds (csv/metrics.csv). Throws RecordError naming the
-// missing file when the case has no finished comparison.
+// (its stamp) and whose values the comparison holds (csv/metrics.csv), and one per method whose stage
+// failed (OUT/<case>/<method>.failed, written by the study: its run key, what stopped it and its wall
+// time). Throws RecordError naming the missing file when the case has neither.
 std::vector<ValidationRecord> records_from_case_dir(const std::filesystem::path& case_dir,
                                                     const RecordProvenance& provenance);
 

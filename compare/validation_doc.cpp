@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <iterator>
 #include <iomanip>
 #include <map>
 #include <set>
@@ -82,6 +83,13 @@ std::string row_label(const ValidationRecord& r) {
          (r.stale ? " (stale)" : "") + " |";
 }
 
+// `text` in a Markdown table cell: '|' escaped.
+std::string cell_text(const std::string& text) {
+  std::string out;
+  for (char ch : text) out += ch == '|' ? std::string("\\|") : std::string(1, ch);
+  return out;
+}
+
 // The structure check (jump_structure.hpp) from the jet height fraction and the wall-jet profile
 // deviation at x_2y2: "classic (0.12, 0.08)", "wall jet, profile off (0.12, 0.23)", "surface jet (0.85)";
 // a record without the deviation (made before it was measured) shows the jet height alone.
@@ -99,6 +107,7 @@ std::string structure_text(const ValidationRecord& r) {
 // bed with laboratory data: y2 within 10 %, eta within 3 points, Lj within 20 %, y2/y2* within 0.05.
 // Returns "met", or the misses with their numbers; "—" where nothing can be judged.
 std::string targets_text(const ValidationRecord& r) {
+  if (r.failed()) return "FAILED: " + cell_text(r.failure);
   std::vector<std::string> misses;
   int judged = 0;
   const auto judge = [&](bool ok, const std::string& miss) {
@@ -154,7 +163,8 @@ std::string validation_markdown(const std::vector<ValidationRecord>& records, co
         "'y2 is' says whether the sequent depth is a prediction (the outlet steered to hold the toe at the "
         "basin start, as the flume's tailgate was) or imposed (the outlet held a depth). y2* and η* are what "
         "the inputs alone give (Bélanger's sequent depth of the inflow and the energy loss with it), y2/y2* the "
-        "bed effect (1 on a smooth bed). Δ: the model against the laboratory.\n";
+        "bed effect (1 on a smooth bed). Δ: the model against the laboratory. A run that failed (its solver "
+        "stopped before the end) is a result too: it has no numbers, and the targets table says what stopped it.\n";
   std::map<std::string, std::vector<const ValidationRecord*>> by_study;
   for (const auto& r : records) by_study[r.study].push_back(&r);
   for (const auto& [study, rows] : by_study) {
@@ -162,7 +172,9 @@ std::string validation_markdown(const std::vector<ValidationRecord>& records, co
           "| case | method | resolution | y2 is | y2 (m) | y2 lab | Δy2 | y2* (inputs) | y2/y2* | y2/y2* lab | η (%) | "
           "η lab | Δη (points) | η* (inputs) |\n"
           "|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
-    for (const auto* r : rows) {
+    std::vector<const ValidationRecord*> finished;
+    std::copy_if(rows.begin(), rows.end(), std::back_inserter(finished), [](const ValidationRecord* r) { return !r->failed(); });
+    for (const auto* r : finished) {
       const double y2 = value_of(*r, "sequent_depth"), y2_lab = experiment_of(*r, "sequent_depth");
       const double eta = value_of(*r, "eta"), eta_lab = experiment_of(*r, "eta");
       md << row_label(*r) << " " << status_of(*r, "sequent_depth") << " | " << fix(y2, 4) << " | " << fix(y2_lab, 3)
@@ -183,7 +195,7 @@ std::string validation_markdown(const std::vector<ValidationRecord>& records, co
           "| case | method | resolution | Lj (m) | Lj lab | ΔLj | Lr (m) | Lr* (m) | structure (jet, profile) | toe mean (m) | "
           "toe sd (m) | window (s) | solver wall time |\n"
           "|---|---|---|---:|---:|---:|---:|---:|---|---:|---:|---|---|\n";
-    for (const auto* r : rows) {
+    for (const auto* r : finished) {
       const double lj = value_of(*r, "jump_length"), lj_lab = experiment_of(*r, "jump_length");
       md << row_label(*r) << " " << fix(lj, 3) << " | " << fix(lj_lab, 2) << " | "
          << (std::isfinite(lj_lab) ? fix(percent_off(lj, lj_lab), 1, true) + " %" : dash) << " | "
@@ -204,7 +216,7 @@ std::string validation_markdown(const std::vector<ValidationRecord>& records, co
     for (const auto* r : rows) md << row_label(*r) << " " << targets_text(*r) << " |\n";
     // SPH against VOF where both methods have a record of the same case and resolution.
     std::map<std::pair<std::string, std::string>, std::map<std::string, const ValidationRecord*>> pairs;
-    for (const auto* r : rows) pairs[{r->case_id, r->resolution}][r->method] = r;
+    for (const auto* r : finished) pairs[{r->case_id, r->resolution}][r->method] = r;
     std::ostringstream both;
     for (const auto& [key, methods] : pairs) {
       if (methods.size() != 2) continue;
@@ -232,6 +244,7 @@ namespace {
 std::string method_cell(const ValidationRecord* r, const std::function<std::string(const ValidationRecord&)>& text,
                         bool mark = true) {
   if (!r) return "not run";
+  if (r->failed()) return mark ? std::string("failed") + (r->stale ? " (stale)" : "") : std::string(dash);
   const std::string t = text(*r);
   return t + (mark && r->stale && t != dash ? " (stale)" : "");
 }
@@ -274,7 +287,7 @@ std::string headline_markdown(const std::vector<ValidationRecord>& records) {
     for (const auto& r : records) {
       if (r.study != study || r.case_id != case_id || r.resolution != resolution) continue;
       (r.method == "sph" ? sph : vof) = &r;
-      any = &r;
+      if (!any || !r.failed()) any = &r;  // the laboratory's values: a failed run's record has none
     }
     const double between = sph && vof ? percent_off(value_of(*sph, "sequent_depth"), value_of(*vof, "sequent_depth"))
                                       : std::nan("");
@@ -307,7 +320,7 @@ std::string not_run_markdown(const cases::Study& study, const std::vector<Valida
   for (const bool same_resolution : {true, false})
     for (const auto& r : records) {
       if (r.study != study.name || (r.resolution == resolution) != same_resolution || !r.wall_time_s ||
-          reference.count(r.method))
+          r.failed() || reference.count(r.method))
         continue;
       for (const auto& c : study.cases)
         if (c.id == r.case_id && c.stilling_basin() && c.resolutions.count(r.resolution)) {

@@ -336,3 +336,93 @@ TEST_CASE("The targets are judged from a record's numbers, and a run not steady 
   r.metrics.back().value = 1.0;
   CHECK_THAT(headline_markdown({r}), Catch::Contains("| met (2) | not run |"));
 }
+
+TEST_CASE("A failed run is kept as a record with what stopped it, beside the other method's finished one",
+          "[compare][record]") {
+  const hydrojump::testing::TempDir tmp("record_failed");
+  const auto study = hydrojump::cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/tests/data/basins.toml");
+  const fs::path dir = tmp.path() / "A_smooth";
+  for (const char* method : {"sph", "vof"}) {
+    fs::create_directories(dir / method);
+    hydrojump::cases::write_resolved_case(study, *study.find_case("A_smooth"), "quick", dir / method / "case.toml");
+  }
+  // SPH failed (no stamp; the study's sph.failed), VOF finished and was compared.
+  write(dir / "sph.failed", "run_key = \"0badc0de0badc0de\"\nfailure = \"the SPH run went unstable at t = 0.73 s\"\n"
+                            "wall_time_s = 95.5\nlegs = 2\nthreads = 1\nmachine = \"Some CPU, 2 cores\"\n");
+  write(dir / "vof.stamp", "feedfacefeedface");
+  write(dir / "csv" / "metrics.csv", "quantity,unit,sph,vof,experiment,published_sph,smooth_theory,status\n"
+                                     "sequent_depth,m,nan,0.1286,nan,nan,0.131781,predicted\n");
+  auto records = records_from_case_dir(dir, {"2026-12-01", "cmd"});
+  REQUIRE(records.size() == 2);
+  const ValidationRecord& failed = records[0];
+  CHECK(failed.method == "sph");
+  CHECK(failed.failed());
+  CHECK(failed.failure == "the SPH run went unstable at t = 0.73 s");
+  CHECK(failed.run_key == "0badc0de0badc0de");
+  CHECK(*failed.wall_time_s == 95.5);
+  CHECK(*failed.legs == 2);
+  CHECK(failed.case_id == "A_smooth");
+  CHECK(failed.window_end_s == 10.0);
+  CHECK(failed.metrics.empty());
+  CHECK(failed.surface_x_m.empty());
+  CHECK_FALSE(records[1].failed());
+  CHECK(records[1].metric("sequent_depth")->value == 0.1286);
+  // It reads back as failed; a finished record's text has no failure key.
+  const ValidationRecord back = parse_record(record_text(failed), "A_smooth/sph-quick.toml");
+  CHECK(back.failure == failed.failure);
+  CHECK(record_text(back) == record_text(failed));
+  CHECK_THAT(record_text(records[1]), !Catch::Contains("failure"));
+
+  // A stage that failed and then finished: its stamp wins over a leftover sph.failed.
+  write(dir / "sph.stamp", "0123012301230123");
+  write(dir / "csv" / "metrics.csv", "quantity,unit,sph,vof,experiment,published_sph,smooth_theory,status\n"
+                                     "sequent_depth,m,0.1331,0.1286,nan,nan,0.131781,predicted\n");
+  records = records_from_case_dir(dir, {"2026-12-01", "cmd"});
+  REQUIRE(records.size() == 2);
+  CHECK_FALSE(records[0].failed());
+  CHECK(records[0].run_key == "0123012301230123");
+
+  // Both failed, nothing compared: the failed records alone.
+  fs::remove(dir / "sph.stamp");
+  fs::remove(dir / "vof.stamp");
+  fs::remove_all(dir / "csv");
+  write(dir / "vof.failed", "run_key = \"1111222233334444\"\nfailure = \"exit status 1: interFoam: floating point exception\"\n");
+  records = records_from_case_dir(dir, {"2026-12-01", "cmd"});
+  REQUIRE(records.size() == 2);
+  CHECK(records[1].failure == "exit status 1: interFoam: floating point exception");
+  CHECK_FALSE(records[1].wall_time_s);
+  // A damaged or empty failure file is no record.
+  write(dir / "sph.failed", "run_key = \"0badc0de0badc0de\"\n");
+  write(dir / "vof.failed", "[[[");
+  CHECK_THROWS_WITH(records_from_case_dir(dir, {}), Catch::Contains("no failed run"));
+}
+
+TEST_CASE("A failed run's record is in the targets and records tables, not in the numbers, and its case is not 'not run'",
+          "[compare][record]") {
+  const auto study = hydrojump::cases::load_study(std::string(HYDROJUMP_SOURCE_DIR) + "/tests/data/basins.toml");
+  ValidationRecord failed = sample_record("sph", 0.0);
+  failed.study = study.name;
+  failed.metrics.clear();
+  failed.profiles.clear();
+  failed.surface_x_m.clear();
+  failed.surface_mean_m.clear();
+  failed.failure = "the SPH run went unstable: |rho/rho0 - 1| = 0.52";
+  failed.wall_time_s = 60.0;
+  ValidationRecord vof = sample_record("vof", 0.113782);
+  vof.study = study.name;
+  const std::string md = validation_markdown({failed, vof}, "validation/records");
+  INFO(md);
+  CHECK_THAT(md, Catch::Contains("| A | SPH | quick | FAILED: the SPH run went unstable: \\|rho/rho0 - 1\\| = 0.52 |"));
+  CHECK_THAT(md, Catch::Contains("| A | SPH | quick | `A/sph-quick.toml` |"));
+  CHECK_THAT(md, !Catch::Contains("| A | SPH | quick | predicted |"));  // no row of numbers
+  CHECK_THAT(md, !Catch::Contains("### SPH against VOF"));                // no pair to set side by side
+  CHECK_THAT(md, Catch::Contains("| A | VOF | quick | predicted | 0.1138 |"));
+  CHECK_THAT(headline_markdown({failed, vof}), Catch::Contains("| A | quick | failed / +9.4 % of lab | — / -2.98 |") &&
+                                                 Catch::Contains("| — | failed | met (2) |"));
+  // It ran: not listed as not run, and its partial wall time is no reference for the estimates.
+  const std::string not_run = not_run_markdown(study, {failed, vof}, "quick");
+  INFO(not_run);
+  CHECK_THAT(not_run, !Catch::Contains("| A | SPH |"));
+  CHECK_THAT(not_run, Catch::Contains("| A_smooth | SPH |"));
+  CHECK_THAT(not_run, !Catch::Contains("A (SPH)"));
+}

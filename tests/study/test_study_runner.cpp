@@ -228,6 +228,67 @@ TEST_CASE("Study runner: an SPH run that failed before its first checkpoint is s
   CHECK_THAT(second[0], Catch::StartsWith("sph ") && Catch::Contains("/B/sph") && Catch::EndsWith("--restart"));
 }
 
+TEST_CASE("Study runner: a failed solver stage leaves what stopped it for its record, and a current failed record is run again",
+          "[study]") {
+  const TempDir tmp("study_failed");
+  const fs::path& dir = tmp.path();
+  const fs::path calls = dir / "calls.txt";
+  // B's SPH run fails with a diagnosis, as the real solver writes it.
+  StudyOptions options = mini_study_failing_b_sph(
+      dir, calls, "printf 'went unstable at t = 0.5 s\\n  |rho/rho0 - 1| = 0.6\\n' > \"$2/failure.txt\"; echo 'last words'");
+  options.sph_threads = 1;
+  std::ostringstream log;
+  CHECK(run_study(options, log) == 1);
+  const fs::path failed = options.out / "B" / "sph.failed";
+  REQUIRE(fs::exists(failed));
+  CHECK_FALSE(fs::exists(options.out / "A" / "sph.failed"));
+  CHECK_FALSE(fs::exists(options.out / "B" / "vof.failed"));
+  const toml::table t = toml::parse_file(failed.string());
+  const auto study = hydrojump::cases::load_study(options.spec);
+  const std::string key = hydrojump::app::method_run_key(study, *study.find_case("B"), "quick", "sph");
+  CHECK(t["run_key"].value_or(std::string()) == key);
+  CHECK(t["failure"].value_or(std::string()) == "went unstable at t = 0.5 s");
+  CHECK(t["legs"].value_or(0) == 1);
+  CHECK(t["threads"].value_or(0) == 1);
+  CHECK(t["wall_time_s"].value_or(-1.0) >= 0.0);
+
+  // Without a diagnosis of this leg (an old failure.txt), the log's last line and the exit status.
+  fs::last_write_time(options.out / "B" / "sph" / "failure.txt", fs::file_time_type::clock::now() - std::chrono::hours(1));
+  StudyOptions quiet = mini_study_failing_b_sph(dir, calls, "echo 'second words'");
+  quiet.out = options.out;
+  CHECK(run_study(quiet, log) == 1);
+  const toml::table second = toml::parse_file(failed.string());
+  CHECK(second["failure"].value_or(std::string()) == "exit status 3: second words");
+  CHECK(second["legs"].value_or(0) == 1);  // no checkpoint to resume: the run started over (--restart)
+
+  // The record of the failed run is current, but a study with it runs the case again (a record of a
+  // failure holds no results to import).
+  const fs::path records = dir / "records";
+  hydrojump::compare::ValidationRecord r;
+  r.study = "mini";
+  r.case_id = "B";
+  r.method = "sph";
+  r.resolution = "quick";
+  r.run_key = key;
+  r.failure = "went unstable at t = 0.5 s";
+  r.window_start_s = 0.0;
+  r.window_end_s = 1.0;
+  hydrojump::compare::write_record(records, r);
+  fs::remove(calls);
+  StudyOptions again = mini_study_with_stand_in(dir, "echo \"$*\" >> '" + calls.string() + "'\nexit 0\n");
+  again.out = dir / "out2";
+  again.records = records;
+  again.methods = {"sph"};
+  std::ostringstream rerun;
+  CHECK(run_study(again, rerun) == 0);
+  CHECK_THAT(rerun.str(), Catch::Contains("B: record " + (records / "mini" / "B" / "sph-quick.toml").string() +
+                                          " is of a run that failed (went unstable at t = 0.5 s): running it"));
+  const auto ran = lines_of(calls);
+  CHECK(std::count_if(ran.begin(), ran.end(), [](const std::string& l) { return l.rfind("sph ", 0) == 0 && l.find("/B/sph") != std::string::npos; }) == 1);
+  // The stage that now finished leaves no failure behind.
+  CHECK_FALSE(fs::exists(again.out / "B" / "sph.failed"));
+}
+
 TEST_CASE("Study runner: the report covers cases run earlier into the same directory while they are current",
           "[study]") {
   const TempDir tmp("study_earlier");
