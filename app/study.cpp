@@ -145,8 +145,13 @@ class StudyRunner {
 
   // Whether a solver stage of a prepared case is cached (its stamp holds its run key; not with --force).
   bool stage_current(const cases::Case& c, const std::string& method) const {
-    return !options_.force && util::read_text_file(options_.out / c.id / (method + ".stamp")) ==
-                                  method_run_key(study_, c, options_.resolution, method);
+    return stamp_current(options_.out / c.id, method, method_run_key(study_, c, options_.resolution, method));
+  }
+
+  // Whether stage `stage` of the case directory `dir` finished with `fingerprint` (its stamp), so it is
+  // not run again (always false with --force).
+  bool stamp_current(const std::filesystem::path& dir, const std::string& stage, const std::string& fingerprint) const {
+    return !options_.force && util::read_text_file(dir / (stage + ".stamp")) == fingerprint;
   }
 
   // One solver stage ("sph" or "vof") of a prepared case, resumed where an earlier one stopped. Never
@@ -337,7 +342,7 @@ class StudyRunner {
                         const std::filesystem::path& dir, const std::string& fingerprint,
                         const std::filesystem::path& started_marker) {
     const auto stamp = dir / (stage + ".stamp");
-    if (!options_.force && util::read_text_file(stamp) == fingerprint) {
+    if (stamp_current(dir, stage, fingerprint)) {
       say(id + ": " + stage + " up to date (cached)");
       return {stage, "cached", 0.0, 0, {}};
     }
