@@ -13,8 +13,8 @@
 // "not run". <stage>.failed goes when the stage starts again.
 //
 // Example:
-//   add_leg(dir, "sph", 312.5);                                          // a leg failed after 312.5 s
-//   write_stage_failure(dir, "sph", key, failure_text(dir, "sph", t0), 1);
+//   add_leg(dir, "sph", 312.5);                                 // a leg failed after 312.5 s
+//   write_stage_failure(dir, "sph", key, failure_text(dir, "sph", dir / "sph.log", status, leg_start), 1);
 #pragma once
 
 #include <filesystem>

@@ -67,20 +67,24 @@ double cell(const std::map<std::string, std::string>& row, const std::string& ke
   return it == row.end() ? std::nan("") : util::csv_number(it->second);
 }
 
-// OUT/<case>/<method>.stage.toml, written by the study when the stage finished: wall time (all legs),
-// legs, threads and the machine.
-void read_stage_info(const fs::path& file, ValidationRecord& r) {
-  if (!fs::exists(file)) return;
+// A stage file the study writes beside a case (app/stage_info.hpp: <method>.stage.toml, <method>.failed);
+// none when it is absent or damaged.
+std::optional<toml::table> stage_file(const fs::path& file) {
+  if (!fs::exists(file)) return std::nullopt;
   try {
-    const toml::table t = toml::parse_file(file.string());
-    if (auto v = t["wall_time_s"].value<double>()) r.wall_time_s = *v;
-    if (auto v = t["legs"].value<int64_t>(); v && *v >= 1 && *v <= std::numeric_limits<int>::max())
-      r.legs = static_cast<int>(*v);
-    if (auto v = t["threads"].value<int64_t>()) r.threads = static_cast<int>(*v);
-    r.machine = t["machine"].value_or(std::string());
+    return toml::parse_file(file.string());
   } catch (const toml::parse_error&) {
-    // A damaged stage file loses only the timing.
+    return std::nullopt;  // a damaged stage file loses only what it holds
   }
+}
+
+// A stage file's timing keys: wall time (all legs), legs, threads and the machine.
+void read_stage_timing(const toml::table& t, ValidationRecord& r) {
+  if (auto v = t["wall_time_s"].value<double>()) r.wall_time_s = *v;
+  if (auto v = t["legs"].value<int64_t>(); v && *v >= 1 && *v <= std::numeric_limits<int>::max())
+    r.legs = static_cast<int>(*v);
+  if (auto v = t["threads"].value<int64_t>()) r.threads = static_cast<int>(*v);
+  r.machine = t["machine"].value_or(std::string());
 }
 
 [[noreturn]] void fail(const std::string& file, const std::string& key, const std::string& what) {
@@ -149,49 +153,40 @@ ValidationRecord record_of_resolved_case(const fs::path& resolved, const std::st
   return r;
 }
 
-// OUT/<case>/<method>.failed (app/stage_info.hpp): the run key and what stopped the run, with the
-// stage's timing keys. None when absent or without both.
-std::optional<std::pair<std::string, std::string>> stage_failure(const fs::path& file) {
-  if (!fs::exists(file)) return std::nullopt;
-  try {
-    const toml::table t = toml::parse_file(file.string());
-    const auto key = t["run_key"].value<std::string>();
-    const auto failure = t["failure"].value<std::string>();
-    if (!key || key->empty() || !failure || failure->empty()) return std::nullopt;
-    return std::make_pair(*key, *failure);
-  } catch (const toml::parse_error&) {
-    return std::nullopt;
-  }
-}
-
 }  // namespace
 
 std::vector<ValidationRecord> records_from_case_dir(const fs::path& case_dir, const RecordProvenance& provenance) {
   const fs::path metrics_file = case_dir / "csv" / "metrics.csv";
   const bool compared = fs::exists(metrics_file);
-  const auto metric_rows = compared ? csv_rows(metrics_file) : std::vector<std::map<std::string, std::string>>{};
-  const auto profile_rows = compared ? csv_rows(case_dir / "csv" / "profiles.csv") : metric_rows;
-  const auto surface_rows = compared ? csv_rows(case_dir / "csv" / "longitudinal.csv") : metric_rows;
+  const auto rows_of = [&](const fs::path& file) {
+    return compared ? csv_rows(file) : std::vector<std::map<std::string, std::string>>{};
+  };
+  const auto metric_rows = rows_of(metrics_file);
+  const auto profile_rows = rows_of(case_dir / "csv" / "profiles.csv");
+  const auto surface_rows = rows_of(case_dir / "csv" / "longitudinal.csv");
+  const std::string no_comparison = case_dir.string() + ": has no finished comparison (" + metrics_file.string() + " is missing)";
+  const std::string run_compare = ": run `hydrojump compare " + case_dir.string() + "` or the study first";
   std::vector<ValidationRecord> out;
   for (const std::string method : {"sph", "vof"}) {
     const std::string key = util::read_text_file(case_dir / (method + ".stamp"));
     const fs::path resolved = case_dir / method / "case.toml";
     if (!fs::exists(resolved)) continue;  // not run by the study
     if (key.empty()) {
-      // Not finished: a failed run is a result too (a miss), kept with what stopped it.
-      const auto failure = stage_failure(case_dir / (method + ".failed"));
-      if (!failure) continue;
-      ValidationRecord r = record_of_resolved_case(resolved, method, failure->first, provenance);
-      r.failure = failure->second;
-      read_stage_info(case_dir / (method + ".failed"), r);
+      // Not finished: a failed run is a result too (a miss), kept with its run key, what stopped it and
+      // its timing. A failure file without both the key and the failure is no record.
+      const auto failed = stage_file(case_dir / (method + ".failed"));
+      const auto failed_key = failed ? (*failed)["run_key"].value<std::string>() : std::nullopt;
+      const auto failure = failed ? (*failed)["failure"].value<std::string>() : std::nullopt;
+      if (!failed_key || failed_key->empty() || !failure || failure->empty()) continue;
+      ValidationRecord r = record_of_resolved_case(resolved, method, *failed_key, provenance);
+      r.failure = *failure;
+      read_stage_timing(*failed, r);
       out.push_back(std::move(r));
       continue;
     }
-    if (!compared)
-      throw RecordError(case_dir.string() + ": has no finished comparison (" + metrics_file.string() +
-                        " is missing): run `hydrojump compare " + case_dir.string() + "` or the study first");
+    if (!compared) throw RecordError(no_comparison + run_compare);
     ValidationRecord r = record_of_resolved_case(resolved, method, key, provenance);
-    read_stage_info(case_dir / (method + ".stage.toml"), r);
+    if (const auto info = stage_file(case_dir / (method + ".stage.toml"))) read_stage_timing(*info, r);
     // A quantity the method could not give (nan: e.g. no reverse surface flow, so no roller length) is
     // kept as value = nan where it has a laboratory, published or inputs-only value to stand beside.
     bool any_value = false;
@@ -222,10 +217,7 @@ std::vector<ValidationRecord> records_from_case_dir(const fs::path& case_dir, co
     }
     out.push_back(std::move(r));
   }
-  if (out.empty() && !compared)
-    throw RecordError(case_dir.string() + ": has no finished comparison (" + metrics_file.string() +
-                      " is missing) and no failed run (<method>.failed): run `hydrojump compare " + case_dir.string() +
-                      "` or the study first");
+  if (out.empty() && !compared) throw RecordError(no_comparison + " and no failed run (<method>.failed)" + run_compare);
   if (out.empty())
     throw RecordError(case_dir.string() + ": no method finished here under the study (no sph.stamp or vof.stamp "
                                           "beside a resolved case.toml): records keep study results only");
