@@ -39,6 +39,11 @@ double experiment_of(const ValidationRecord& r, const std::string& quantity) {
   return m && m->experiment ? *m->experiment : std::nan("");
 }
 
+double published_of(const ValidationRecord& r, const std::string& quantity) {
+  const RecordMetric* m = r.metric(quantity);
+  return m && m->published_sph ? *m->published_sph : std::nan("");
+}
+
 double theory_of(const ValidationRecord& r, const std::string& quantity) {
   const RecordMetric* m = r.metric(quantity);
   return m && m->smooth_theory ? *m->smooth_theory : std::nan("");
@@ -102,6 +107,82 @@ std::string structure_text(const ValidationRecord& r) {
          fix(dev, 2) + ")";
 }
 
+// The structure's name alone (structure_text without the numbers): "classic", "wall jet, profile off",
+// "wall jet, profile unknown" (no half-velocity height, or a record made before it was measured),
+// "surface jet"; empty where the record has no jet height.
+std::string structure_kind(const ValidationRecord& r) {
+  const double jet = value_of(r, "jet_height"), dev = value_of(r, "wall_jet_deviation");
+  if (!std::isfinite(jet)) return "";
+  if (jet >= classic_jet_height_limit) return "surface jet";
+  if (!std::isfinite(dev)) return "wall jet, profile unknown";
+  return classic_structure(jet, dev) ? "classic" : "wall jet, profile off";
+}
+
+// The resolutions in the order of refinement: quick, default, fine, then any other by name.
+int resolution_rank(const std::string& resolution) {
+  if (resolution == "quick") return 0;
+  if (resolution == "default") return 1;
+  if (resolution == "fine") return 2;
+  return 3;
+}
+
+// Per case and method, each resolution's structure and the coarsest resolution that gives a classic
+// jump (issue 51: validation claims are made from there; a row whose jump is not classic is exploratory).
+std::string structure_by_resolution_markdown(const std::vector<const ValidationRecord*>& finished) {
+  std::vector<std::string> levels;
+  for (const auto* r : finished)
+    if (std::find(levels.begin(), levels.end(), r->resolution) == levels.end()) levels.push_back(r->resolution);
+  std::stable_sort(levels.begin(), levels.end(), [](const std::string& a, const std::string& b) {
+    return std::make_pair(resolution_rank(a), a) < std::make_pair(resolution_rank(b), b);
+  });
+  // (case, method) in the records' order, with each resolution's record.
+  std::vector<std::pair<std::string, std::string>> keys;
+  std::map<std::pair<std::string, std::string>, std::map<std::string, const ValidationRecord*>> rows;
+  for (const auto* r : finished) {
+    const auto key = std::make_pair(r->case_id, r->method);
+    if (!rows.count(key)) keys.push_back(key);
+    rows[key][r->resolution] = r;
+  }
+  std::ostringstream md, table;
+  std::map<std::string, int> cases_of, classic_at_coarsest;  // by method
+  for (const auto& key : keys) {
+    const auto& by_level = rows.at(key);
+    table << "| " << key.first << " | " << (key.second == "sph" ? "SPH" : "VOF") << " |";
+    std::string first = "none yet";
+    bool coarsest_seen = false, coarsest_classic = false;
+    for (const auto& level : levels) {
+      const auto it = by_level.find(level);
+      if (it == by_level.end()) {
+        table << " not run |";
+        continue;
+      }
+      const std::string kind = structure_kind(*it->second);
+      const std::string stale = it->second->stale ? " (stale)" : "";
+      table << " " << (kind.empty() ? std::string(dash) : kind + stale) << " |";
+      if (kind == "classic" && first == "none yet") first = level + stale;
+      if (!coarsest_seen) coarsest_classic = kind == "classic";
+      coarsest_seen = true;
+    }
+    table << " " << first << " |\n";
+    ++cases_of[key.second];
+    if (coarsest_classic) ++classic_at_coarsest[key.second];
+  }
+  md << "\n### Structure by resolution\n\n"
+        "The jump's structure (above) at each resolution, and the coarsest resolution at which each method "
+        "gives a classic jump: validation claims are made from there; a row whose jump is not classic is "
+        "exploratory (its targets say so). Classic at the coarsest resolution run:";
+  for (const std::string method : {"sph", "vof"})
+    if (cases_of.count(method))
+      md << (method == "sph" ? " SPH " : (cases_of.count("sph") ? "; VOF " : " VOF ")) << classic_at_coarsest[method]
+         << " of " << cases_of[method] << " cases";
+  md << ".\n\n| case | method |";
+  for (const auto& level : levels) md << " " << level << " |";
+  md << " first classic |\n|---|---|";
+  for (std::size_t i = 0; i < levels.size(); ++i) md << "---|";
+  md << "---|\n" << table.str();
+  return md.str();
+}
+
 // The targets a row is held to (the predictions issue): the toe held within one wavelength (68 mm on a
 // smooth bed) of the basin start with sd <= 2 y1; a smooth bed's y2 within 3 % of Belanger; a corrugated
 // bed with laboratory data: y2 within 10 %, eta within 3 points, Lj within 20 %, y2/y2* within 0.05.
@@ -136,18 +217,22 @@ std::string targets_text(const ValidationRecord& r) {
   }
   // A run not steady over its window (its water balance or toe still moving): its numbers are those of
   // a jump still settling, whatever the targets say.
-  std::string unsteady;
+  std::string notes;  // after the targets: not steady, exploratory
   if (value_of(r, "steady") == 0.0) {
     const double imbalance = value_of(r, "water_imbalance");  // % of q
-    unsteady = std::abs(imbalance) >= 100.0 * cases::steady_discharge_tolerance
-                   ? "; NOT steady (outflow − inflow " + fix(imbalance, 1, true) + " % of q)"
-                   : "; NOT steady (the toe drifting, lost or the window not reached)";
+    notes = std::abs(imbalance) >= 100.0 * cases::steady_discharge_tolerance
+                ? "; NOT steady (outflow − inflow " + fix(imbalance, 1, true) + " % of q)"
+                : "; NOT steady (the toe drifting, lost or the window not reached)";
   }
-  if (judged == 0) return dash + unsteady;
-  if (misses.empty()) return "met (" + std::to_string(judged) + ")" + unsteady;
+  // A jump that is not classic (a surface jet, a wall jet off the profile): the depths may be right for
+  // the wrong flow.
+  const std::string kind = structure_kind(r);
+  if (!kind.empty() && kind != "classic") notes += "; exploratory: " + kind;
+  if (judged == 0) return dash + notes;
+  if (misses.empty()) return "met (" + std::to_string(judged) + ")" + notes;
   std::string out = "missed " + std::to_string(misses.size()) + " of " + std::to_string(judged) + ": ";
   for (std::size_t i = 0; i < misses.size(); ++i) out += (i ? ", " : "") + misses[i];
-  return out + unsteady;
+  return out + notes;
 }
 
 }  // namespace
@@ -163,15 +248,16 @@ std::string validation_markdown(const std::vector<ValidationRecord>& records, co
         "'y2 is' says whether the sequent depth is a prediction (the outlet steered to hold the toe at the "
         "basin start, as the flume's tailgate was) or imposed (the outlet held a depth). y2* and η* are what "
         "the inputs alone give (Bélanger's sequent depth of the inflow and the energy loss with it), y2/y2* the "
-        "bed effect (1 on a smooth bed). Δ: the model against the laboratory. A run that failed (its solver "
+        "bed effect (1 on a smooth bed). Δ: the model against the laboratory. η Bo et al. SPH: the published "
+        "SPH re-simulation of the same run (Bo et al. 2019, SPHysics). A run that failed (its solver "
         "stopped before the end) is a result too: it has no numbers, and the targets table says what stopped it.\n";
   std::map<std::string, std::vector<const ValidationRecord*>> by_study;
   for (const auto& r : records) by_study[r.study].push_back(&r);
   for (const auto& [study, rows] : by_study) {
     md << "\n## Study `" << study << "`\n\n### Sequent depth and energy\n\n"
           "| case | method | resolution | y2 is | y2 (m) | y2 lab | Δy2 | y2* (inputs) | y2/y2* | y2/y2* lab | η (%) | "
-          "η lab | Δη (points) | η* (inputs) |\n"
-          "|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+          "η lab | Δη (points) | η Bo et al. SPH | η* (inputs) |\n"
+          "|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     std::vector<const ValidationRecord*> finished;
     std::copy_if(rows.begin(), rows.end(), std::back_inserter(finished), [](const ValidationRecord* r) { return !r->failed(); });
     for (const auto* r : finished) {
@@ -181,7 +267,8 @@ std::string validation_markdown(const std::vector<ValidationRecord>& records, co
          << " | " << (std::isfinite(y2_lab) ? fix(percent_off(y2, y2_lab), 1, true) + " %" : dash) << " | "
          << fix(theory_of(*r, "sequent_depth"), 4) << " | " << fix(value_of(*r, "bed_effect"), 3) << " | "
          << fix(experiment_of(*r, "bed_effect"), 3) << " | " << fix(eta, 2) << " | " << fix(eta_lab, 2) << " | "
-         << fix(eta - eta_lab, 2, true) << " | " << fix(theory_of(*r, "eta"), 2) << " |\n";
+         << fix(eta - eta_lab, 2, true) << " | " << fix(published_of(*r, "eta"), 2) << " | "
+         << fix(theory_of(*r, "eta"), 2) << " |\n";
     }
     md << "\n### Jump length, roller and toe\n\n"
           "Lj and Lr from the time-mean surface; the toe's mean and standard deviation over the window's frames "
@@ -205,11 +292,12 @@ std::string validation_markdown(const std::vector<ValidationRecord>& records, co
          << fix(value_of(*r, "toe_std"), 3) << " | " << fix(r->window_start_s, 1) << "–" << fix(r->window_end_s, 1)
          << " | " << wall_text(*r) << " |\n";
     }
+    md << structure_by_resolution_markdown(finished);
     md << "\n### Targets\n\n"
           "Toe (held): mean within one bed wavelength (68 mm on a smooth bed) of the basin start, sd at most 2 y1. "
           "Smooth bed: y2 within 3 % of Bélanger. Corrugated bed with laboratory data: y2 within 10 %, η within 3 "
-          "points, Lj within 20 %, y2/y2* within 0.05 of the laboratory's. A row whose structure is not classic "
-          "(above) is exploratory: its depths may be right for the wrong flow. NOT steady: the run's water balance "
+          "points, Lj within 20 %, y2/y2* within 0.05 of the laboratory's. Exploratory: the row's jump is not "
+          "classic (above), so its depths may be right for the wrong flow. NOT steady: the run's water balance "
           "or toe was still moving over its window (|outflow − inflow| ≥ 2 % of q, or the toe drifting a bed "
           "wavelength, on a smooth bed 2 y1, a second): its numbers are those of a jump still settling.\n\n"
           "| case | method | resolution | targets |\n|---|---|---|---|\n";
