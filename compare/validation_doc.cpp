@@ -458,8 +458,20 @@ std::string not_run_markdown(const cases::Study& study, const std::vector<Valida
       ++missing;
     }
   }
-  if (missing == 0) return "";
   std::ostringstream out;
+  if (missing == 0) {
+    // Every stage measured: the study's time from the records alone (nothing estimated).
+    if (stage_seconds.empty() || !all_timed) return "";
+    out << "\n## Every case run at `" << resolution << "` (study `" << study.name << "`)\n\n"
+        << "Every stilling basin of the study has a current record of both methods at `" << resolution
+        << "`. The whole study from the records' measured wall times (on their own threads or ranks): SPH "
+        << duration_text(measured["sph"]) << ", VOF " << duration_text(measured["vof"])
+        << ". On two cores (`hydrojump study`, two stages at a time, the largest case's first, each on one thread or "
+           "rank), these stage times take ~"
+        << duration_text(list_schedule_seconds(stage_seconds, largest_first(stage_work), 2))
+        << " (list schedule of the measured times; the comparisons not counted).\n";
+    return out.str();
+  }
   out << "\n## Not run at `" << resolution << "` (study `" << study.name << "`)\n\n"
       << "Cases of the study with no current record of a method (none, or a stale one), with the size of the run (particles "
          "from the water area, cells between the bed and the surface sizes: rough counts) and its estimated wall "

@@ -27,7 +27,10 @@ std::string with_headline(const std::string& text, const std::string& block, con
 // The stilling basins of `study` that have no record of a method at `resolution`, as a Markdown table
 // with the size of each missing run (water area / dx^2 particles, cells from the VOF sizes, simulated time)
 // and its wall time estimated from a timed record of the same method: one at `resolution` if there is one,
-// else one at another resolution of the study (the scaling includes the resolution's sizes).
+// else one at another resolution of the study (the scaling includes the resolution's sizes). Either way
+// it ends with the whole study's time (measured plus estimated, and scheduled on two cores as
+// `hydrojump study` runs it); when every basin has a current timed record of both methods it gives that
+// time alone, measured, under "Every case run at"; empty when there is nothing to say.
 std::string not_run_markdown(const cases::Study& study, const std::vector<ValidationRecord>& records,
                              const std::string& resolution);
 

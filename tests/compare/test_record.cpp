@@ -316,6 +316,30 @@ TEST_CASE("The whole study's stages, measured or estimated, are scheduled two at
   CHECK_THAT(md, Catch::Contains("these stage times take ~" + expected + " (list schedule"));
   // Without a VOF record the VOF stages have no time: no schedule.
   CHECK_THAT(not_run_markdown(study, {a}, "quick"), !Catch::Contains("list schedule"));
+  // Every basin recorded with both methods (each record's time as the estimate above gave it): nothing
+  // is listed as not run, and the same schedule is given as measured.
+  std::vector<ValidationRecord> all;
+  double sph_s = 0.0, vof_s = 0.0;
+  for (const auto& c : study.cases) {
+    if (!c.stilling_basin() || !c.resolutions.count("quick")) continue;
+    for (ValidationRecord r : {a, v}) {
+      r.case_id = c.id;
+      const bool sph = r.method == "sph";
+      r.wall_time_s = c.id == "A" ? *r.wall_time_s : *r.wall_time_s * work(c, sph) / work(ca, sph);
+      (sph ? sph_s : vof_s) += *r.wall_time_s;
+      all.push_back(r);
+    }
+  }
+  const std::string every = not_run_markdown(study, all, "quick");
+  INFO(every);
+  auto minutes_text = [](double seconds) {
+    const long m = (std::lround(seconds) + 30) / 60;
+    return m >= 60 ? std::to_string(m / 60) + " h " + (m % 60 < 10 ? "0" : "") + std::to_string(m % 60) + " min"
+                   : std::to_string(m) + " min";
+  };
+  CHECK_THAT(every, Catch::Contains("## Every case run at `quick`") && !Catch::Contains("## Not run"));
+  CHECK_THAT(every, Catch::Contains("SPH " + minutes_text(sph_s) + ", VOF " + minutes_text(vof_s) + "."));
+  CHECK_THAT(every, Catch::Contains("these stage times take ~" + expected + " (list schedule of the measured times"));
 }
 
 TEST_CASE("Cases not run at a finer resolution are estimated from a record at another resolution",
