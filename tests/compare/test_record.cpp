@@ -48,6 +48,13 @@ ValidationRecord sample_record(const std::string& method, double y2) {
   return r;
 }
 
+// A wall time as the document writes it, rounded to the minute: "29 min", "1 h 02 min".
+std::string minutes_text(double seconds) {
+  const long m = (std::lround(seconds) + 30) / 60;
+  return m >= 60 ? std::to_string(m / 60) + " h " + (m % 60 < 10 ? "0" : "") + std::to_string(m % 60) + " min"
+                 : std::to_string(m) + " min";
+}
+
 void write(const fs::path& p, const std::string& text) {
   fs::create_directories(p.parent_path());
   std::ofstream(p) << text;
@@ -273,10 +280,7 @@ TEST_CASE("Cases not run are listed with a wall time scaled from a measured reco
   double estimated_s = 0.0;
   for (const auto& c : study.cases)
     if (c.id != "A" && c.stilling_basin() && c.resolutions.count("quick")) estimated_s += 1800.0 * work(c) / work(ca);
-  const long total_min = (std::lround(estimated_s) + 30) / 60;  // rounded to the minute
-  const std::string estimate = total_min >= 60 ? std::to_string(total_min / 60) + " h " +
-                                                     (total_min % 60 < 10 ? "0" : "") + std::to_string(total_min % 60) + " min"
-                                               : std::to_string(total_min) + " min";
+  const std::string estimate = minutes_text(estimated_s);
   CHECK_THAT(md, Catch::Contains("SPH 30 min measured + ~" + estimate + " estimated; VOF 0 min measured + unknown estimated."));
 }
 
@@ -307,10 +311,7 @@ TEST_CASE("The whole study's stages, measured or estimated, are scheduled two at
   std::stable_sort(stages.begin(), stages.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
   double free_at[2] = {0.0, 0.0};
   for (const auto& st : stages) *std::min_element(free_at, free_at + 2) += st.second;
-  const long total_min = (std::lround(std::max(free_at[0], free_at[1])) + 30) / 60;
-  const std::string expected = total_min >= 60 ? std::to_string(total_min / 60) + " h " +
-                                                     (total_min % 60 < 10 ? "0" : "") + std::to_string(total_min % 60) + " min"
-                                               : std::to_string(total_min) + " min";
+  const std::string expected = minutes_text(std::max(free_at[0], free_at[1]));
   const std::string md = not_run_markdown(study, {a, v}, "quick");
   INFO(md);
   CHECK_THAT(md, Catch::Contains("these stage times take ~" + expected + " (list schedule"));
@@ -332,11 +333,6 @@ TEST_CASE("The whole study's stages, measured or estimated, are scheduled two at
   }
   const std::string every = not_run_markdown(study, all, "quick");
   INFO(every);
-  auto minutes_text = [](double seconds) {
-    const long m = (std::lround(seconds) + 30) / 60;
-    return m >= 60 ? std::to_string(m / 60) + " h " + (m % 60 < 10 ? "0" : "") + std::to_string(m % 60) + " min"
-                   : std::to_string(m) + " min";
-  };
   CHECK_THAT(every, Catch::Contains("## Every case run at `quick`") && !Catch::Contains("## Not run"));
   CHECK_THAT(every, Catch::Contains("SPH " + minutes_text(sph_s) + ", VOF " + minutes_text(vof_s) + "."));
   CHECK_THAT(every, Catch::Contains("these stage times take ~" + expected + " (list schedule of the measured times"));
