@@ -95,27 +95,27 @@ std::string cell_text(const std::string& text) {
   return out;
 }
 
-// The structure check (jump_structure.hpp) from the jet height fraction and the wall-jet profile
-// deviation at x_2y2: "classic (0.12, 0.08)", "wall jet, profile off (0.12, 0.23)", "surface jet (0.85)";
-// a record without the deviation (made before it was measured) shows the jet height alone.
-std::string structure_text(const ValidationRecord& r) {
-  const double jet = value_of(r, "jet_height"), dev = value_of(r, "wall_jet_deviation");
-  if (!std::isfinite(jet)) return dash;
-  if (jet >= classic_jet_height_limit) return "surface jet (" + fix(jet, 2) + ")";
-  if (!std::isfinite(dev)) return "wall jet (" + fix(jet, 2) + ")";
-  return std::string(classic_structure(jet, dev) ? "classic" : "wall jet, profile off") + " (" + fix(jet, 2) + ", " +
-         fix(dev, 2) + ")";
-}
-
-// The structure's name alone (structure_text without the numbers): "classic", "wall jet, profile off",
-// "wall jet, profile unknown" (no half-velocity height, or a record made before it was measured),
-// "surface jet"; empty where the record has no jet height.
+// The structure's name alone: "classic", "wall jet, profile off", "wall jet, profile unknown" (no
+// half-velocity height, or a record made before it was measured), "surface jet"; empty where the record
+// has no jet height.
 std::string structure_kind(const ValidationRecord& r) {
   const double jet = value_of(r, "jet_height"), dev = value_of(r, "wall_jet_deviation");
   if (!std::isfinite(jet)) return "";
   if (jet >= classic_jet_height_limit) return "surface jet";
   if (!std::isfinite(dev)) return "wall jet, profile unknown";
   return classic_structure(jet, dev) ? "classic" : "wall jet, profile off";
+}
+
+// The structure check (jump_structure.hpp) with its numbers, the jet height fraction and the wall-jet
+// profile deviation at x_2y2: "classic (0.12, 0.08)", "wall jet, profile off (0.12, 0.23)", "surface jet
+// (0.85)"; a record without the deviation shows the jet height alone ("wall jet (0.12)").
+std::string structure_text(const ValidationRecord& r) {
+  const std::string kind = structure_kind(r);
+  if (kind.empty()) return dash;
+  const double jet = value_of(r, "jet_height"), dev = value_of(r, "wall_jet_deviation");
+  if (!std::isfinite(dev) || kind == "surface jet")
+    return (kind == "surface jet" ? kind : std::string("wall jet")) + " (" + fix(jet, 2) + ")";
+  return kind + " (" + fix(jet, 2) + ", " + fix(dev, 2) + ")";
 }
 
 // The resolutions in the order of refinement: quick, default, fine, then any other by name.
@@ -458,6 +458,12 @@ std::string not_run_markdown(const cases::Study& study, const std::vector<Valida
       ++missing;
     }
   }
+  // The same stages run by `hydrojump study` on two cores: two at a time, the largest case's first.
+  const auto schedule_text = [&] {
+    return " On two cores (`hydrojump study`, two stages at a time, the largest case's first, each on one thread or "
+           "rank), these stage times take ~" +
+           duration_text(list_schedule_seconds(stage_seconds, largest_first(stage_work), 2)) + " (list schedule";
+  };
   std::ostringstream out;
   if (missing == 0) {
     // Every stage measured: the study's time from the records alone (nothing estimated).
@@ -465,11 +471,8 @@ std::string not_run_markdown(const cases::Study& study, const std::vector<Valida
     out << "\n## Every case run at `" << resolution << "` (study `" << study.name << "`)\n\n"
         << "Every stilling basin of the study has a current record of both methods at `" << resolution
         << "`. The whole study from the records' measured wall times (on their own threads or ranks): SPH "
-        << duration_text(measured["sph"]) << ", VOF " << duration_text(measured["vof"])
-        << ". On two cores (`hydrojump study`, two stages at a time, the largest case's first, each on one thread or "
-           "rank), these stage times take ~"
-        << duration_text(list_schedule_seconds(stage_seconds, largest_first(stage_work), 2))
-        << " (list schedule of the measured times; the comparisons not counted).\n";
+        << duration_text(measured["sph"]) << ", VOF " << duration_text(measured["vof"]) << "."
+        << schedule_text() << " of the measured times; the comparisons not counted).\n";
     return out.str();
   }
   out << "\n## Not run at `" << resolution << "` (study `" << study.name << "`)\n\n"
@@ -493,12 +496,7 @@ std::string not_run_markdown(const cases::Study& study, const std::vector<Valida
     else out << " + " << (reference.count(method) ? "~" + duration_text(estimated[method]) : std::string("unknown")) << " estimated";
   }
   out << ".";
-  // The same stages run by `hydrojump study` on two cores: two at a time, the largest case's first.
-  if (all_timed)
-    out << " On two cores (`hydrojump study`, two stages at a time, the largest case's first, each on one thread or "
-           "rank), these stage times take ~"
-        << duration_text(list_schedule_seconds(stage_seconds, largest_first(stage_work), 2))
-        << " (list schedule; the comparisons not counted).";
+  if (all_timed) out << schedule_text() << "; the comparisons not counted).";
   out << "\n";
   return out.str();
 }
