@@ -7,7 +7,6 @@
 
 #include <omp.h>
 
-#include "sph/cell_pairs.hpp"
 #include "sph/cpu_dispatch.hpp"
 #include "sph/kernel.hpp"
 #include "sph/neighbour_list.hpp"
@@ -23,11 +22,14 @@ namespace hydrojump::sph {
 //   continuity (fluid):  D_i = sum_j m_j (v_i - v_j) . grad_i W_ij + diffusion_i
 //   continuity (DBC wall b):  D_b = sum_j m_j (v_b - v_j) . grad_b W_bj          (boundary_dbc.hpp)
 //   momentum (fluid):    a_i = -sum_j m_j (p_i + p_j)/(rho_i rho_j) grad_i W_ij + viscous_i + g
-// and the time-step inputs max|a_i| and max_ij |h v_ij.r_ij / (r_ij^2 + eta^2)|. Each pair is
-// evaluated once and its terms added to both particles (pair_terms.hpp has them term by term); the
-// symmetric pressure term conserves momentum pairwise (Monaghan 1992, Annu. Rev. Astron. Astrophys.
-// 30:543-574). The pair loop is instantiated for each kernel, viscosity model and density diffusion
-// term, so it carries no branch on the model.
+// and the time-step inputs max|a_i| and max_ij |h v_ij.r_ij / (r_ij^2 + eta^2)|. Each particle sums
+// its own terms over its own neighbours (a full Verlet list, neighbour_list.hpp; pair_terms.hpp has
+// the terms): a pair is evaluated from both of its particles, which costs each pair twice but writes
+// to no neighbour, so the loop over a particle's fluid neighbours vectorises (SIMD lanes over j) and
+// threads need no colouring. The pressure term is the symmetric form, so momentum is still conserved
+// pairwise (Monaghan 1992, Annu. Rev. Astron. Astrophys. 30:543-574) to round-off. The pair loop is
+// instantiated for each kernel, viscosity model and density diffusion term, so it carries no branch
+// on the model.
 namespace {
 
 using detail::OwnSums;
@@ -97,83 +99,89 @@ PairArrays pair_arrays(ParticleSet& ps, const SolverSettings& s, Scratch& w) {
   return a;
 }
 
-// A pair that is not fluid-fluid, by the kinds of its particles (pair_terms.hpp); the fluid one's
-// terms go to its arrays at once. Out of line: the fluid-fluid pairs are the loop's work.
-template <class K, Viscosity V, DensityDiffusion D>
-[[gnu::noinline]] void mixed_pair(const PairArrays& a, std::uint8_t ti, std::uint8_t tj, int i, int j, const detail::PairGeometry& r,
-                                  double& visc) {
-  const bool wi = is_wall_type(ti), wj = is_wall_type(tj);
-  if (ti != kFluid && tj != kFluid && wi == wj) return;  // wall-wall, buffer-buffer
-  OwnSums own;
-  if (ti == kFluid) {
-    if (wj) detail::fluid_wall_pair<V>(a, i, j, r.dx, r.dz, r.r2, r.f, own, visc);
-    else detail::fluid_pair<V, D, false>(a, a.model, detail::pair_particle<V>(a, i), j, r, own, visc);
-    own.add_to(a, i);
-  } else if (tj == kFluid) {
-    if (wi) detail::fluid_wall_pair<V>(a, j, i, -r.dx, -r.dz, r.r2, r.f, own, visc);
-    else detail::fluid_pair<V, D, false>(a, a.model, detail::pair_particle<V>(a, j), i, r.reversed(), own, visc);
-    own.add_to(a, j);
-  } else if (wi) {
-    detail::buffer_wall_pair(a, j, i, -r.dx, -r.dz, r.f);
-  } else {
-    detail::buffer_wall_pair(a, i, j, r.dx, r.dz, r.f);
+// Fluid particle i's terms (into `own`) from its non-wall neighbours k in [begin, end) (fluid or
+// open-boundary buffer particles: the same terms for i), a loop the compiler vectorises with gathers
+// of j's values. A listed pair beyond the support has F = 0 and so adds nothing but its viscous rate,
+// which is masked. always_inline, as the pair terms: pair_loop's CPU clones (cpu_dispatch.hpp) would
+// otherwise call the baseline's copy.
+template <class K, Viscosity V, DensityDiffusion D, bool Periodic>
+[[gnu::always_inline]] inline void fluid_neighbours(const PairArrays& a, const detail::PairModel& c, const K& kernel,
+                                                    const detail::PairParticle& pi, const NeighbourList& list, int begin, int end,
+                                                    OwnSums& own, double& visc) {
+  const int* nb = list.neighbours();
+  const double* shift = list.shifts();
+  double d = 0.0, ax = 0.0, az = 0.0, g0 = 0.0, g1 = 0.0, g2 = 0.0, most = 0.0;
+#pragma omp simd reduction(+ : d, ax, az, g0, g1, g2) reduction(max : most)
+  for (int k = begin; k < end; ++k) {
+    const int j = nb[k];
+    double xj = a.x[j];
+    if constexpr (Periodic) xj += shift[k];
+    const double dx = pi.x - xj, dz = pi.z - a.z[j];
+    const double r2 = dx * dx + dz * dz;
+    const detail::PairGeometry r{dx, dz, r2, kernel.gradient_factor(std::sqrt(r2))};
+    OwnSums t;
+    double rate = 0.0;
+    detail::fluid_pair<V, D>(a, c, pi, j, r, t, rate);
+    d += t.d, ax += t.ax, az += t.az;
+    if constexpr (V == Viscosity::laminar_sps) g0 += t.grad[0], g1 += t.grad[1], g2 += t.grad[2];
+    most = std::max(most, r2 < c.support2 ? rate : 0.0);
   }
+  own.d += d, own.ax += ax, own.az += az;
+  own.grad[0] += g0, own.grad[1] += g1, own.grad[2] += g2;
+  visc = std::max(visc, most);
 }
 
-// Particle i (values pi) and j at x_j + shift_x: a fluid-fluid pair's i terms into `own`, j's into
-// the arrays; other pairs through mixed_pair.
-template <class K, Viscosity V, DensityDiffusion D>
-[[gnu::always_inline]] inline void pair(const PairArrays& a, const detail::PairModel& c, const K& kernel, const std::uint8_t* type,
-                                        const detail::PairParticle& pi, int i, int j, double shift_x, OwnSums& own, double& visc) {
-  const double dx = pi.x - (a.x[j] + shift_x), dz = pi.z - a.z[j];
-  const double r2 = dx * dx + dz * dz;
-  if (r2 >= c.support2) return;
-  const detail::PairGeometry r{dx, dz, r2, kernel.gradient_factor(std::sqrt(r2))};
-  if (type[i] == kFluid && type[j] == kFluid) detail::fluid_pair<V, D, true>(a, c, pi, j, r, own, visc);
-  else mixed_pair<K, V, D>(a, type[i], type[j], i, j, r, visc);
-}
-
-// Particle i's listed pairs (neighbour_list.hpp). A wall or buffer particle i (FluidI false) pairs
-// only with fluid, and with DBC also with the other kind (a wall's continuity): the rest is skipped
-// before its distance is computed. always_inline, as pair() and the pair terms: pair_loop's CPU clones
-// (cpu_dispatch.hpp) would otherwise call the baseline's copy.
-template <class K, Viscosity V, DensityDiffusion D, bool FluidI>
-[[gnu::always_inline]] inline void sweep(const PairArrays& a, const K& kernel, const std::uint8_t* type, int i, const NeighbourList& list, OwnSums& own,
-                  double& visc) {
+// Fluid particle i: its non-wall neighbours, then its wall neighbours (fewer; the nearest wall kept
+// for the SPS mixing length and the wall function).
+template <class K, Viscosity V, DensityDiffusion D, bool Periodic>
+[[gnu::always_inline]] inline void fluid_particle(const PairArrays& a, const K& kernel, const NeighbourList& list, int i, double& visc) {
   const detail::PairModel c = a.model;
   const detail::PairParticle pi = detail::pair_particle<V>(a, i);
-  const bool i_wall = is_wall_type(type[i]);
-  const auto wanted = [&](int j) { return FluidI || type[j] == kFluid || (c.dbc && i_wall != is_wall_type(type[j])); };
+  OwnSums own;
+  fluid_neighbours<K, V, D, Periodic>(a, c, kernel, pi, list, list.begin(i), list.wall_begin(i), own, visc);
   const int* nb = list.neighbours();
-  const int plain_end = list.plain_end(i), end = list.end(i);
-  for (int k = list.begin(i); k < plain_end; ++k)
-    if (wanted(nb[k])) pair<K, V, D>(a, c, kernel, type, pi, i, nb[k], 0.0, own, visc);
-  for (int k = list.shifted_begin(i); k < end; ++k)
-    if (wanted(nb[k])) pair<K, V, D>(a, c, kernel, type, pi, i, nb[k], list.shift(k), own, visc);
+  for (int k = list.wall_begin(i), end = list.end(i); k < end; ++k) {
+    const int b = nb[k];
+    const double dx = pi.x - (a.x[b] + list.shift(k)), dz = pi.z - a.z[b];
+    const double r2 = dx * dx + dz * dz;
+    if (r2 >= c.support2) continue;
+    detail::fluid_wall_pair<V>(a, i, b, dx, dz, r2, kernel.gradient_factor(std::sqrt(r2)), own, visc);
+  }
+  own.add_to(a, i);
 }
 
-// Every pair of particles closer than the support once: each cell's particles with their listed
-// neighbours (the cell's later particles and its forward neighbours' when the list was built), the
-// cells of a colour phase in parallel, each thread the cells of its own slice of the particles
-// (cell_pairs.hpp). Returns the max viscous rate.
-template <class K, Viscosity V, DensityDiffusion D>
-HYDROJUMP_HOT_LOOP double pair_loop(const PairArrays& a, const K& kernel, const ParticleSet& ps, const CellList& cells, const NeighbourList& list) {
-  const std::vector<std::vector<int>>& phases = list.phases();
+// A DBC wall particle b's continuity from its (non-wall) neighbours j (boundary_dbc.hpp):
+//   D_b = sum_j m_j (v_b - v_j) . F (r_b - r_j).
+template <class K>
+[[gnu::always_inline]] inline void dbc_wall_particle(const PairArrays& a, const K& kernel, const NeighbourList& list, int b) {
+  const int* nb = list.neighbours();
+  const double xb = a.x[b], zb = a.z[b], ub = a.u[b], wb = a.w[b], support2 = a.model.support2;
+  double d = 0.0;
+  for (int k = list.begin(b), end = list.wall_begin(b); k < end; ++k) {
+    const int j = nb[k];
+    const double dx = xb - (a.x[j] + list.shift(k)), dz = zb - a.z[j];
+    const double r2 = dx * dx + dz * dz;
+    if (r2 >= support2) continue;
+    d += dbc_density_rate_pair(a.m[j], kernel.gradient_factor(std::sqrt(r2)), a.u[j] - ub, a.w[j] - wb, dx, dz);
+  }
+  a.drho[b] += d;
+}
+
+// Every particle's sums over its own list (a full list: each pair is met from both particles), the
+// threads each a slice of consecutive particles with about the same work (neighbour_list.hpp); a
+// particle's sum has the same order whatever the thread count. Open-boundary buffer particles, and
+// mDBC walls, take nothing here. Returns the max viscous rate.
+template <class K, Viscosity V, DensityDiffusion D, bool Periodic>
+HYDROJUMP_HOT_LOOP double pair_loop(const PairArrays& a, const K& kernel, const ParticleSet& ps, const NeighbourList& list) {
   const std::uint8_t* type = ps.type.data();
+  const bool dbc = a.model.dbc;
   double visc = 0.0;
 #pragma omp parallel if (use_threads(ps.size())) reduction(max : visc)
   {
     const int threads = omp_get_num_threads(), t = omp_get_thread_num();
-    const int first = list.slice_begin(t, threads), last = list.slice_begin(t + 1, threads);
-    for (const std::vector<int>& phase : phases) {
-      for (const int c : phase_cells_in(phase, cells, first, last))
-        for (int i = cells.cell_start(c), end = cells.cell_start(c + 1); i < end; ++i) {
-          OwnSums own;
-          if (type[i] == kFluid) sweep<K, V, D, true>(a, kernel, type, i, list, own, visc);
-          else sweep<K, V, D, false>(a, kernel, type, i, list, own, visc);
-          own.add_to(a, i);
-        }
-#pragma omp barrier
+    for (int i = list.slice_begin(t, threads), last = list.slice_begin(t + 1, threads); i < last; ++i) {
+      if (type[i] == kFluid) fluid_particle<K, V, D, Periodic>(a, kernel, list, i, visc);
+      else if (dbc && is_wall_type(type[i])) dbc_wall_particle(a, kernel, list, i);
     }
   }
   return visc;
@@ -244,7 +252,7 @@ InteractionSummary interactions_with(ParticleSet& ps, const Neighbours& nb, cons
                                      const WallDistanceTable* wall_distances) {
   Scratch w;
   const PairArrays a = pair_arrays(ps, s, w);
-  const double max_visc = pair_loop<K, V, D>(a, kernel, ps, nb.cells, nb.list);
+  const double max_visc = nb.list.periodic() ? pair_loop<K, V, D, true>(a, kernel, ps, nb.list) : pair_loop<K, V, D, false>(a, kernel, ps, nb.list);
   const Eigen::Index n = ps.size();
   double max_acc2 = 0.0;
 #pragma omp parallel for schedule(static) reduction(max : max_acc2) if (use_threads(n))
@@ -287,7 +295,7 @@ InteractionSummary compute_interactions(ParticleSet& ps, const CellList& cells, 
 InteractionSummary compute_interactions(ParticleSet& ps, const CellList& cells, const SolverSettings& s,
                                         const WallDistanceTable* wall_distances) {
   NeighbourList list;
-  list.build(ps.x, ps.z, ps.type, cells, s.support());
+  list.build(ps.x, ps.z, ps.type, cells, s.support(), s.boundary == BoundaryMethod::dbc);
   return compute_interactions(ps, cells, list, s, wall_distances);
 }
 

@@ -1,9 +1,8 @@
 // Particle interactions of one evaluation of the right-hand side: pressure from the equation of
 // state, the continuity equation with density diffusion, the momentum equation with the chosen
-// viscosity, and the boundary treatment. Each pair of particles is evaluated once and its terms are
-// added to both (pair_terms.hpp); the cells run in colour phases whose cells never write to the same
-// particle (cell_pairs.hpp), so every particle receives its terms in the same order whatever the
-// number of threads, and results do not depend on the thread count.
+// viscosity, and the boundary treatment. Each particle sums its own terms over its neighbours
+// (pair_terms.hpp, neighbour_list.hpp), in a fixed order whatever the number of threads, so results
+// do not depend on the thread count.
 //
 // The particle arrays must be in the order of `cells` (ParticleSet::permute(cells.order())).
 #pragma once

@@ -19,6 +19,7 @@
 // Example (code): `Kernel k = Kernel::make("wendland_c2", 1.4142 * 0.01);  double w = k.value(0.005);`
 #pragma once
 
+#include <algorithm>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -38,11 +39,10 @@ struct WendlandC2 {
     const double a2 = a * a;
     return alpha * a2 * a2 * (2.0 * q + 1.0);
   }
-  // W'(r)/r = -5 alpha / h^2 (1 - q/2)^3
+  // W'(r)/r = -5 alpha / h^2 (1 - q/2)^3, 0 for q >= 2. Without a branch (max instead), so the pair
+  // loop's SIMD lanes need none.
   double gradient_factor(double r) const {
-    const double q = r * inv_h;
-    if (q >= 2.0) return 0.0;
-    const double a = 1.0 - 0.5 * q;
+    const double a = std::max(0.0, 1.0 - 0.5 * (r * inv_h));
     return -5.0 * alpha * inv_h * inv_h * a * a * a;
   }
 };
@@ -58,13 +58,14 @@ struct CubicSpline {
     const double a = 2.0 - q;
     return alpha * 0.25 * a * a * a;
   }
-  // W'(r)/r = alpha/h^2 (-3 + 9/4 q) for q < 1,  -3/4 alpha (2 - q)^2 / (q h^2) for 1 <= q < 2
+  // W'(r)/r = alpha/h^2 (-3 + 9/4 q) for q < 1,  -3/4 alpha (2 - q)^2 / (q h^2) for 1 <= q < 2, 0
+  // beyond. Both pieces computed and one selected (no branch for the pair loop's SIMD lanes).
   double gradient_factor(double r) const {
     const double q = r * inv_h;
-    if (q >= 2.0) return 0.0;
-    if (q < 1.0) return alpha * inv_h * inv_h * (-3.0 + 2.25 * q);
-    const double a = 2.0 - q;
-    return -0.75 * alpha * a * a * inv_h * inv_h / q;
+    const double inner = alpha * inv_h * inv_h * (-3.0 + 2.25 * q);
+    const double a = std::max(0.0, 2.0 - q);
+    const double outer = -0.75 * alpha * a * a * inv_h * inv_h / std::max(q, 1.0);
+    return q < 1.0 ? inner : outer;
   }
 };
 

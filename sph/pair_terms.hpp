@@ -1,23 +1,24 @@
-// The terms of one pair of particles i, j in the symmetric pair loop (interactions.cpp), added to both
-// particles at once. With r = r_i - r_j (periodic image of j), g = grad_i W_ij = F(r) r = -grad_j W_ji
+// The terms particle i takes from a neighbour j in the pair loop (interactions.cpp), which sums them
+// over each particle's own list. With r = r_i - r_j (periodic image of j), g = grad_i W_ij = F(r) r
 // and v = v_i - v_j:
 //
-//   continuity:  D_i += m_j v.g                        D_j += m_i v.g
-//   diffusion:   D_i += -2 delta h c0 F (rho_j - rho_i - H(z_j - z_i)) V_j   (and i <-> j; Fourtakas
-//                et al. 2019 with the hydrostatic part H, Molteni & Colagrossi 2009 with H = 0)
-//   pressure:    a_i += -V_j (p_i + p_j)/rho_i g       a_j += V_i (p_i + p_j)/rho_j g
-//   artificial:  a_i += -m_j Pi_ij g                   a_j += m_i Pi_ij g
+//   continuity:  D_i += m_j v.g
+//   diffusion:   D_i += -2 delta h c0 F (rho_j - rho_i - H(z_j - z_i)) V_j   (Fourtakas et al. 2019
+//                with the hydrostatic part H, Molteni & Colagrossi 2009 with H = 0)
+//   pressure:    a_i += -V_j (p_i + p_j)/rho_i g
+//   artificial:  a_i += -m_j Pi_ij g,
 //                Pi_ij = -2 alpha c0 h v.r / ((r^2 + eta^2)(rho_i + rho_j)) for v.r < 0 (Monaghan 1992)
-//   laminar:     a_i += m_j L v                        a_j += -m_i L v,
-//                L = 4 nu0 F r^2 / ((r^2 + eta^2)(rho_i + rho_j))  (Lo & Shao 2002)
-//   SPS stress:  a_i += m_j (S_i + S_j) g              a_j += -m_i (S_i + S_j) g,   S = tau / rho^2
-//   strain rate: G_i += -V_j (v_x g_x, v_z g_z, v_x g_z + v_z g_x)   G_j likewise with V_i
+//   laminar:     a_i += m_j L v,  L = 4 nu0 F r^2 / ((r^2 + eta^2)(rho_i + rho_j))  (Lo & Shao 2002)
+//   SPS stress:  a_i += m_j (S_i + S_j) g,   S = tau / rho^2
+//   strain rate: G_i += -V_j (v_x g_x, v_z g_z, v_x g_z + v_z g_x)
 //                (du/dx, dw/dz and du/dz + dw/dx: all the SPS stress reads of grad v)
 //
-// and the viscous time-step rate h |v.r| / (r^2 + eta^2) of an approaching pair. A wall neighbour b
-// enters a fluid particle's viscous terms with its mDBC wall velocity, the artificial viscosity with
-// the wall factor, and gives the fluid particle nothing else; a DBC wall gets only the continuity.
-// Open-boundary buffer particles act on fluid particles as fluid and receive nothing.
+// and the viscous time-step rate h |v.r| / (r^2 + eta^2) of an approaching pair. Each term is the
+// pair's symmetric form (j takes the same with i and j swapped from its own list), so momentum is
+// conserved pairwise. A wall neighbour b enters a fluid particle's viscous terms with its mDBC wall
+// velocity, the artificial viscosity with the wall factor, and gives the fluid particle nothing else;
+// a DBC wall takes only the continuity (boundary_dbc.hpp). Open-boundary buffer particles act on
+// fluid particles as fluid and take nothing.
 #pragma once
 
 #include <algorithm>
@@ -70,8 +71,7 @@ struct PairGeometry {
   PairGeometry reversed() const { return {-dx, -dz, r2, f}; }
 };
 
-// What particle i gathers over the pairs the loop meets from it, added to its arrays once after them
-// (add_to); j's terms go to the arrays at once.
+// What particle i gathers over its neighbours, added to its arrays once after them (add_to).
 struct OwnSums {
   double d = 0.0, ax = 0.0, az = 0.0, grad[3] = {0.0, 0.0, 0.0};
   void add_to(const PairArrays& a, int i) const {
@@ -83,67 +83,41 @@ struct OwnSums {
   }
 };
 
-// Fluid particle i (values pi) and fluid-side particle j (fluid or, with Both = false, a buffer
-// particle that receives nothing).
-template <Viscosity V, DensityDiffusion D, bool Both>
+// Fluid particle i (values pi) and fluid-side particle j (fluid or buffer): i's terms.
+template <Viscosity V, DensityDiffusion D>
 [[gnu::always_inline]] inline void fluid_pair(const PairArrays& a, const PairModel& c, const PairParticle& pi, int j, const PairGeometry& r,
                                               OwnSums& own, double& visc) {
   const double dx = r.dx, dz = r.dz, r2 = r.r2, f = r.f;
   const double gx = f * dx, gz = f * dz;
   const double du = pi.u - a.u[j], dw = pi.w - a.w[j];
   const double v_dot_r = du * dx + dw * dz;
-  const double mi = pi.m, mj = a.m[j], vi = pi.volume, vj = a.volume[j];
-  const double rhoi = pi.rho, rhoj = a.rho[j];
-  const double dot = du * gx + dw * gz;
-  double rate_i = mj * dot, rate_j = mi * dot;
+  const double mj = a.m[j], vj = a.volume[j];
+  const double rhoj = a.rho[j];
+  double rate = mj * (du * gx + dw * gz);
   if constexpr (D != DensityDiffusion::none) {
-    double jump = rhoj - rhoi, jump_back = rhoi - rhoj;
-    if constexpr (D == DensityDiffusion::fourtakas) {
-      jump -= c.hydrostatic.difference(-dz);
-      jump_back -= c.hydrostatic.difference(dz);
-    }
-    rate_i += density_diffusion_pair(c.delta_h_c0, f, jump, vj);
-    rate_j += density_diffusion_pair(c.delta_h_c0, f, jump_back, vi);
+    double jump = rhoj - pi.rho;
+    if constexpr (D == DensityDiffusion::fourtakas) jump -= c.hydrostatic.difference(-dz);
+    rate += density_diffusion_pair(c.delta_h_c0, f, jump, vj);
   }
-  const double rho_sum = rhoi + rhoj;
+  const double rho_sum = pi.rho + rhoj;
   const double inv = 1.0 / ((r2 + c.eta2) * rho_sum);
-  const double approach = v_dot_r < 0.0 ? v_dot_r * inv : 0.0;
+  const double approach = std::min(v_dot_r, 0.0) * inv;  // 0 unless approaching; no branch (SIMD lanes)
   visc = std::max(visc, -c.h * rho_sum * approach);
-  const double p_sum = pi.p + a.p[j];
-  double si = -vj * p_sum * pi.inv_rho, sj = vi * p_sum * a.inv_rho[j];
-  if constexpr (V == Viscosity::artificial) {
-    const double pi_ij = artificial_viscosity_pair(c.alpha_c0_h, approach);
-    si -= mj * pi_ij;
-    sj += mi * pi_ij;
-  }
-  double axi = si * gx, azi = si * gz, axj = sj * gx, azj = sj * gz;
+  double si = -vj * (pi.p + a.p[j]) * pi.inv_rho;
+  if constexpr (V == Viscosity::artificial) si -= mj * artificial_viscosity_pair(c.alpha_c0_h, approach);
+  double axi = si * gx, azi = si * gz;
   if constexpr (V == Viscosity::laminar_sps) {
     const double lam = laminar_viscosity_pair(c.nu0, f, r2, inv);
     const double sxx = pi.sxx + a.sxx[j], sxz = pi.sxz + a.sxz[j], szz = pi.szz + a.szz[j];
-    const double tx = sxx * gx + sxz * gz, tz = sxz * gx + szz * gz;
-    axi += mj * (lam * du + tx);
-    azi += mj * (lam * dw + tz);
-    axj -= mi * (lam * du + tx);
-    azj -= mi * (lam * dw + tz);
-    const double sx = du * gx, sz = dw * gz, shear = du * gz + dw * gx;
-    own.grad[0] -= vj * sx;
-    own.grad[1] -= vj * sz;
-    own.grad[2] -= vj * shear;
-    if constexpr (Both) {
-      double* gj = a.grad + 3 * static_cast<std::size_t>(j);
-      gj[0] -= vi * sx;
-      gj[1] -= vi * sz;
-      gj[2] -= vi * shear;
-    }
+    axi += mj * (lam * du + sxx * gx + sxz * gz);
+    azi += mj * (lam * dw + sxz * gx + szz * gz);
+    own.grad[0] -= vj * du * gx;
+    own.grad[1] -= vj * dw * gz;
+    own.grad[2] -= vj * (du * gz + dw * gx);
   }
-  own.d += rate_i;
+  own.d += rate;
   own.ax += axi;
   own.az += azi;
-  if constexpr (Both) {
-    a.drho[j] += rate_j;
-    a.ax[j] += axj;
-    a.az[j] += azj;
-  }
 }
 
 // Fluid particle i and wall particle b at offset (dx, dz) = r_i - r_b, r2 < support^2, F = f.
@@ -161,7 +135,6 @@ inline void fluid_wall_pair(const PairArrays& a, int i, int b, double dx, double
   const double mb = a.m[b], rho_sum = a.rho[i] + a.rho[b];
   const double dot = du * gx + dw * gz;
   own.d += mb * dot;
-  if (a.model.dbc) a.drho[b] += dbc_density_rate_pair(a.m[i], f, du, dw, -dx, -dz);
   const double inv = 1.0 / ((r2 + a.model.eta2) * rho_sum);
   const double approach = v_dot_r < 0.0 ? v_dot_r * inv : 0.0;
   visc = std::max(visc, -a.model.h * rho_sum * approach);
@@ -184,11 +157,6 @@ inline void fluid_wall_pair(const PairArrays& a, int i, int b, double dx, double
   }
   own.ax += axi;
   own.az += azi;
-}
-
-// DBC wall b and buffer particle j at offset (dx, dz) = r_j - r_b: the wall's continuity only.
-inline void buffer_wall_pair(const PairArrays& a, int j, int b, double dx, double dz, double f) {
-  if (a.model.dbc) a.drho[b] += dbc_density_rate_pair(a.m[j], f, a.u[j] - a.u[b], a.w[j] - a.w[b], -dx, -dz);
 }
 
 }  // namespace hydrojump::sph::detail

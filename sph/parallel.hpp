@@ -2,7 +2,7 @@
 // under a millisecond and the fork/join of a parallel region costs more than it saves (on a loaded
 // machine much more: a descheduled thread stalls every barrier), so small runs stay on one thread.
 // Results do not depend on this choice: every loop adds to a particle in a fixed order (the pair
-// loop runs its cells in colour phases, cell_pairs.hpp).
+// loop: each particle sums over its own neighbour list, interactions.cpp).
 #pragma once
 
 #include <Eigen/Core>

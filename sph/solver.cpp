@@ -78,7 +78,7 @@ void Solver::search_neighbours() {
     particles_.permute(order);
     cells_.mark_sorted();
   }
-  neighbours_.build(ps.x_search, ps.z_search, ps.type, cells_, reach);
+  neighbours_.build(ps.x_search, ps.z_search, ps.type, cells_, reach, settings_.boundary == BoundaryMethod::dbc);
   if (settings_.boundary == BoundaryMethod::mdbc) ghosts_.build(ps.x_search, ps.z_search, ps, cells_, settings_, reach);
 }
 

@@ -22,7 +22,7 @@
 // interactions() renews the neighbour search when a particle has moved too far since the last one
 // (Verlet lists with a skin: the particles sorted by cell, the pairs closer than the support plus the
 // skin listed, and with mDBC each wall particle's ghost-node neighbours), then computes the boundary densities (mDBC), pressures, SPS stresses and the rates. Every loop adds to a particle in a
-// fixed order (the pair loop: each pair once, cells in colour phases, cell_pairs.hpp),
+// fixed order (the pair loop: each particle over its own full neighbour list),
 // so a step gives the same result with any number of OpenMP threads.
 #pragma once
 

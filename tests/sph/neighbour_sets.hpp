@@ -1,4 +1,4 @@
-// Oracles of the neighbour-search tests (test_cell_list.cpp, test_cell_pairs.cpp): random and
+// Oracles of the neighbour-search tests (test_cell_list.cpp, test_neighbour_list.cpp): random and
 // clustered point sets, and the brute-force O(N^2) pair search they are checked against.
 #pragma once
 
