@@ -28,6 +28,54 @@ constexpr double kSomeSupport = 0.5;
 // this |det| it is treated as singular.
 constexpr double kMinDeterminant = 1e-3;
 
+// The fluid side a ghost node sums over: particle arrays and the ghost list's entries.
+struct GhostFluid {
+  const double *x, *z, *mass, *rho, *u, *w;
+  const int* neighbours;
+  const double* shifts;  // periodic lists only
+};
+
+// The sums of mdbc_with over entries [begin, end) for a ghost node at (gx, gz):
+//   a = sum V_j [W, (x_j - x_g) W, (z_j - z_g) W; the same with dW/dx; with dW/dz]  (rows: W, dW/dx, dW/dz),
+//   rhs = sum m_j [W, dW/dx, dW/dz],  rhs_u = sum V_j u_j [...],  rhs_w = sum V_j w_j [...].
+// In scalars, so that the lanes of one SIMD loop run over j; an entry beyond the support adds exactly
+// 0 (its kernel value and gradient are 0 there), so the loop has no branch.
+struct GhostSums {
+  Eigen::Matrix3d a;
+  Eigen::Vector3d rhs, rhs_u, rhs_w;
+};
+
+template <bool Periodic, class K>
+[[gnu::always_inline]] inline GhostSums ghost_sums(const GhostFluid& f, const K& kernel, int begin, int end, double gx, double gz) {
+  double a00 = 0, a01 = 0, a02 = 0, a10 = 0, a11 = 0, a12 = 0, a20 = 0, a21 = 0, a22 = 0;
+  double m0 = 0, m1 = 0, m2 = 0, u0 = 0, u1 = 0, u2 = 0, w0 = 0, w1 = 0, w2 = 0;
+#pragma omp simd reduction(+ : a00, a01, a02, a10, a11, a12, a20, a21, a22, m0, m1, m2, u0, u1, u2, w0, w1, w2)
+  for (int k = begin; k < end; ++k) {
+    const int j = f.neighbours[k];  // the fluid side: fluid and buffer particles
+    double xj = f.x[j];
+    if constexpr (Periodic) xj += f.shifts[k];
+    const double rx = xj - gx, rz = f.z[j] - gz;  // r_j - r_g
+    const double r = std::sqrt(rx * rx + rz * rz);
+    const double wv = kernel.value(r);
+    const double fr = kernel.gradient_factor(r);
+    const double dwdx = -fr * rx, dwdz = -fr * rz;  // grad_g W = F (r_g - r_j)
+    const double v = f.mass[j] / f.rho[j];
+    const double vw = v * wv, vx = v * dwdx, vz = v * dwdz;
+    a00 += vw, a01 += vw * rx, a02 += vw * rz;
+    a10 += vx, a11 += vx * rx, a12 += vx * rz;
+    a20 += vz, a21 += vz * rx, a22 += vz * rz;
+    m0 += f.mass[j] * wv, m1 += f.mass[j] * dwdx, m2 += f.mass[j] * dwdz;
+    u0 += f.u[j] * vw, u1 += f.u[j] * vx, u2 += f.u[j] * vz;
+    w0 += f.w[j] * vw, w1 += f.w[j] * vx, w2 += f.w[j] * vz;
+  }
+  GhostSums g;
+  g.a << a00, a01, a02, a10, a11, a12, a20, a21, a22;
+  g.rhs = {m0, m1, m2};
+  g.rhs_u = {u0, u1, u2};
+  g.rhs_w = {w0, w1, w2};
+  return g;
+}
+
 // For every wall particle b with ghost node g (boundary_mdbc.hpp):
 //   A [rho_g, d rho/dx, d rho/dz]^T = [sum m_j W_gj, sum m_j dW_gj/dx, sum m_j dW_gj/dz]^T,
 //   rho_b = max(rho0, rho_g + (r_b - r_g) . grad rho_g),
@@ -37,35 +85,17 @@ constexpr double kMinDeterminant = 1e-3;
 template <class K>
 HYDROJUMP_HOT_LOOP void mdbc_with(ParticleSet& ps, const GhostNeighbourList& list, const SolverSettings& s, const K& kernel) {
   const Eigen::Index n = ps.size();
-  const double support2 = s.support() * s.support();
   const double rho0 = s.eos.rho0;
+  const GhostFluid f{ps.x.data(), ps.z.data(), ps.mass.data(), ps.rho.data(), ps.u.data(), ps.w.data(), list.neighbours(), list.shifts()};
 #pragma omp parallel for schedule(dynamic, 64) if (use_threads(n))
   for (Eigen::Index i = 0; i < n; ++i) {
     if (!is_wall_type(ps.type[i])) continue;  // walls only; buffers have imposed densities
     const double gx = ps.x[i] + ps.ghost_dx[i] + list.ghost_wrap(i);
     const double gz = ps.z[i] + ps.ghost_dz[i];
-    Eigen::Matrix3d a = Eigen::Matrix3d::Zero();
-    Eigen::Vector3d rhs = Eigen::Vector3d::Zero(), rhs_u = Eigen::Vector3d::Zero(), rhs_w = Eigen::Vector3d::Zero();
-    for (int k = list.begin(i), last = list.end(i); k < last; ++k) {
-      const int j = list.neighbour(k);  // the fluid side: fluid and buffer particles
-      const double rx = ps.x[j] + list.shift(k) - gx, rz = ps.z[j] - gz;  // r_j - r_g
-      const double r2 = rx * rx + rz * rz;
-      if (r2 >= support2) continue;
-      const double r = std::sqrt(r2);
-      const double wv = kernel.value(r);
-      const double f = kernel.gradient_factor(r);
-      const double dwdx = -f * rx, dwdz = -f * rz;  // grad_g W = F (r_g - r_j)
-      const double v = ps.mass[j] / ps.rho[j];
-      a(0, 0) += v * wv;        a(0, 1) += v * rx * wv;    a(0, 2) += v * rz * wv;
-      a(1, 0) += v * dwdx;      a(1, 1) += v * rx * dwdx;  a(1, 2) += v * rz * dwdx;
-      a(2, 0) += v * dwdz;      a(2, 1) += v * rx * dwdz;  a(2, 2) += v * rz * dwdz;
-      rhs(0) += ps.mass[j] * wv;
-      rhs(1) += ps.mass[j] * dwdx;
-      rhs(2) += ps.mass[j] * dwdz;
-      const Eigen::Vector3d basis(v * wv, v * dwdx, v * dwdz);
-      rhs_u += ps.u[j] * basis;
-      rhs_w += ps.w[j] * basis;
-    }
+    const GhostSums g = list.periodic() ? ghost_sums<true>(f, kernel, list.begin(i), list.end(i), gx, gz)
+                                        : ghost_sums<false>(f, kernel, list.begin(i), list.end(i), gx, gz);
+    const Eigen::Matrix3d& a = g.a;
+    const Eigen::Vector3d &rhs = g.rhs, &rhs_u = g.rhs_u, &rhs_w = g.rhs_w;
     double rho_b = rho0, u_g = 0.0, w_g = 0.0;
     if (a(0, 0) >= kSomeSupport) {  // the ghost node lies in the fluid (not mostly in air)
       const double det = a.determinant();

@@ -57,6 +57,9 @@ class GhostNeighbourList {
   int end(Eigen::Index b) const { return end_[static_cast<std::size_t>(b)]; }
   int neighbour(int k) const { return j_[static_cast<std::size_t>(k)]; }
   double shift(int k) const { return shift_.empty() ? 0.0 : shift_[static_cast<std::size_t>(k)]; }
+  const int* neighbours() const { return j_.data(); }
+  bool periodic() const { return !shift_.empty(); }
+  const double* shifts() const { return shift_.data(); }  // periodic lists only
   // What brings b's ghost node x_b + ghost_dx_b into the periodic domain as listed (0 if not periodic).
   double ghost_wrap(Eigen::Index b) const { return wrap_.empty() ? 0.0 : wrap_[static_cast<std::size_t>(b)]; }
   Eigen::Index particles() const { return static_cast<Eigen::Index>(end_.size()); }

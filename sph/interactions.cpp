@@ -34,11 +34,6 @@ namespace {
 
 using detail::OwnSums;
 
-// The neighbour search an interaction reads: the cells in the list's order and the list.
-struct Neighbours {
-  const CellList& cells;
-  const NeighbourList& list;
-};
 using detail::PairArrays;
 
 constexpr std::uint8_t kFluid = static_cast<std::uint8_t>(ParticleType::fluid);
@@ -248,11 +243,11 @@ double update_sps_stress(ParticleSet& ps, const SolverSettings& s, const Scratch
 }
 
 template <class K, Viscosity V, DensityDiffusion D>
-InteractionSummary interactions_with(ParticleSet& ps, const Neighbours& nb, const SolverSettings& s, const K& kernel,
+InteractionSummary interactions_with(ParticleSet& ps, const NeighbourList& list, const SolverSettings& s, const K& kernel,
                                      const WallDistanceTable* wall_distances) {
   Scratch w;
   const PairArrays a = pair_arrays(ps, s, w);
-  const double max_visc = nb.list.periodic() ? pair_loop<K, V, D, true>(a, kernel, ps, nb.list) : pair_loop<K, V, D, false>(a, kernel, ps, nb.list);
+  const double max_visc = list.periodic() ? pair_loop<K, V, D, true>(a, kernel, ps, list) : pair_loop<K, V, D, false>(a, kernel, ps, list);
   const Eigen::Index n = ps.size();
   double max_acc2 = 0.0;
 #pragma omp parallel for schedule(static) reduction(max : max_acc2) if (use_threads(n))
@@ -262,19 +257,19 @@ InteractionSummary interactions_with(ParticleSet& ps, const Neighbours& nb, cons
 }
 
 template <class K, Viscosity V>
-InteractionSummary with_diffusion(ParticleSet& ps, const Neighbours& nb, const SolverSettings& s, const K& kernel,
+InteractionSummary with_diffusion(ParticleSet& ps, const NeighbourList& list, const SolverSettings& s, const K& kernel,
                                   const WallDistanceTable* wall_distances) {
   const DensityDiffusion d = s.density.diffusion_delta > 0.0 ? s.density.diffusion : DensityDiffusion::none;
-  if (d == DensityDiffusion::molteni) return interactions_with<K, V, DensityDiffusion::molteni>(ps, nb, s, kernel, wall_distances);
-  if (d == DensityDiffusion::fourtakas) return interactions_with<K, V, DensityDiffusion::fourtakas>(ps, nb, s, kernel, wall_distances);
-  return interactions_with<K, V, DensityDiffusion::none>(ps, nb, s, kernel, wall_distances);
+  if (d == DensityDiffusion::molteni) return interactions_with<K, V, DensityDiffusion::molteni>(ps, list, s, kernel, wall_distances);
+  if (d == DensityDiffusion::fourtakas) return interactions_with<K, V, DensityDiffusion::fourtakas>(ps, list, s, kernel, wall_distances);
+  return interactions_with<K, V, DensityDiffusion::none>(ps, list, s, kernel, wall_distances);
 }
 
 template <class K>
-InteractionSummary with_model(ParticleSet& ps, const Neighbours& nb, const SolverSettings& s, const K& kernel,
+InteractionSummary with_model(ParticleSet& ps, const NeighbourList& list, const SolverSettings& s, const K& kernel,
                               const WallDistanceTable* wall_distances) {
-  if (s.viscosity.model == Viscosity::artificial) return with_diffusion<K, Viscosity::artificial>(ps, nb, s, kernel, wall_distances);
-  return with_diffusion<K, Viscosity::laminar_sps>(ps, nb, s, kernel, wall_distances);
+  if (s.viscosity.model == Viscosity::artificial) return with_diffusion<K, Viscosity::artificial>(ps, list, s, kernel, wall_distances);
+  return with_diffusion<K, Viscosity::laminar_sps>(ps, list, s, kernel, wall_distances);
 }
 
 }  // namespace
@@ -285,18 +280,17 @@ void compute_pressure(ParticleSet& ps, const SolverSettings& s) {
   for (Eigen::Index i = 0; i < n; ++i) ps.p[i] = s.eos.pressure(ps.rho[i]);
 }
 
-InteractionSummary compute_interactions(ParticleSet& ps, const CellList& cells, const NeighbourList& list, const SolverSettings& s,
+InteractionSummary compute_interactions(ParticleSet& ps, const NeighbourList& list, const SolverSettings& s,
                                         const WallDistanceTable* wall_distances) {
-  const Neighbours nb{cells, list};
-  if (s.kernel == KernelType::wendland_c2) return with_model(ps, nb, s, WendlandC2(s.h), wall_distances);
-  return with_model(ps, nb, s, CubicSpline(s.h), wall_distances);
+  if (s.kernel == KernelType::wendland_c2) return with_model(ps, list, s, WendlandC2(s.h), wall_distances);
+  return with_model(ps, list, s, CubicSpline(s.h), wall_distances);
 }
 
 InteractionSummary compute_interactions(ParticleSet& ps, const CellList& cells, const SolverSettings& s,
                                         const WallDistanceTable* wall_distances) {
   NeighbourList list;
   list.build(ps.x, ps.z, ps.type, cells, s.support(), s.boundary == BoundaryMethod::dbc);
-  return compute_interactions(ps, cells, list, s, wall_distances);
+  return compute_interactions(ps, list, s, wall_distances);
 }
 
 }  // namespace hydrojump::sph

@@ -30,9 +30,9 @@ void compute_pressure(ParticleSet& ps, const SolverSettings& s);
 // call and leaves the new one (from this call's velocity gradients) in tau_xx, tau_xz, tau_zz.
 // `wall_distances` (sph.sps_wall_distance = "whole_domain"): the fixed walls' distance table, used for
 // the mixing length of fluid particles with no wall particle within the kernel support.
-// The pairs are those of `list`, built on `cells` with a reach of at least the support, no particle
-// having moved more than (reach - support)/2 since.
-InteractionSummary compute_interactions(ParticleSet& ps, const CellList& cells, const NeighbourList& list, const SolverSettings& s,
+// The pairs are those of `list`, built with a reach of at least the support on the particles in
+// their present order, no particle having moved more than (reach - support)/2 since.
+InteractionSummary compute_interactions(ParticleSet& ps, const NeighbourList& list, const SolverSettings& s,
                                         const WallDistanceTable* wall_distances = nullptr);
 // The same with a list built now on `cells` (the particles at the positions `cells` was built from).
 InteractionSummary compute_interactions(ParticleSet& ps, const CellList& cells, const SolverSettings& s,

@@ -32,10 +32,10 @@ struct WendlandC2 {
   double h = 0.0, inv_h = 0.0, alpha = 0.0;
   explicit WendlandC2(double h_m) : h(h_m), inv_h(1.0 / h_m), alpha(7.0 / (4.0 * std::numbers::pi * h_m * h_m)) {}
   // W(r) = alpha (1 - q/2)^4 (2q + 1)
+  // (0 for q >= 2, without a branch: max instead.)
   double value(double r) const {
     const double q = r * inv_h;
-    if (q >= 2.0) return 0.0;
-    const double a = 1.0 - 0.5 * q;
+    const double a = std::max(0.0, 1.0 - 0.5 * q);
     const double a2 = a * a;
     return alpha * a2 * a2 * (2.0 * q + 1.0);
   }

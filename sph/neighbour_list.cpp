@@ -61,17 +61,23 @@ void NeighbourList::build(const Eigen::VectorXd& x, const Eigen::VectorXd& z, co
       std::size_t front = static_cast<std::size_t>(slot_start_[static_cast<std::size_t>(i)]);
       std::size_t back = static_cast<std::size_t>(slot_start_[static_cast<std::size_t>(i) + 1]);
       const std::size_t first = front, last = back;
+      // Branch-free: j is written at both free ends of the slot and kept by advancing one of them.
+      // The slot holds every candidate, i among them, so at least one free entry stays between
+      // front and back (back - 1 >= front) and neither write touches a kept entry.
       for (int r = 0; r < n_ranges; ++r) {
         const double shift = ranges[r].shift_x;
         for (int j = ranges[r].begin; j < ranges[r].end; ++j) {
-          if (j == i) continue;
           const bool j_wall = is_wall_type(t[j]);
-          if (i_wall && j_wall) continue;
           const double dx = x[i] - (x[j] + shift), dz = z[i] - z[j];
-          if (dx * dx + dz * dz >= reach2) continue;
-          const std::size_t k = j_wall ? --back : front++;
-          slot_j_[k] = j;
-          if (periodic) slot_shift_[k] = shift;
+          const bool keep = (dx * dx + dz * dz < reach2) & (j != i) & !(i_wall & j_wall);
+          slot_j_[front] = j;
+          slot_j_[back - 1] = j;
+          if (periodic) {
+            slot_shift_[front] = shift;
+            slot_shift_[back - 1] = shift;
+          }
+          front += static_cast<std::size_t>(keep & !j_wall);
+          back -= static_cast<std::size_t>(keep & j_wall);
         }
       }
       count[static_cast<std::size_t>(i)] = static_cast<int>((front - first) + (last - back));

@@ -89,7 +89,7 @@ InteractionSummary Solver::interactions() {
   }
   if (settings_.boundary == BoundaryMethod::mdbc) mdbc_boundary_density(particles_, ghosts_, settings_);
   compute_pressure(particles_, settings_);
-  return compute_interactions(particles_, cells_, neighbours_, settings_,
+  return compute_interactions(particles_, neighbours_, settings_,
                               settings_.viscosity.sps_wall_distance_table ? &wall_distances_ : nullptr);
 }
 

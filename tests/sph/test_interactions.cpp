@@ -244,7 +244,7 @@ void check_against_oracle(const sph::SolverSettings& s, unsigned seed, const Lay
   move_particles(ps, s, 0.5 * skin, seed + 100u);
   sph::compute_pressure(ps, s);
   const sph::ParticleSet before = ps;
-  const sph::InteractionSummary summary = sph::compute_interactions(ps, cells, list, s);
+  const sph::InteractionSummary summary = sph::compute_interactions(ps, list, s);
   const Oracle o = brute_force(before, s);
   const std::vector<double> none(o.drho.size(), 0.0);
   const auto check = [&](const char* name, const Eigen::VectorXd& got, const std::vector<double>& want, const std::vector<double>& bound) {
