@@ -57,6 +57,19 @@ void remove_particles(ParticleSet& particles, const std::vector<char>& remove) {
   particles.resize(kept);
 }
 
+Eigen::Index remove_retired(ParticleSet& particles) {
+  constexpr auto retired = static_cast<std::uint8_t>(ParticleType::retired);
+  std::vector<char> remove(static_cast<std::size_t>(particles.size()), 0);
+  Eigen::Index count = 0;
+  for (Eigen::Index i = 0; i < particles.size(); ++i) {
+    if (particles.type[i] != retired) continue;
+    remove[static_cast<std::size_t>(i)] = 1;
+    ++count;
+  }
+  if (count > 0) remove_particles(particles, remove);
+  return count;
+}
+
 InflowBuffer::InflowBuffer(const cases::InflowBoundary& inflow, double bed_z, const BufferParameters& params)
     : x_in_(inflow.x_m),
       bed_z_(bed_z),
@@ -170,8 +183,9 @@ OutflowBuffer::CharacteristicOutlet OutflowBuffer::characteristic_outlet(double 
 // Fluid past x_out joins the buffer; the buffer moves at u_b (hydrostatic_level: the depth-averaged u
 // upstream, >= 0; absorbing: u_B of the characteristic outlet) with the hydrostatic density of its
 // level (hydrostatic_level: y_t; absorbing: h_B); particles layers dx past x_out, or entering above the
-// level (hydrostatic_level: y_t + dx/2; absorbing, spray only: max(h, h_B) + 2 dx), are removed.
-// Returns the mass removed.
+// level (hydrostatic_level: y_t + dx/2; absorbing, spray only: max(h, h_B) + 2 dx), are removed:
+// retired (ParticleSet::retire), for the solver to drop at its next neighbour search. Returns the
+// mass removed.
 double OutflowBuffer::advance(ParticleSet& particles, double dt) {
   const Eigen::Index n = particles.size();
   const double x_end = x_out_ + layers_ * dx_;
@@ -198,7 +212,6 @@ double OutflowBuffer::advance(ParticleSet& particles, double dt) {
     spill_z = bed_z_ + std::max(b.depth_m, strip_depth) + 2.0 * dx_;
   }
 
-  std::vector<char> remove(static_cast<std::size_t>(n), 0);
   std::int64_t removed = 0;
   double removed_mass = 0.0;
   for (Eigen::Index i = 0; i < n; ++i) {
@@ -207,9 +220,9 @@ double OutflowBuffer::advance(ParticleSet& particles, double dt) {
       particles.type[i] = outflow_code;
       // Water arriving above the tailwater level spills: removed at once (level control).
       if (particles.z[i] > spill_z) {
-        remove[static_cast<std::size_t>(i)] = 1;
         ++removed;
         removed_mass += particles.mass[i];
+        particles.retire(i);
         continue;
       }
     } else if (t != outflow_code) {
@@ -217,9 +230,9 @@ double OutflowBuffer::advance(ParticleSet& particles, double dt) {
     }
     move_with_buffer(particles, i, u_out, dt);
     if (particles.x[i] >= x_end) {
-      remove[static_cast<std::size_t>(i)] = 1;
       ++removed;
       removed_mass += particles.mass[i];
+      particles.retire(i);
       continue;
     }
     // rho = rho0 (1 + rho0 g (z_level - z)/B)^(1/7), never below rho0 above the level
@@ -227,7 +240,6 @@ double OutflowBuffer::advance(ParticleSet& particles, double dt) {
     particles.rho[i] = particles.rho_old[i] = rho;
     particles.p[i] = eos_.pressure(rho);
   }
-  if (removed > 0) remove_particles(particles, remove);
   totals_.particles_out += removed;
   totals_.mass_out += removed_mass;
   return removed_mass;

@@ -137,7 +137,8 @@ class OutflowBuffer {
                 double discharge_m2_s = 0.0);
 
   // Converts fluid past x_out into buffer particles, imposes their velocity and density, removes
-  // those beyond the buffer or above the tailwater level. Returns the mass removed (kg/m).
+  // those beyond the buffer or above the tailwater level (retires them: ParticleSet::retire; see
+  // remove_retired). Returns the mass removed (kg/m).
   double advance(ParticleSet& particles, double dt);
 
   int layers() const { return layers_; }
@@ -223,6 +224,8 @@ std::int64_t next_particle_id(const ParticleSet& particles);
 
 // Removes the particles whose flag is set, keeping the order of the others.
 void remove_particles(ParticleSet& particles, const std::vector<char>& remove);
+// Removes the retired particles (ParticleType::retired), keeping the order of the others; returns how many.
+Eigen::Index remove_retired(ParticleSet& particles);
 
 // The number of buffer layers for a kernel support: at least ceil(support / dx) + 1.
 int buffer_layers(double support, double dx, int requested);

@@ -21,6 +21,13 @@ double ParticleSet::water_mass() const {
   return m;
 }
 
+void ParticleSet::retire(Eigen::Index i) {
+  type[i] = static_cast<std::uint8_t>(ParticleType::retired);
+  mass[i] = 0.0;
+  u[i] = w[i] = u_old[i] = w_old[i] = 0.0;
+  ax[i] = az[i] = drho[i] = 0.0;
+}
+
 void ParticleSet::for_each_real_array(const std::function<void(Vector&)>& f) {
   for (Vector* v : {&x, &z, &u, &w, &rho, &mass, &ghost_dx, &ghost_dz, &wall_u, &wall_w, &x_old, &z_old, &u_old, &w_old,
                     &rho_old, &p, &ax, &az, &drho, &tau_xx, &tau_xz, &tau_zz, &x_search, &z_search})

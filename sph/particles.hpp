@@ -16,7 +16,11 @@ namespace hydrojump::sph {
 // with imposed velocity and density, moved by their buffer rather than by the integrator.
 // moving_wall: a wall particle moved by a prescribed motion (sph/wall_motion.hpp), e.g. a lifted
 // dam-break gate; otherwise a boundary particle like the others.
-enum class ParticleType : std::uint8_t { fluid = 0, boundary = 1, inflow = 2, outflow = 3, moving_wall = 4 };
+// retired: taken out of the run (past an outflow buffer, or spilled there) but kept in the arrays, at
+// rest with mass 0, until the next neighbour search drops it, so that leaving water does not renew
+// the search by itself. Every pair term carries m_j or V_j = m_j/rho_j, so it acts on nothing; it is
+// never written (outputs and checkpoints drop it first).
+enum class ParticleType : std::uint8_t { fluid = 0, boundary = 1, inflow = 2, outflow = 3, moving_wall = 4, retired = 5 };
 
 // Fixed and moving walls: the particles of the boundary conditions (DBC, mDBC).
 inline bool is_wall_type(std::uint8_t t) {
@@ -67,6 +71,8 @@ struct ParticleSet {
   // Sets particle i to rest at (px, pz) with the given density and mass (i < size()).
   void assign(Eigen::Index i, ParticleType t, double px, double pz, double density, double particle_mass,
               std::int64_t particle_id);
+  // Retires particle i (type retired, mass 0, at rest); remove_retired (open_boundaries.hpp) drops it.
+  void retire(Eigen::Index i);
   // Reorders every array so that new[k] = old[order[k]].
   void permute(const std::vector<int>& order);
   // Visits every double array (for checkpoints and permutation), in a fixed order.

@@ -40,6 +40,7 @@ std::string describe(const ParticleSet& ps, Eigen::Index i) {
     case ParticleType::inflow: name = "inflow-buffer"; break;
     case ParticleType::outflow: name = "outflow-buffer"; break;
     case ParticleType::moving_wall: name = "moving-wall"; break;
+    case ParticleType::retired: name = "retired"; break;
   }
   o << name << " particle id " << ps.id[i] << " at (x, z) = (" << ps.x[i] << ", "
     << ps.z[i] << ") m, velocity (" << ps.u[i] << ", " << ps.w[i] << ") m/s, density " << ps.rho[i] << " kg/m^3";
@@ -84,6 +85,7 @@ class RunState {
 
   void write_output() {
     end_state_output_ = false;
+    solver_.drop_retired();  // outputs hold only the particles in the run
     solver_.update_pressure();
     const ParticleSet& ps = solver_.particles();
     const double t = solver_.time();
@@ -167,6 +169,9 @@ class RunState {
   }
 
   void write_checkpoint_now() {
+    // Dropped in the solver itself, not only in the copy saved: the run then renews its neighbour
+    // search at the next step as a run resumed from this checkpoint does, and both go on alike.
+    solver_.drop_retired();
     Checkpoint c;
     c.fingerprint = o_.fingerprint;
     c.clock = solver_.clock();
@@ -383,6 +388,7 @@ RunStatus run_case(Solver& solver, const RunOptions& o, const std::optional<Chec
                                   "; " + kept + ", with the outputs written before.";
       try {
         Solver copy = solver;
+        copy.drop_retired();
         copy.update_pressure();
         write_particles_vtp(copy.particles(), o.dir / "failure_state.vtp");
         util::write_file_atomically(o.dir / "failure.txt", message + "\n");

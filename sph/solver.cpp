@@ -84,6 +84,7 @@ void Solver::search_neighbours() {
 
 InteractionSummary Solver::interactions() {
   if (!search_current()) {
+    remove_retired(particles_);  // a search is due: drop what left the run since the last one
     remember_search_positions();
     search_neighbours();
   }

@@ -66,7 +66,12 @@ class Solver {
   void step();
 
   const SolverSettings& settings() const { return settings_; }
+  // The particles; water that left through an outflow buffer stays among them, retired
+  // (ParticleType::retired), until the next neighbour search or drop_retired().
   const ParticleSet& particles() const { return particles_; }
+  // Drops the retired particles now (before outputs and checkpoints); the next step then renews the
+  // neighbour search.
+  void drop_retired() { remove_retired(particles_); }
   const SolverClock& clock() const { return clock_; }
   // The inflow/outflow buffers and their mass totals since this solver was made.
   const OpenBoundaries& open_boundaries() const { return open_; }

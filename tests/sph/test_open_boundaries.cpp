@@ -126,6 +126,19 @@ TEST_CASE("Outflow buffer removes what leaves and holds the level", "[sph][open_
   // The per-particle checks above mean something only with a buffer: it holds at least one full
   // column of the tailwater (the flow keeps feeding it).
   CHECK(in_buffer >= static_cast<Eigen::Index>(std::floor(tailwater / dx)));
+  // What left is retired (mass 0, at rest) until the solver's next neighbour search drops it.
+  Eigen::Index retired = 0;
+  for (Eigen::Index k = 0; k < p.size(); ++k) {
+    if (p.type[k] != static_cast<std::uint8_t>(ParticleType::retired)) continue;
+    ++retired;
+    CHECK(p.mass[k] == 0.0);
+    CHECK(p.u[k] == 0.0);
+  }
+  CHECK(retired == outflow.totals().particles_out);
+  const Eigen::Index before = p.size();
+  CHECK(remove_retired(p) == retired);
+  CHECK(p.size() == before - retired);
+  CHECK(total_mass(p, ParticleType::fluid) + total_mass(p, ParticleType::outflow) + removed == Approx(initial));
 }
 
 TEST_CASE("Absorbing outflow: the characteristic outlet state from the basin's and the tailwater's invariants",
