@@ -406,8 +406,9 @@ TEST_CASE("retired particles on the lists act on nothing: the same rates as with
   int compared = 0;
   for (const auto& [name, got, want] : {std::tuple{"drho", &ps.drho, &without.drho}, std::tuple{"ax", &ps.ax, &without.ax},
                                         std::tuple{"az", &ps.az, &without.az}, std::tuple{"tau_xx", &ps.tau_xx, &without.tau_xx},
-                                        std::tuple{"tau_xz", &ps.tau_xz, &without.tau_xz}, std::tuple{"rho", &ps.rho, &without.rho},
-                                        std::tuple{"wall_u", &ps.wall_u, &without.wall_u}}) {
+                                        std::tuple{"tau_xz", &ps.tau_xz, &without.tau_xz}, std::tuple{"tau_zz", &ps.tau_zz, &without.tau_zz},
+                                        std::tuple{"rho", &ps.rho, &without.rho}, std::tuple{"wall_u", &ps.wall_u, &without.wall_u},
+                                        std::tuple{"wall_w", &ps.wall_w, &without.wall_w}}) {
     const double tol = 1e-9 * largest(*want);
     for (Eigen::Index i = 0; i < ps.size(); ++i) {
       const Eigen::Index k = at[static_cast<std::size_t>(ps.id[i])];
@@ -418,12 +419,16 @@ TEST_CASE("retired particles on the lists act on nothing: the same rates as with
     }
   }
   CHECK(compared > 1000);
-  // Not vacuous: the retired particles sat within the support of fluid particles and wall ghost nodes.
-  int near = 0;
+  // Not vacuous: the retired particles sat within the support of fluid particles and of wall ghost nodes.
+  int near_fluid = 0, near_ghost = 0;
   for (Eigen::Index i = 0; i < ps.size(); ++i) {
-    if (!ps.is_fluid(i)) continue;
+    const bool wall = sph::is_wall_type(ps.type[i]);
+    if (!wall && !ps.is_fluid(i)) continue;
+    const double xi = ps.x[i] + (wall ? ps.ghost_dx[i] : 0.0), zi = ps.z[i] + (wall ? ps.ghost_dz[i] : 0.0);
     for (Eigen::Index j = 0; j < ps.size(); ++j)
-      if (ps.type[j] == static_cast<std::uint8_t>(sph::ParticleType::retired) && std::hypot(ps.x[i] - ps.x[j], ps.z[i] - ps.z[j]) < s.support()) ++near;
+      if (ps.type[j] == static_cast<std::uint8_t>(sph::ParticleType::retired) && std::hypot(xi - ps.x[j], zi - ps.z[j]) < s.support())
+        ++(wall ? near_ghost : near_fluid);
   }
-  CHECK(near > 100);
+  CHECK(near_fluid > 100);
+  CHECK(near_ghost > 10);
 }
