@@ -75,6 +75,12 @@ void write_stage_info(const fs::path& dir, const std::string& stage, double seco
   fs::remove(dir / (stage + ".legs"));
 }
 
+fs::file_time_type leg_start_time(const fs::path& marker) {
+  std::error_code ec;
+  const auto written = marker.empty() ? fs::file_time_type() : fs::last_write_time(marker, ec);
+  return marker.empty() || ec ? fs::file_time_type::clock::now() : written;
+}
+
 std::string failure_text(const fs::path& dir, const std::string& stage, const fs::path& log_file, int exit_status,
                          fs::file_time_type leg_start) {
   const fs::path diagnosis = dir / stage / "failure.txt";

@@ -37,6 +37,11 @@ void add_leg(const std::filesystem::path& dir, const std::string& stage, double 
 // (SPH) or ranks (VOF); removes <stage>.legs.
 void write_stage_info(const std::filesystem::path& dir, const std::string& stage, double seconds, int threads);
 
+// When a leg started, on the file system's own clock: the time `marker` (written as the leg starts) was
+// last written, else now. A file written after the marker is never older than it, whereas the clock's
+// now() can run a tick ahead of the file system's coarse timestamps.
+std::filesystem::file_time_type leg_start_time(const std::filesystem::path& marker);
+
 // What stopped a solver stage whose leg started at `leg_start`: the SPH run's diagnosis (the first line
 // of `dir`/sph/failure.txt, when this leg wrote it), else the last line of its log `log_file`, with the
 // exit status.
