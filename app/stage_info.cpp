@@ -76,9 +76,9 @@ void write_stage_info(const fs::path& dir, const std::string& stage, double seco
 }
 
 fs::file_time_type leg_start_time(const fs::path& marker) {
-  std::error_code ec;
-  const auto written = marker.empty() ? fs::file_time_type() : fs::last_write_time(marker, ec);
-  return marker.empty() || ec ? fs::file_time_type::clock::now() : written;
+  std::error_code ec;  // an empty path is a missing file too
+  const auto written = fs::last_write_time(marker, ec);
+  return ec ? fs::file_time_type::clock::now() : written;
 }
 
 std::string failure_text(const fs::path& dir, const std::string& stage, const fs::path& log_file, int exit_status,

@@ -356,8 +356,7 @@ class StudyRunner {
     }
     say(id + ": " + stage + " started (log: " + log_file.string() + ")");
     const auto t0 = std::chrono::steady_clock::now();
-    // The leg's start on the file system's own clock (its coarse timestamps can lag the clock's now()
-    // by a tick, so a diagnosis written at once could look older than the leg).
+    // On the file system's clock, as the diagnosis' timestamp is (leg_start_time).
     const auto leg_start = leg_start_time(started_marker);
     int status = 127;
     std::string start_error;
