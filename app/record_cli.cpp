@@ -32,17 +32,6 @@ std::string today() {
   return buffer;
 }
 
-// The study file a resolved case came from, as `hydrojump study` takes it: "default" for the embedded
-// study. The resolved case's first line reads "# Resolved by hydrojump from FILE: case ...".
-std::string study_argument(const fs::path& resolved_case) {
-  const std::string text = util::read_text_file(resolved_case);
-  const std::string lead = "# Resolved by hydrojump from ";
-  if (text.rfind(lead, 0) != 0) return "SPEC";
-  const auto end = text.find(": case \"", lead.size());
-  const std::string file = text.substr(lead.size(), end == std::string::npos ? std::string::npos : end - lead.size());
-  return file.find("<embedded") == 0 ? "default" : file;
-}
-
 struct RecordOptions {
   fs::path study_dir;
   std::vector<std::string> cases;
@@ -70,7 +59,7 @@ void record_command(const RecordOptions& o) {
     std::vector<compare::ValidationRecord> records = compare::records_from_case_dir(dir, provenance);
     for (auto& r : records) {
       r.hydrojump_version = version_string;
-      r.command = "hydrojump study " + study_argument(resolved) + " --cases " + r.case_id + " --resolution " +
+      r.command = "hydrojump study " + study_command_argument(resolved, fs::current_path()) + " --cases " + r.case_id + " --resolution " +
                   r.resolution + " --methods " + r.method;
       compare::write_record(o.records, r);
       std::cout << "recorded " << compare::record_file(o.records, r.study, r.case_id, r.method, r.resolution).string()
@@ -145,6 +134,20 @@ void validation_doc_command(const DocOptions& o) {
 }
 
 }  // namespace
+
+std::string study_command_argument(const fs::path& resolved_case, const fs::path& working_dir) {
+  const std::string text = util::read_text_file(resolved_case);
+  const std::string lead = "# Resolved by hydrojump from ";
+  if (text.rfind(lead, 0) != 0) return "SPEC";
+  const auto end = text.find(": case \"", lead.size());
+  const std::string file = text.substr(lead.size(), end == std::string::npos ? std::string::npos : end - lead.size());
+  if (file.find("<embedded") == 0) return "default";
+  const fs::path given(file);
+  if (!given.is_absolute() || !working_dir.is_absolute()) return file;
+  const fs::path below = given.lexically_normal().lexically_relative(working_dir.lexically_normal());
+  if (below.empty() || *below.begin() == "..") return file;
+  return below.generic_string();
+}
 
 void register_record_commands(CLI::App& app) {
   auto r = std::make_shared<RecordOptions>();
