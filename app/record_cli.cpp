@@ -55,12 +55,12 @@ void record_command(const RecordOptions& o) {
   }
   for (const auto& dir : dirs) {
     const fs::path resolved = fs::exists(dir / "sph" / "case.toml") ? dir / "sph" / "case.toml" : dir / "vof" / "case.toml";
+    const std::string study = study_command_argument(resolved, fs::current_path());
     compare::RecordProvenance provenance{today(), ""};
     std::vector<compare::ValidationRecord> records = compare::records_from_case_dir(dir, provenance);
     for (auto& r : records) {
       r.hydrojump_version = version_string;
-      r.command = "hydrojump study " + study_command_argument(resolved, fs::current_path()) + " --cases " + r.case_id + " --resolution " +
-                  r.resolution + " --methods " + r.method;
+      r.command = "hydrojump study " + study + " --cases " + r.case_id + " --resolution " + r.resolution + " --methods " + r.method;
       compare::write_record(o.records, r);
       std::cout << "recorded " << compare::record_file(o.records, r.study, r.case_id, r.method, r.resolution).string()
                 << (r.failed() ? " (a failed run: " + r.failure + ")" : std::string()) << "\n";
