@@ -172,6 +172,26 @@ void cut_below_bed(MeshPlan& plan, const cases::CaseGeometry& g) {
   }
 }
 
+// The columns of a stilling basin: bed-size cells h from the inlet to one tailwater depth y2 past the
+// last section, then growing by at most 20 % per cell to the bulk size h_bulk up to the outlet:
+//   [x_min, x_s + y2]       h              the inflow, the jump and every section (x_s the last one)
+//   [x_s + y2, x_max]       h -> h_bulk    the gradually varied tailwater flow to the outlet
+// Past the sections the flow is subcritical and slowly varied, and the toe is held by the outlet (its
+// level steered, tailwater_control.hpp), so what these columns carry to the jump is the discharge and
+// the level, not their detail. Without room for the transition the cells stay h up to the outlet.
+std::vector<GridBand> basin_columns(const cases::CaseGeometry& g, const cases::StillingBasinCase& basin, double h,
+                                    double h_bulk) {
+  double x_last = g.x_min_m;
+  for (const cases::Section& s : g.sections) x_last = std::max(x_last, s.x_m);
+  const double x_grade = x_last + basin.tailwater_depth_m;
+  if (g.sections.empty() || x_grade >= g.x_max_m || x_grade - g.x_min_m < 4.0 * h) {
+    return {uniform_band(g.x_min_m, g.x_max_m, h, 4)};
+  }
+  std::vector<GridBand> bands{uniform_band(g.x_min_m, x_grade, h, 4)};
+  append_transition_and_bulk(bands, x_grade, g.x_max_m, h, h_bulk);
+  return bands;
+}
+
 // A stilling basin: a grid line on the upstream floor and at the inflow surface y1, bed-size cells up
 // to the highest expected surface plus a band, then graded to the bulk size; cut below the bed, or
 // (body_fitted) the lowest row on the bed.
@@ -191,7 +211,7 @@ void plan_basin(MeshPlan& plan, const cases::Case& c, const cases::StillingBasin
         foam::format_number(h) + " m leaves fewer than 2 cells across the inflow depth y1 = " +
         foam::format_number(y1) + " m: must be <= y1/2");
   }
-  plan.x_bands.push_back(uniform_band(g.x_min_m, g.x_max_m, h, 4));
+  plan.x_bands = basin_columns(g, basin, h, h_bulk);
   plan.z_floor_m = g.bed.elevation(in.x_m);
   plan.z_inflow_top_m = plan.z_floor_m + y1;
   const double z_low = std::min(g.z_min_m, g.bed.lowest_elevation());

@@ -14,8 +14,11 @@
 //   [z_fine_top, z_bulk]     geometric transition (ratio <= 1.2 per cell) to the bulk size
 //   [z_bulk, z_max]          the air above                                                         h_bulk
 // with h_bed = vof_cell_size_bed_m and h_bulk = vof_cell_size_bulk_m of the resolution; the cell sizes
-// are adjusted within each band so that every band holds a whole number of cells. Along x the cells
-// are uniform with size h_bed (and a grid line at the dam-break gate).
+// are adjusted within each band so that every band holds a whole number of cells. Along x, inlet to
+// outlet of a stilling basin (cartesian_cut):
+//   [x_min, x_s + y2]        every section (x_s the last) and one tailwater depth past it       h_bed
+//   [x_s + y2, x_max]        geometric transition (ratio <= 1.2 per cell) to the bulk size      h_bulk
+// (body_fitted basins and tanks: uniform h_bed; a tank has a grid line at the dam-break gate).
 //
 // cartesian_cut: one column of blocks; a cell is removed when its centre lies below the bed
 // z_b(x_centre) (a staircase, every face aligned with the axes); the exposed faces join the `bed`

@@ -132,6 +132,60 @@ TEST_CASE("cartesian_cut plan: grid lines at the floor and the inflow surface, g
   }
 }
 
+TEST_CASE("basin columns: bed-size cells to one y2 past the last section, then graded to the bulk size",
+          "[reference][mesh]") {
+  // Outlet 0.4 m past the basin: the last section at 0.42 m + y2 = 0.06 m leaves 0.29 m to grade.
+  std::string spec = basin_spec("", 0.02, 0.01, "sinusoidal", 0.005, 0.01, 0.15);
+  const std::string short_reach = "downstream_length_m = 0.1";
+  spec.replace(spec.find(short_reach), short_reach.size(), "downstream_length_m = 0.4");
+  const cases::Study study = parse(spec);
+  const cases::Case& c = study.cases.front();
+  const cases::CaseGeometry geo = cases::make_geometry(c, study.fluid);
+  const reference::MeshPlan plan = reference::plan_mesh(c, geo, c.resolution("quick"));
+  const double h = 0.005, h_bulk = 0.01, x_grade = 0.42 + 0.06;
+
+  const std::vector<double> x = reference::band_faces(plan.x_bands);
+  REQUIRE(x.size() > 2);
+  CHECK(x.front() == Approx(0.0).margin(1e-12));
+  CHECK(x.back() == Approx(geo.x_max_m).epsilon(1e-12));
+  CHECK(std::count_if(x.begin(), x.end(), [&](double f) { return std::abs(f - x_grade) < 1e-12; }) == 1);
+  double previous = 0.0;
+  for (std::size_t i = 0; i + 1 < x.size(); ++i) {
+    const double dx = x[i + 1] - x[i];
+    INFO("column " << i << " from x = " << x[i] << " m");
+    if (x[i + 1] <= x_grade + 1e-12) {
+      CHECK(dx == Approx(h).epsilon(0.02));  // every section and the jump at the bed size
+    } else {
+      CHECK(dx >= previous * (1.0 - 1e-9));  // growing to the outlet
+      CHECK(dx / previous <= 1.2 + 1e-9);
+      CHECK(dx <= h_bulk * 1.2);
+    }
+    previous = dx;
+  }
+  CHECK(x[x.size() - 1] - x[x.size() - 2] == Approx(h_bulk).epsilon(0.2));
+  CHECK(plan.columns() < static_cast<int>(std::lround(geo.x_max_m / h)) - 20);
+  // Oracle: the staircase cut column by column on the graded columns.
+  const std::vector<double> z = reference::band_faces(plan.z_bands);
+  long removed = 0;
+  for (std::size_t i = 0; i + 1 < x.size(); ++i) {
+    const double zb = geo.bed.elevation(0.5 * (x[i] + x[i + 1]));
+    for (std::size_t j = 0; j + 1 < z.size(); ++j) removed += 0.5 * (z[j] + z[j + 1]) < zb ? 1 : 0;
+  }
+  CHECK(removed > 0);
+  CHECK(plan.removed_cell_count() == removed);
+}
+
+TEST_CASE("a short reach past the last section keeps bed-size columns to the outlet", "[reference][mesh]") {
+  // basin_spec's outlet lies 0.052 m past its last section: less than y2 = 0.06 m, nothing to grade.
+  const cases::Study study = parse(basin_spec());
+  const cases::Case& c = study.cases.front();
+  const cases::CaseGeometry geo = cases::make_geometry(c, study.fluid);
+  const reference::MeshPlan plan = reference::plan_mesh(c, geo, c.resolution("quick"));
+  REQUIRE(plan.x_bands.size() == 1);
+  CHECK(plan.x_bands.front().expansion == 1.0);
+  CHECK(plan.columns() == static_cast<int>(std::lround(geo.x_max_m / 0.005)));
+}
+
 TEST_CASE("a smooth bed is not cut", "[reference][mesh]") {
   const cases::Study study = parse(basin_spec("", 0.02, 0.01, "smooth"));
   const cases::Case& c = study.cases.front();
