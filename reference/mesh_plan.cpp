@@ -172,23 +172,32 @@ void cut_below_bed(MeshPlan& plan, const cases::CaseGeometry& g) {
   }
 }
 
-// The columns of a stilling basin: bed-size cells h from the inlet to one tailwater depth y2 past the
-// last section, then growing by at most 20 % per cell to the bulk size h_bulk up to the outlet:
-//   [x_min, x_s + y2]       h              the inflow, the jump and every section (x_s the last one)
-//   [x_s + y2, x_max]       h -> h_bulk    the gradually varied tailwater flow to the outlet
-// Past the sections the flow is subcritical and slowly varied, and the toe is held by the outlet (its
-// level steered, tailwater_control.hpp), so what these columns carry to the jump is the discharge and
-// the level, not their detail. Without room for the transition the cells stay h up to the outlet.
+// The columns of a stilling basin: the columns of a uniform grid inlet to outlet up to the first of
+// its lines one tailwater depth y2 past the last section, then growing by at most 20 % per cell to the
+// bulk size h_bulk up to the outlet:
+//   [x_min, x_g]       h_x             the inflow, the jump and every section (x_s the last one)
+//   [x_g, x_max]       h_x -> h_bulk   the gradually varied tailwater flow to the outlet
+// with h_x = (x_max - x_min) / round((x_max - x_min) / h) and x_g = x_min + ceil((x_s + y2 - x_min) / h_x) h_x.
+// The fine columns keep the uniform grid's lines, so the bed's staircase under the jump is the uniform
+// grid's: a column size fitted to [x_min, x_s + y2] instead shifts the staircase against the
+// corrugations by up to 0.7 cells across the basin, and moved run C's y2 by 1.6 %. Past the sections
+// the flow is subcritical and slowly varied, and the toe is held by the outlet (its level steered,
+// tailwater_control.hpp), so what these columns carry to the jump is the discharge and the level, not
+// their detail. Without room for the transition the columns stay uniform up to the outlet.
 std::vector<GridBand> basin_columns(const cases::CaseGeometry& g, const cases::StillingBasinCase& basin, double h,
                                     double h_bulk) {
+  const GridBand uniform = uniform_band(g.x_min_m, g.x_max_m, h, 4);
+  if (g.sections.empty()) return {uniform};
   double x_last = g.x_min_m;
   for (const cases::Section& s : g.sections) x_last = std::max(x_last, s.x_m);
-  const double x_grade = x_last + basin.tailwater_depth_m;
-  if (g.sections.empty() || x_grade >= g.x_max_m || x_grade - g.x_min_m < 4.0 * h) {
-    return {uniform_band(g.x_min_m, g.x_max_m, h, 4)};
-  }
-  std::vector<GridBand> bands{uniform_band(g.x_min_m, x_grade, h, 4)};
-  append_transition_and_bulk(bands, x_grade, g.x_max_m, h, h_bulk);
+  const double length = uniform.end_m - uniform.begin_m;
+  const double h_x = length / uniform.cells;
+  const int fine = static_cast<int>(std::ceil((x_last + basin.tailwater_depth_m - g.x_min_m) / h_x - 1e-9));
+  if (fine < 4 || fine >= uniform.cells) return {uniform};
+  // The uniform grid's line `fine` as band_faces computes it (the lines before it agree to rounding).
+  const double x_grade = g.x_min_m + length * fine / uniform.cells;
+  std::vector<GridBand> bands{GridBand{g.x_min_m, x_grade, fine, 1.0}};
+  append_transition_and_bulk(bands, x_grade, g.x_max_m, h_x, h_bulk);
   return bands;
 }
 

@@ -16,8 +16,10 @@
 // with h_bed = vof_cell_size_bed_m and h_bulk = vof_cell_size_bulk_m of the resolution; the cell sizes
 // are adjusted within each band so that every band holds a whole number of cells. Along x, inlet to
 // outlet of a stilling basin (cartesian_cut):
-//   [x_min, x_s + y2]        every section (x_s the last) and one tailwater depth past it       h_bed
-//   [x_s + y2, x_max]        geometric transition (ratio <= 1.2 per cell) to the bulk size      h_bulk
+//   [x_min, x_g]             every section (x_s the last) and one tailwater depth past it       h_x
+//   [x_g, x_max]             geometric transition (ratio <= 1.2 per cell) to the bulk size      h_bulk
+// with h_x the size of uniform columns inlet to outlet (h_bed adjusted to a whole number of them) and
+// x_g the first of their lines at or past x_s + y2: under the jump the columns are the uniform grid's.
 // (body_fitted basins and tanks: uniform h_bed; a tank has a grid line at the dam-break gate).
 //
 // cartesian_cut: one column of blocks; a cell is removed when its centre lies below the bed

@@ -3,6 +3,7 @@
 // and clear rejections. No OpenFOAM needed (test_openfoam_run.cpp runs the cases).
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <filesystem>
@@ -134,15 +135,23 @@ TEST_CASE("cartesian_cut plan: grid lines at the floor and the inflow surface, g
 
 TEST_CASE("basin columns: bed-size cells to one y2 past the last section, then graded to the bulk size",
           "[reference][mesh]") {
-  // Outlet 0.4 m past the basin: the last section at 0.42 m + y2 = 0.06 m leaves 0.29 m to grade.
+  // Outlet 0.4023 m past the basin: the last section at 0.42 m + y2 = 0.06 m leaves 0.29 m to grade,
+  // and the domain (0.7723 m) is no whole number of 5 mm cells, so columns fitted to [0, 0.48] would
+  // not be the uniform grid's.
   std::string spec = basin_spec("", 0.02, 0.01, "sinusoidal", 0.005, 0.01, 0.15);
   const std::string short_reach = "downstream_length_m = 0.1";
-  spec.replace(spec.find(short_reach), short_reach.size(), "downstream_length_m = 0.4");
+  spec.replace(spec.find(short_reach), short_reach.size(), "downstream_length_m = 0.4023");
   const cases::Study study = parse(spec);
   const cases::Case& c = study.cases.front();
   const cases::CaseGeometry geo = cases::make_geometry(c, study.fluid);
   const reference::MeshPlan plan = reference::plan_mesh(c, geo, c.resolution("quick"));
-  const double h = 0.005, h_bulk = 0.01, x_grade = 0.42 + 0.06;
+  const double h = 0.005, h_bulk = 0.01;
+  // Oracle: the lines of uniform columns inlet to outlet, and the first of them at or past x_s + y2.
+  const int n = static_cast<int>(std::lround(geo.x_max_m / h));
+  std::vector<double> uniform;
+  for (int i = 0; i <= n; ++i) uniform.push_back(geo.x_max_m * i / n);
+  const double x_grade = *std::find_if(uniform.begin(), uniform.end(), [](double f) { return f >= 0.42 + 0.06 - 1e-12; });
+  REQUIRE(x_grade < 0.42 + 0.06 + h);
 
   const std::vector<double> x = reference::band_faces(plan.x_bands);
   REQUIRE(x.size() > 2);
@@ -154,9 +163,11 @@ TEST_CASE("basin columns: bed-size cells to one y2 past the last section, then g
     const double dx = x[i + 1] - x[i];
     INFO("column " << i << " from x = " << x[i] << " m");
     if (x[i + 1] <= x_grade + 1e-12) {
-      CHECK(dx == Approx(h).epsilon(0.02));  // every section and the jump at the bed size
+      CHECK(x[i + 1] == Approx(uniform[i + 1]).margin(1e-12));  // the jump and every section: the uniform grid's
+      CHECK(dx == Approx(h).epsilon(0.02));
     } else {
-      CHECK(dx >= previous * (1.0 - 1e-9));  // growing to the outlet
+      // Growing to the outlet (the bulk cells sized to a whole number of them: within 2 % of h_bulk).
+      CHECK(dx >= std::min(previous, 0.98 * h_bulk) * (1.0 - 1e-9));
       CHECK(dx / previous <= 1.2 + 1e-9);
       CHECK(dx <= h_bulk * 1.2);
     }
